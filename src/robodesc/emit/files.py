@@ -1,0 +1,36 @@
+"""Writing outputs atomically: a reader never sees a half-written file, and a failed run leaves
+whatever was there before untouched."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+
+
+def write_atomic(path: str, data: str | bytes) -> None:
+    directory = os.path.dirname(os.path.abspath(path))
+    os.makedirs(directory, exist_ok=True)
+    raw = data.encode("utf-8") if isinstance(data, str) else data
+    fd, tmp = tempfile.mkstemp(prefix=".robodesc-", suffix=".tmp", dir=directory)
+    try:
+        with os.fdopen(fd, "wb") as handle:
+            handle.write(raw)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def replace_dir_atomic(staging: str, target: str) -> None:
+    """Move a fully written ``staging`` folder to ``target``, replacing an older one."""
+    if os.path.isdir(target):
+        backup = tempfile.mkdtemp(prefix=".robodesc-old-", dir=os.path.dirname(os.path.abspath(target)))
+        os.rmdir(backup)
+        os.replace(target, backup)
+        os.replace(staging, target)
+        shutil.rmtree(backup, ignore_errors=True)
+    else:
+        os.replace(staging, target)

@@ -1,0 +1,1 @@
+"""Frontends: URDF, xacro and compositions → IR."""

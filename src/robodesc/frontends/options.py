@@ -1,0 +1,25 @@
+"""Options every frontend understands."""
+
+from __future__ import annotations
+
+import enum
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+
+class MissingMesh(enum.Enum):
+    """What to do when a mesh file does not exist."""
+
+    ERROR = "error"  # fail, naming the file and the link (the default)
+    WARN = "warn"  # keep the reference as written, with a warning
+    PRIMITIVE = "primitive"  # substitute a box of the declared scale, with a warning
+    DROP = "drop"  # drop that visual/collision, with a warning
+
+
+@dataclass(slots=True)
+class LoadOptions:
+    package_paths: Mapping[str, str] = field(default_factory=dict)
+    xacro_args: Mapping[str, str] = field(default_factory=dict)
+    missing_mesh: MissingMesh = MissingMesh.ERROR
+    # Treat unknown elements as errors instead of keeping them with a warning.
+    strict: bool = False

@@ -1,0 +1,70 @@
+"""Shared test fixtures.
+
+Golden files live beside the tests that use them (``tests/<area>/golden/``). Regenerate them with
+``pytest --update-golden`` and review the diff like code.
+"""
+
+from __future__ import annotations
+
+import difflib
+import os
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+SHARED = (ROOT / ".." / "shared").resolve()
+CORPUS = SHARED / "corpus"
+QUADSDK = CORPUS / "quadsdk"
+SPIRIT_XACRO = QUADSDK / "spirit_description/models/spirit/urdf/spirit.urdf.xacro"
+GO2_XACRO = QUADSDK / "go2_description/models/go2/urdf/go2.urdf.xacro"
+HOLO_ARM = CORPUS / "holoscript/isaac-sim-robot-arm.holo"
+EXAMPLES = ROOT / "examples"
+
+
+def pytest_addoption(parser: pytest.Parser) -> None:
+    parser.addoption("--update-golden", action="store_true", help="rewrite golden files from the current output")
+
+
+class Golden:
+    def __init__(self, directory: Path, update: bool) -> None:
+        self.directory = directory
+        self.update = update
+
+    def check(self, name: str, actual: str) -> None:
+        path = self.directory / name
+        if self.update:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_text(actual, encoding="utf-8")
+            return
+        if not path.exists():
+            pytest.fail(f"golden file {path} is missing; run pytest --update-golden and review it")
+        expected = path.read_text(encoding="utf-8")
+        if expected != actual:
+            diff = "".join(
+                list(difflib.unified_diff(expected.splitlines(True), actual.splitlines(True), str(path), "actual"))[:80]
+            )
+            pytest.fail(f"output differs from golden file {path} (pytest --update-golden rewrites it):\n{diff}")
+
+
+@pytest.fixture
+def golden(request: pytest.FixtureRequest) -> Golden:
+    directory = Path(request.node.fspath).parent / "golden"
+    return Golden(directory, bool(request.config.getoption("--update-golden")))
+
+
+def example_robot_data_dir() -> Path | None:
+    """The share folder of the PyPI example-robot-data corpus, when installed."""
+    try:
+        import example_robot_data  # type: ignore[import-not-found]
+    except ImportError:
+        return None
+    path = Path(example_robot_data.getModelPath("ur5_description/urdf/ur5_robot.urdf" if False else ""))
+    return path if path.exists() else None
+
+
+@pytest.fixture(autouse=True)
+def _single_thread_usd(monkeypatch: pytest.MonkeyPatch) -> None:
+    # usd-core's physics parser has crashed with many colliders on one body when threaded.
+    monkeypatch.setenv("PXR_WORK_THREAD_LIMIT", "1")
+    os.environ.setdefault("PXR_WORK_THREAD_LIMIT", "1")
