@@ -53,7 +53,7 @@ FRONTENDS: dict[str, Frontend] = {
 def _composition_frontends() -> None:
     """Register composition frontends lazily (they import optional parsers)."""
     try:
-        from robodesc.compose import register  # type: ignore[attr-defined]
+        from robodesc.compose import register
     except ImportError:
         return
     register(FRONTENDS)

@@ -15,7 +15,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from urllib.parse import unquote, urlparse
 
-from robodesc.ir.diagnostics import BrokenReferenceError
+from robodesc.ir.diagnostics import BrokenReferenceError, PathEscapeError
 
 _NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 _MODEL_PATH_VARS = ("GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH", "GAZEBO_MODEL_PATH", "SDF_PATH")
@@ -166,7 +166,7 @@ def _inside(root: str, inner: str, uri: str) -> str:
     root = os.path.abspath(root)
     path = os.path.normpath(os.path.join(root, inner))
     if path != root and not path.startswith(root + os.sep):
-        raise BrokenReferenceError(f"{uri!r} leaves its package root {root!r} through '..'; refused")
+        raise PathEscapeError(f"{uri!r} leaves its package root {root!r} through '..'; refused")
     return path
 
 

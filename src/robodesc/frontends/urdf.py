@@ -17,7 +17,7 @@ from lxml import etree
 from robodesc.frontends.options import LoadOptions, MissingMesh
 from robodesc.frontends.packages import PackageResolver
 from robodesc.frontends.xml_safety import parse_xml
-from robodesc.ir.diagnostics import BrokenReferenceError, Findings, ParseError, SourceLoc
+from robodesc.ir.diagnostics import BrokenReferenceError, Findings, ParseError, PathEscapeError, SourceLoc
 from robodesc.ir.geometry import (
     RGBA,
     Box,
@@ -186,7 +186,8 @@ class UrdfReader:
         )
 
     def _one(self, el: etree._Element, tag: str, element: str) -> etree._Element | None:
-        found = [c for c in el if isinstance(c.tag, str) and _tag(c) == tag]
+        # Children are namespace-free in practice; iterchildren(tag) avoids building QNames.
+        found = [c for c in el.iterchildren(tag, "{*}" + tag)]
         if len(found) > 1:
             self.findings.warn(
                 "repeated-element",
@@ -362,12 +363,16 @@ class UrdfReader:
     def _resolve_mesh(self, mesh: Mesh, label: str) -> Geometry | None:
         try:
             resolved = self.resolver.resolve(mesh.uri, self.base_dir)
+        except PathEscapeError as exc:
+            raise PathEscapeError(f"mesh {mesh.uri!r}: {exc.message}", element=label, loc=mesh.src) from None
         except BrokenReferenceError as exc:
-            raise BrokenReferenceError(f"mesh {mesh.uri!r}: {exc.message}", element=label, loc=mesh.src) from None
+            return self._missing_mesh(mesh, label, f"mesh {mesh.uri!r}: {exc.message}")
         mesh.path, mesh.package = resolved.path, resolved.package
         if os.path.isfile(resolved.path):
             return mesh
-        message = f"mesh file {resolved.path!r} does not exist (from {mesh.uri!r})"
+        return self._missing_mesh(mesh, label, f"mesh file {resolved.path!r} does not exist (from {mesh.uri!r})")
+
+    def _missing_mesh(self, mesh: Mesh, label: str, message: str) -> Geometry | None:
         policy = self.options.missing_mesh
         if policy is MissingMesh.ERROR:
             raise BrokenReferenceError(

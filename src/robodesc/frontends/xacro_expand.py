@@ -15,8 +15,10 @@ import xml.parsers.expat
 from collections.abc import Iterator, Mapping
 from typing import Any
 
+from lxml import etree
+
 from robodesc.frontends.packages import PackageResolver
-from robodesc.frontends.xml_safety import read_file, refuse_hostile
+from robodesc.frontends.xml_safety import parse_xml, read_file, refuse_hostile
 from robodesc.ir.diagnostics import Findings, ParseError, SourceLoc
 
 STAGE = "frontend:xacro"
@@ -79,7 +81,11 @@ def expand_xacro(path: str, args: Mapping[str, str], resolver: PackageResolver, 
     for line in stderr.getvalue().splitlines():
         if line.strip():
             findings.warn("xacro", _clean(line), loc=loc, stage=STAGE)
-    text: str = doc.toxml()
+    # xacro writes few, very long lines; re-indent so that file:line in messages is useful.
+    # `robodesc expand` prints this same text.
+    root = parse_xml(doc.toxml(), path)
+    etree.indent(root, space="  ")
+    text: str = etree.tostring(root, encoding="unicode")
     return text
 
 

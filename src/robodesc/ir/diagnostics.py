@@ -136,6 +136,10 @@ class BrokenReferenceError(RobodescError):
     """A name or a file that the input refers to does not exist or may not be reached."""
 
 
+class PathEscapeError(BrokenReferenceError):
+    """A package-relative path climbs out of its package root. Always refused, whatever the policy."""
+
+
 class UnsupportedError(RobodescError):
     """The input asks for something the chosen target cannot express."""
 

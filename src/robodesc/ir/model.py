@@ -320,6 +320,12 @@ class Robot:
     src: SourceLoc | None = None
     # The file the robot was read from; relative mesh paths were resolved against its folder.
     source_file: str | None = None
+    # Where the input placed the root link in its world (compositions give world poses); ``None``
+    # = at the world origin. URDF cannot say this; world-aware targets (SDF, USD) can.
+    placement: Pose | None = None
+    # Whether the input fixed the root link to the world (True), declared it free (False), or did
+    # not say (None). URDF cannot say this either; importers have a "fix base" option.
+    fixed_base: bool | None = None
 
     # ---- look-ups -------------------------------------------------------------------------
     def link(self, name: str) -> Link:

@@ -8,9 +8,9 @@ after the frontend, and the tests run it after every pass.
 from __future__ import annotations
 
 import dataclasses
+import enum
 import math
 from collections import Counter
-from collections.abc import Iterator
 
 from robodesc.ir.diagnostics import Findings, Severity, SourceLoc, VerificationError
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Inertial, Mesh, Sphere
@@ -99,24 +99,6 @@ def _tree(robot: Robot, out: Findings) -> None:
             )
         else:
             parents[joint.child] = joint
-    roots = [link for link in robot.links if link.name not in parents]
-    if len(roots) == 0:
-        _err(
-            out,
-            "no-root",
-            "no root link: every link is some joint's child (a cycle)",
-            f"robot {robot.name!r}",
-            robot.src,
-        )
-    elif len(roots) > 1:
-        names = ", ".join(repr(r.name) for r in roots[:6]) + (" ..." if len(roots) > 6 else "")
-        _err(
-            out,
-            "many-roots",
-            f"{len(roots)} root links ({names}); exactly one link may lack a parent joint",
-            f"robot {robot.name!r}",
-            roots[1].src,
-        )
     # Cycles: walk up from every link; a walk that revisits a link is a cycle.
     reported: set[str] = set()
     for start in links:
@@ -128,9 +110,26 @@ def _tree(robot: Robot, out: Findings) -> None:
         if cur in seen and not reported.intersection(seen):
             cycle = seen[seen.index(cur) :]
             reported.update(cycle)
-            joint = parents[cycle[0]]
-            chain = " -> ".join(reversed([*cycle, cycle[0]]))
+            # Name the cycle parent-to-child, starting from the link declared first.
+            order = list(links)
+            down = list(reversed(cycle))
+            first = min(range(len(down)), key=lambda i: order.index(down[i]))
+            down = down[first:] + down[:first]
+            joint = parents[down[0]]
+            chain = " -> ".join([*down, down[0]])
             _err(out, "cycle", f"joints form a cycle: {chain}", f"joint {joint.name!r}", joint.src)
+    roots = [link for link in robot.links if link.name not in parents]
+    if len(roots) == 0 and not reported:
+        _err(out, "no-root", "no root link: every link is some joint's child", f"robot {robot.name!r}", robot.src)
+    elif len(roots) > 1:
+        names = ", ".join(repr(r.name) for r in roots[:6]) + (" ..." if len(roots) > 6 else "")
+        _err(
+            out,
+            "many-roots",
+            f"{len(roots)} root links ({names}); exactly one link may lack a parent joint",
+            f"robot {robot.name!r}",
+            roots[1].src,
+        )
 
 
 def _references(robot: Robot, out: Findings) -> None:
@@ -331,13 +330,6 @@ def _joint(joint: Joint, out: Findings) -> None:
 
 
 def _numbers(robot: Robot, out: Findings) -> None:
-    for label, loc, path, value in _floats(robot):
-        if not math.isfinite(value):
-            _err(out, "non-finite", f"{path} is {value}", label, loc)
-
-
-def _floats(robot: Robot) -> Iterator[tuple[str, SourceLoc | None, str, float]]:
-    """Every float in the IR with the element it belongs to."""
     groups: list[tuple[str, list[object]]] = [
         ("link", list(robot.links)),
         ("joint", list(robot.joints)),
@@ -349,21 +341,40 @@ def _floats(robot: Robot) -> Iterator[tuple[str, SourceLoc | None, str, float]]:
     ]
     for kind, nodes in groups:
         for node in nodes:
-            label = f"{kind} {getattr(node, 'name', '')!r}"
-            yield from _walk(node, label, getattr(node, "src", None), "")
+            bad: list[tuple[str, SourceLoc | None, float]] = []
+            _nonfinite(node, getattr(node, "src", None), "", bad)
+            for path, loc, value in bad:
+                _err(out, "non-finite", f"{path.lstrip('.')} is {value}", f"{kind} {getattr(node, 'name', '')!r}", loc)
 
 
-def _walk(
-    obj: object, label: str, loc: SourceLoc | None, path: str
-) -> Iterator[tuple[str, SourceLoc | None, str, float]]:
+_FIELDS: dict[type, tuple[str, ...]] = {}
+
+
+def _fields(cls: type) -> tuple[str, ...]:
+    names = _FIELDS.get(cls)
+    if names is None:
+        names = tuple(f.name for f in dataclasses.fields(cls) if f.name not in ("src", "extensions", "extra_attrs"))
+        _FIELDS[cls] = names
+    return names
+
+
+def _nonfinite(obj: object, loc: SourceLoc | None, path: str, bad: list[tuple[str, SourceLoc | None, float]]) -> None:
+    """Collect every non-finite float under ``obj`` with its path. Hot on large robots: no generators,
+    and only containers that can hold floats are entered."""
     if isinstance(obj, float):
-        yield label, loc, path.lstrip("."), obj
+        if not math.isfinite(obj):
+            bad.append((path, loc, obj))
     elif isinstance(obj, tuple | list):
         for i, item in enumerate(obj):
-            yield from _walk(item, label, loc, f"{path}[{i}]")
+            if isinstance(item, float):
+                if not math.isfinite(item):
+                    bad.append((f"{path}[{i}]", loc, item))
+            elif not isinstance(item, str | int):
+                _nonfinite(item, loc, f"{path}[{i}]", bad)
     elif dataclasses.is_dataclass(obj) and not isinstance(obj, type):
         here = getattr(obj, "src", None) or loc
-        for f in dataclasses.fields(obj):
-            if f.name in ("src", "extensions"):
+        for name in _fields(type(obj)):
+            value = getattr(obj, name)
+            if value is None or isinstance(value, str | bool | int | enum.Enum):
                 continue
-            yield from _walk(getattr(obj, f.name), label, here, f"{path}.{f.name}")
+            _nonfinite(value, here, f"{path}.{name}", bad)

@@ -1,0 +1,5 @@
+import sys
+
+from robodesc.cli import main
+
+sys.exit(main())

@@ -1,0 +1,234 @@
+"""``robodesc`` on the command line: a thin layer over :mod:`robodesc.api`.
+
+Bad input never shows a traceback: each problem is one line ``error: file:line: element: what``,
+and the exit code is 2 (1 when a validation check fails).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Sequence
+from typing import Any
+
+from robodesc import __version__
+from robodesc.emit.paths import PathMode
+from robodesc.frontends.options import MissingMesh
+from robodesc.ir.diagnostics import Finding, RobodescError, Severity, VerificationError
+from robodesc.options import InvalidInertia, build_options
+from robodesc.pipeline import compile_robot
+
+EPILOG = """\
+examples:
+  robodesc compile robot.urdf.xacro -t urdf -o out/robot.urdf --package my_pkg=src/my_pkg
+  robodesc compile go2.urdf.xacro -t urdf -o go2.urdf --missing-mesh warn --invalid-inertia repair
+  robodesc inspect robot.urdf
+exit codes: 0 ok, 1 validation failed, 2 bad input or options
+"""
+
+
+def _key_value(text: str) -> tuple[str, str]:
+    name, sep, value = text.partition("=")
+    if not sep or not name:
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}")
+    return name, value
+
+
+def _add_input_options(p: argparse.ArgumentParser) -> None:
+    g = p.add_argument_group("input")
+    g.add_argument(
+        "--package",
+        metavar="NAME=DIR",
+        action="append",
+        type=_key_value,
+        default=[],
+        help="where ROS package NAME lives, for package:// URIs and $(find NAME) (repeatable). "
+        "Without it robodesc looks above the input for package.xml, beside that package, "
+        "then in ROS_PACKAGE_PATH and AMENT_PREFIX_PATH.",
+    )
+    g.add_argument(
+        "--arg", metavar="NAME=VALUE", action="append", type=_key_value, default=[], help="xacro argument (repeatable)"
+    )
+    g.add_argument(
+        "--missing-mesh",
+        choices=[m.value for m in MissingMesh],
+        default="error",
+        help="a mesh file that does not exist: fail (error, default), keep the reference (warn), "
+        "substitute a box of its scale (primitive) or drop that visual/collision (drop)",
+    )
+    g.add_argument(
+        "--invalid-inertia",
+        choices=[m.value for m in InvalidInertia],
+        default="error",
+        help="physically invalid mass or inertia in the source (mass <= 0, a tensor that is not positive "
+        "definite or breaks the triangle inequality): fail (error, default), pass through (warn), or "
+        "repair from geometry and report each repair (repair)",
+    )
+    g.add_argument("--strict", action="store_true", help="unknown elements are errors instead of being kept verbatim")
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="robodesc",
+        description="Compile robot descriptions: URDF/xacro and compositions to URDF, SDF and Isaac-ready USD.",
+        epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    parser.add_argument("--version", action="version", version=f"robodesc {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+
+    comp = sub.add_parser(
+        "compile",
+        help="compile a robot description to a target",
+        description="Compile INPUT (URDF, .xacro) to a target format, running the verifier and the passes you select.",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=EPILOG,
+    )
+    comp.add_argument("input", help="URDF or .xacro file")
+    comp.add_argument("-t", "--target", choices=["urdf"], default="urdf", help="output format (default: urdf)")
+    comp.add_argument("-o", "--output", help="output file (default: standard output for text targets)")
+    _add_input_options(comp)
+    out = comp.add_argument_group("output")
+    out.add_argument(
+        "--mesh-paths",
+        choices=[m.value for m in PathMode],
+        default="relative",
+        help="how mesh paths are written: relative to the output file (default, portable), absolute, "
+        "package:// where the input used a package, or keep exactly as written",
+    )
+    comp.add_argument("--json", action="store_true", help="print a JSON summary (findings, files) on standard output")
+    comp.add_argument("-q", "--quiet", action="store_true", help="print errors only")
+
+    insp = sub.add_parser(
+        "inspect",
+        help="show a robot's tree, DOF, mass and findings",
+        description="Load INPUT and describe it: kinematic tree, degrees of freedom, total mass and every finding.",
+    )
+    insp.add_argument("input")
+    _add_input_options(insp)
+    insp.add_argument("--json", action="store_true", help="machine-readable output")
+
+    exp = sub.add_parser(
+        "expand",
+        help="print the URDF a .xacro expands to",
+        description="Expand a .xacro file and print the URDF; line numbers in robodesc's messages about xacro input refer to this text.",
+    )
+    exp.add_argument("input")
+    exp.add_argument(
+        "--package",
+        metavar="NAME=DIR",
+        action="append",
+        type=_key_value,
+        default=[],
+        help="where ROS package NAME lives (repeatable)",
+    )
+    exp.add_argument(
+        "--arg", metavar="NAME=VALUE", action="append", type=_key_value, default=[], help="xacro argument (repeatable)"
+    )
+    return parser
+
+
+def _common_options(args: argparse.Namespace) -> dict[str, Any]:
+    return {
+        "package_paths": dict(args.package),
+        "xacro_args": dict(args.arg),
+        "missing_mesh": args.missing_mesh,
+        "invalid_inertia": args.invalid_inertia,
+        "strict": args.strict,
+    }
+
+
+def _print_findings(findings: Sequence[Finding], quiet: bool) -> None:
+    for f in findings:
+        if quiet and f.severity is not Severity.ERROR:
+            continue
+        print(f.render(), file=sys.stderr)
+
+
+def _report_error(err: RobodescError) -> int:
+    if isinstance(err, VerificationError):
+        for line in err.render_all():
+            print(f"error: {line}", file=sys.stderr)
+        codes = {f.code for f in err.findings}
+        if codes & {"bad-mass", "bad-inertia"}:
+            print(
+                "hint: --invalid-inertia repair fixes these from geometry; --invalid-inertia warn passes them through",
+                file=sys.stderr,
+            )
+    else:
+        print(f"error: {err.render()}", file=sys.stderr)
+    return err.exit_code
+
+
+def _cmd_compile(args: argparse.Namespace) -> int:
+    opts = build_options({**_common_options(args), "mesh_paths": args.mesh_paths})
+
+    def progress(step: str) -> None:
+        if not args.quiet and not args.json:
+            print(f"robodesc: {step}", file=sys.stderr)
+
+    result = compile_robot(args.input, args.target, args.output, opts, progress)
+    if args.json:
+        print(
+            json.dumps(
+                {"target": result.target, "files": result.files, "findings": [f.as_dict() for f in result.findings]},
+                indent=2,
+            )
+        )
+    else:
+        _print_findings(result.findings, args.quiet)
+        if args.output is None and result.text is not None:
+            sys.stdout.write(result.text)
+        elif not args.quiet:
+            for role, path in result.files.items():
+                print(f"robodesc: wrote {role}: {path}", file=sys.stderr)
+    return 0
+
+
+def _cmd_inspect(args: argparse.Namespace) -> int:
+    from robodesc.inspect_robot import describe
+
+    opts = build_options(_common_options(args))
+    report = describe(args.input, opts)
+    if args.json:
+        print(json.dumps(report.as_dict(), indent=2))
+    else:
+        sys.stdout.write(report.render())
+    return 0 if report.ok else 2
+
+
+def _cmd_expand(args: argparse.Namespace) -> int:
+    from robodesc.frontends.packages import PackageResolver
+    from robodesc.frontends.xacro_expand import expand_xacro
+    from robodesc.ir.diagnostics import Findings
+
+    findings = Findings()
+    resolver = PackageResolver(explicit=dict(args.package), input_file=args.input)
+    text = expand_xacro(args.input, dict(args.arg), resolver, findings)
+    _print_findings(list(findings), False)
+    sys.stdout.write(text + "\n")
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = _parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help()
+        return 2
+    try:
+        if args.command == "compile":
+            return _cmd_compile(args)
+        if args.command == "expand":
+            return _cmd_expand(args)
+        return _cmd_inspect(args)
+    except RobodescError as err:
+        return _report_error(err)
+    except KeyboardInterrupt:
+        print("error: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,90 @@
+"""Every option of a compile, in one table shared by the Python API and the CLI.
+
+The API takes them as keyword arguments; the CLI's flags map onto the same names. An unknown name
+is a :class:`ConfigError` that names the closest valid one.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import enum
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from robodesc.emit.paths import PathMode
+from robodesc.frontends.options import LoadOptions, MissingMesh
+from robodesc.ir.diagnostics import ConfigError
+
+
+class InvalidInertia(enum.Enum):
+    """What physically invalid masses and inertias in the source do."""
+
+    ERROR = "error"  # fail with one line per defect (the default)
+    WARN = "warn"  # pass them through unchanged, as warnings
+    REPAIR = "repair"  # repair them (from geometry where there is geometry) and report each repair
+
+
+@dataclass(slots=True)
+class CompileOptions:
+    # ---- input -------------------------------------------------------------------------------
+    package_paths: dict[str, str] = field(default_factory=dict)
+    xacro_args: dict[str, str] = field(default_factory=dict)
+    missing_mesh: MissingMesh = MissingMesh.ERROR
+    strict: bool = False
+    invalid_inertia: InvalidInertia = InvalidInertia.ERROR
+    # ---- passes ------------------------------------------------------------------------------
+    preset: str | None = None
+    passes: dict[str, Any] = field(default_factory=dict)
+    # ---- output ------------------------------------------------------------------------------
+    mesh_paths: PathMode = PathMode.RELATIVE
+    target_options: dict[str, Any] = field(default_factory=dict)
+    validate: bool = True
+
+    def load_options(self) -> LoadOptions:
+        return LoadOptions(
+            package_paths=dict(self.package_paths),
+            xacro_args=dict(self.xacro_args),
+            missing_mesh=self.missing_mesh,
+            strict=self.strict,
+        )
+
+
+_ENUMS: dict[str, type[enum.Enum]] = {
+    "missing_mesh": MissingMesh,
+    "invalid_inertia": InvalidInertia,
+    "mesh_paths": PathMode,
+}
+
+
+def closest(name: str, candidates: list[str]) -> str:
+    """``"; did you mean 'x'?"`` or an empty string."""
+    match = difflib.get_close_matches(name, candidates, n=1, cutoff=0.5)
+    return f"; did you mean {match[0]!r}?" if match else ""
+
+
+def build_options(values: Mapping[str, Any], *, extra_names: Mapping[str, str] | None = None) -> CompileOptions:
+    """Make :class:`CompileOptions` from keyword arguments.
+
+    ``extra_names`` maps further accepted names (pass and target options) to the bucket that keeps
+    them (``"passes"`` or ``"target_options"``).
+    """
+    extra = dict(extra_names or {})
+    known = [f.name for f in dataclasses.fields(CompileOptions)]
+    opts = CompileOptions()
+    for name, value in values.items():
+        if name in extra:
+            getattr(opts, extra[name])[name] = value
+            continue
+        if name not in known or name in ("passes", "target_options"):
+            raise ConfigError(f"unknown option {name!r}{closest(name, known + sorted(extra))}")
+        if name in _ENUMS and not isinstance(value, _ENUMS[name]):
+            enum_type = _ENUMS[name]
+            try:
+                value = enum_type(value)
+            except ValueError:
+                allowed = ", ".join(repr(e.value) for e in enum_type)
+                raise ConfigError(f"option {name}={value!r}: expected one of {allowed}") from None
+        setattr(opts, name, value)
+    return opts

@@ -1,0 +1,111 @@
+"""Every class of bad input: one clear line naming the element and file:line, exit code 2, no
+traceback, and no output file written."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+
+from robodesc.cli import main
+
+BAD = Path(__file__).parent / "bad"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "urdf"
+
+# file -> (line it must name, fragment the message must contain)
+CASES = {
+    "malformed.urdf": ("malformed.urdf:3", "malformed XML"),
+    "xxe.urdf": ("xxe.urdf:2", "<!DOCTYPE>/<!ENTITY> declarations are not allowed"),
+    "entity_bomb.urdf": ("entity_bomb.urdf:2", "<!DOCTYPE>/<!ENTITY> declarations are not allowed"),
+    "dangling_parent.urdf": ("dangling_parent.urdf:4", "joint 'knee': parent link 'nope' is not a link"),
+    "cycle.urdf": ("cycle.urdf:", "joints form a cycle: a -> b -> c -> a"),
+    "nan.urdf": ("nan.urdf:6", "joint 'knee': origin.xyz[1] is nan"),
+    "missing_mesh.urdf": ("missing_mesh.urdf:3", "link 'a': mesh file"),
+    "invalid_inertia.urdf": ("invalid_inertia.urdf:5", "link 'a': principal moments break the triangle inequality"),
+    "negative_mass.urdf": ("negative_mass.urdf:3", "link 'a': mass must be > 0 (is -2)"),
+    "bad_number.urdf": ("bad_number.urdf:4", "<mass value='1/12*m'>: expected a number"),
+    "two_roots.urdf": ("two_roots.urdf:3", "2 root links"),
+    "duplicate_link.urdf": ("duplicate_link.urdf:2", "link 'a': 2 links share this name"),
+    "bad_limits.urdf": ("bad_limits.urdf:6", "joint 'elbow': lower limit 1 is above upper limit -1"),
+    "zero_axis.urdf": ("zero_axis.urdf:4", "joint 'elbow': axis is the zero vector"),
+    "unknown_joint_type.urdf": ("unknown_joint_type.urdf:4", "joint 'elbow': unknown joint type 'hinge'"),
+    "package_escape.urdf": ("package_escape.urdf:3", "leaves its package root"),
+    "dangling_mimic.urdf": ("dangling_mimic.urdf:7", "joint 'finger': mimics joint 'ghost', which does not exist"),
+    "not_a_robot.urdf": ("not_a_robot.urdf:1", "root element is <sdf>, expected <robot>"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_bad_input_gives_one_clear_line(name: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    src = tmp_path / name
+    shutil.copy(BAD / name, src)
+    (tmp_path / "package.xml").write_text("<package><name>robodesc_examples</name></package>")
+    out = tmp_path / "out" / "robot.urdf"
+    code = main(["compile", str(src), "-o", str(out), "-q"])
+    err = capsys.readouterr().err
+    where, what = CASES[name]
+    lines = [line for line in err.splitlines() if line.startswith("error:")]
+    assert code == 2, err
+    assert lines, err
+    assert where in lines[0] and what in lines[0], err
+    assert "Traceback" not in err
+    assert not out.exists()
+    assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
+
+
+def test_secret_never_reaches_output(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    main(["inspect", str(BAD / "xxe.urdf")])
+    captured = capsys.readouterr()
+    assert "root:" not in captured.out + captured.err
+
+
+def test_unknown_tag_is_kept_with_a_warning_and_strict_refuses(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "r.urdf"
+    assert main(["compile", str(BAD / "unknown_tag.urdf"), "-o", str(out)]) == 0
+    err = capsys.readouterr().err
+    assert "unknown_tag.urdf:3: unknown element <wobble> in robot: kept verbatim" in err
+    assert '<wobble name="x"/>' in out.read_text()
+    assert main(["compile", str(BAD / "unknown_tag.urdf"), "-o", str(tmp_path / "s.urdf"), "--strict"]) == 2
+    assert "unknown_tag.urdf:3: unknown element <wobble> in robot" in capsys.readouterr().err
+    assert not (tmp_path / "s.urdf").exists()
+
+
+def test_failed_compile_leaves_previous_output_untouched(tmp_path: Path) -> None:
+    out = tmp_path / "robot.urdf"
+    out.write_text("previous")
+    assert main(["compile", str(BAD / "cycle.urdf"), "-o", str(out), "-q"]) == 2
+    assert out.read_text() == "previous"
+    assert [p.name for p in tmp_path.iterdir()] == ["robot.urdf"]
+
+
+def test_missing_input_file(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["compile", "no/such/robot.urdf", "-q"]) == 2
+    assert capsys.readouterr().err.strip() == "error: no/such/robot.urdf: input file not found"
+
+
+def test_invalid_inertia_policies(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    bad = str(BAD / "invalid_inertia.urdf")
+    assert main(["compile", bad, "-q"]) == 2
+    assert "hint: --invalid-inertia repair" in capsys.readouterr().err
+    assert main(["compile", bad, "-o", str(tmp_path / "w.urdf"), "--invalid-inertia", "warn"]) == 0
+    assert "passed through" in capsys.readouterr().err
+
+
+def test_unknown_api_option_names_the_closest() -> None:
+    import robodesc
+    from robodesc.ir.diagnostics import ConfigError
+
+    with pytest.raises(ConfigError, match="unknown option 'missing_meshes'; did you mean 'missing_mesh'"):
+        robodesc.compile_to_urdf(str(EXAMPLES / "gripper_arm.urdf"), missing_meshes="warn")
+    with pytest.raises(ConfigError, match="expected one of 'error', 'warn', 'primitive', 'drop'"):
+        robodesc.compile_to_urdf(str(EXAMPLES / "gripper_arm.urdf"), missing_mesh="ignore")
+
+
+def test_bad_cli_usage_exits_2(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exc:
+        main(["compile", "x.urdf", "--package", "nodir"])
+    assert exc.value.code == 2
+    assert "expected NAME=VALUE" in capsys.readouterr().err

@@ -1,0 +1,76 @@
+"""The command line as a user meets it."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from robodesc.cli import main
+from tests.conftest import EXAMPLES, SPIRIT_XACRO
+
+ARM = str(EXAMPLES / "urdf" / "gripper_arm.urdf")
+
+
+def test_compile_to_stdout(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["compile", ARM, "-q"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith('<?xml version="1.0" encoding="utf-8"?>\n<robot name="gripper_arm">')
+
+
+def test_compile_json_summary(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "arm.urdf"
+    assert main(["compile", str(SPIRIT_XACRO), "-o", str(out), "--json", "--invalid-inertia", "warn"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["files"] == {"urdf": str(out)}
+    codes = {f["code"] for f in summary["findings"]}
+    assert {"unknown-element", "bad-inertia"} <= codes
+    text_right = [f for f in summary["findings"] if f["element"] == "link 'text_right'"]
+    assert text_right and text_right[0]["line"] is not None
+
+
+def test_inspect_reports_tree_dof_mass(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["inspect", ARM]) == 0
+    text = capsys.readouterr().out
+    assert "robot 'gripper_arm': 8 links, 7 joints, 5 DOF, total mass 8.02 kg" in text
+    assert "          finger_right  <- finger_right_joint [prismatic]" in text
+    assert main(["inspect", ARM, "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["dof"] == 5 and data["actuated_joints"][:2] == ["shoulder_yaw", "shoulder_pitch"]
+
+
+def test_inspect_exits_2_on_defects(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["inspect", str(SPIRIT_XACRO)]) == 2
+    assert "link 'text_right': inertia tensor is zero" in capsys.readouterr().out
+
+
+def test_expand_prints_the_lines_messages_refer_to(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["inspect", str(SPIRIT_XACRO), "--json"]) == 2
+    findings = json.loads(capsys.readouterr().out)["findings"]
+    line = next(f["line"] for f in findings if f["element"] == "link 'text_right'")
+    assert main(["expand", str(SPIRIT_XACRO)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert '<inertia ixx="0.00"' in lines[line - 1] and '<link name="text_right">' in "".join(lines[line - 15 : line])
+
+
+def test_console_script_runs_as_module() -> None:
+    proc = subprocess.run(
+        [sys.executable, "-m", "robodesc", "compile", "--help"], capture_output=True, text=True, check=False
+    )
+    assert proc.returncode == 0
+    for option in ("--package", "--arg", "--missing-mesh", "--invalid-inertia", "--mesh-paths", "--strict", "--json"):
+        assert option in proc.stdout
+
+
+def test_xacro_args_are_passed(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "s.urdf"
+    assert (
+        main(["compile", str(SPIRIT_XACRO), "-o", str(out), "--arg", "prefix=sp_", "--invalid-inertia", "warn", "-q"])
+        == 0
+    )
+    assert '<link name="sp_body">' in out.read_text()
+    assert main(["compile", str(SPIRIT_XACRO), "-q", "--arg", "use_sim=maybe"]) == 2
+    assert "xacro" in capsys.readouterr().err
