@@ -30,6 +30,7 @@ exit codes: 0 ok, 1 validation failed, 2 bad input or options
 
 def _key_value(text: str) -> tuple[str, str]:
     name, sep, value = text.partition("=")
+    name = name.removesuffix(":")  # ROS style NAME:=VALUE
     if not sep or not name:
         raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}")
     return name, value
