@@ -5,6 +5,21 @@ The public API lives in :mod:`robodesc.api` and is re-exported here.
 
 __version__ = "0.1.0"
 
-from robodesc.api import CompileResult, compile_to_urdf, load
+from robodesc.api import (  # noqa: E402  (the version must exist before the API imports)
+    CompileResult,
+    compile_for_gazebo,
+    compile_for_ros2,
+    compile_to_sdf,
+    compile_to_urdf,
+    load,
+)
 
-__all__ = ["CompileResult", "__version__", "compile_to_urdf", "load"]
+__all__ = [
+    "CompileResult",
+    "__version__",
+    "compile_for_gazebo",
+    "compile_for_ros2",
+    "compile_to_sdf",
+    "compile_to_urdf",
+    "load",
+]

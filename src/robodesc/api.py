@@ -12,6 +12,7 @@ arguments; an unknown one raises :class:`ConfigError` naming the closest valid o
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from typing import Any
 
@@ -20,15 +21,35 @@ from robodesc.ir.model import Robot
 from robodesc.options import build_options
 from robodesc.pipeline import CompileResult, Progress, Source, compile_robot, load_source, verify_source
 
-__all__ = ["CompileResult", "compile_to_urdf", "load"]
+__all__ = ["CompileResult", "compile_for_gazebo", "compile_for_ros2", "compile_to_sdf", "compile_to_urdf", "load"]
+
+
+def _option_names(*classes: type[Any]) -> dict[str, str]:
+    names: dict[str, str] = {}
+    for cls in classes:
+        for f in dataclasses.fields(cls):
+            if f.name not in ("out_dir", "path_mode", "props"):
+                names[f.name] = "target_options"
+    return names
+
+
+def _compile(target: str, source: Source, out: str | os.PathLike[str] | None, progress: Progress | None, options: dict[str, Any], *classes: type[Any]) -> CompileResult:
+    opts = build_options(options, extra_names={**_pass_names(), **_option_names(*classes)})
+    return compile_robot(source, target, _out(out), opts, **({"progress": progress} if progress else {}))
 
 
 def _out(path: str | os.PathLike[str] | None) -> str | None:
     return os.fspath(path) if path is not None else None
 
 
+def _pass_names() -> dict[str, str]:
+    from robodesc.passes.options import OPTION_NAMES
+
+    return {name: "passes" for name in OPTION_NAMES}
+
+
 def load(source: Source, **options: Any) -> Robot:
-    """Read ``source`` into the IR and verify it (warnings are dropped; use :func:`inspect` to see them)."""
+    """Read ``source`` into the IR and verify it (warnings are dropped; use ``robodesc inspect`` to see them)."""
     opts = build_options(options)
     findings = Findings()
     robot = load_source(source, opts, findings)
@@ -39,6 +60,46 @@ def load(source: Source, **options: Any) -> Robot:
 def compile_to_urdf(
     source: Source, out: str | os.PathLike[str] | None = None, *, progress: Progress | None = None, **options: Any
 ) -> CompileResult:
-    """Compile to URDF. With ``out`` the file is written atomically; ``result.text`` always holds it."""
-    opts = build_options(options)
-    return compile_robot(source, "urdf", _out(out), opts, **({"progress": progress} if progress else {}))
+    """Compile to URDF. With ``out`` the file is written atomically; ``result.text`` always holds it.
+
+    Pass options (``preset``, ``rename``, ``armature``, ``strip``, ``repair_inertia``, ``merge_fixed``,
+    ``sanitize_names``, ``unique_materials``, ``copy_meshes`` ...) are accepted by every compile
+    function; see docs/passes.md."""
+    return _compile("urdf", source, out, progress, options)
+
+
+def compile_to_sdf(
+    source: Source, out: str | os.PathLike[str] | None = None, *, progress: Progress | None = None, **options: Any
+) -> CompileResult:
+    """Compile to SDF (Gazebo Harmonic, SDF 1.10 by default). Options: ``version``, ``world``,
+    ``fix_base``, ``flavour`` ("harmonic" | "classic"), ``pose_frames``, ``step_size`` ... (see docs/sdf.md)."""
+    from robodesc.emit.sdf_options import SdfOptions
+
+    return _compile("sdf", source, out, progress, options, SdfOptions)
+
+
+def compile_for_ros2(
+    source: Source, out_dir: str | os.PathLike[str], *, progress: Progress | None = None, **options: Any
+) -> CompileResult:
+    """Write the ROS 2 / Gazebo Harmonic folder: URDF with ``<ros2_control>``, controllers.yaml,
+    launch file, ros_gz_bridge YAML and world. Options: ``command_interface``, ``controller``,
+    ``update_rate``, ``spawn_z``."""
+    from robodesc.emit.ros2_options import Ros2Options
+
+    return _compile("ros2", source, out_dir, progress, options, Ros2Options)
+
+
+def compile_for_gazebo(
+    source: Source, out_dir: str | os.PathLike[str], *, progress: Progress | None = None, **options: Any
+) -> CompileResult:
+    """The ROS 2 folder plus an SDF world holding the model (``<robot>.sdf``)."""
+    from robodesc.emit.ros2_options import Ros2Options
+    from robodesc.emit.sdf_options import SdfOptions
+
+    result = _compile("ros2", source, out_dir, progress, options, Ros2Options, SdfOptions)
+    sdf_opts = {k: v for k, v in options.items() if k in {f.name for f in dataclasses.fields(SdfOptions)}}
+    sdf_path = os.path.join(os.fspath(out_dir), f"{result.robot.name}.sdf")
+    sdf = compile_to_sdf(result.robot, sdf_path, world=True, **sdf_opts)
+    result.files["sdf"] = sdf_path
+    result.findings.extend(sdf.findings)
+    return result

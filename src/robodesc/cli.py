@@ -86,9 +86,15 @@ def _parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
         epilog=EPILOG,
     )
-    comp.add_argument("input", help="URDF or .xacro file")
-    comp.add_argument("-t", "--target", choices=["urdf"], default="urdf", help="output format (default: urdf)")
-    comp.add_argument("-o", "--output", help="output file (default: standard output for text targets)")
+    comp.add_argument("input", help="URDF, .xacro, composition (.yaml, .holo) file")
+    comp.add_argument("-t", "--target", choices=["urdf", "sdf", "usd"], default="urdf", help="output format (default: urdf)")
+    comp.add_argument("-o", "--output", help="output file, or folder for --ros2/--isaac-sim (default: standard output for text targets)")
+    comp.add_argument(
+        "--ros2",
+        action="store_true",
+        help="write a ROS 2 / Gazebo Harmonic folder to -o: URDF with <ros2_control> (gz_ros2_control), "
+        "controllers.yaml, a launch file, a ros_gz_bridge YAML for every sensor topic and a world",
+    )
     _add_input_options(comp)
     out = comp.add_argument_group("output")
     out.add_argument(
@@ -98,6 +104,25 @@ def _parser() -> argparse.ArgumentParser:
         help="how mesh paths are written: relative to the output file (default, portable), absolute, "
         "package:// where the input used a package, or keep exactly as written",
     )
+    ps = comp.add_argument_group("passes (see docs/passes.md)")
+    ps.add_argument("--preset", choices=["isaac_sim", "ros2", "gazebo", "mujoco", "quad_sdk"], help="a named set of passes for a target or a workflow")
+    ps.add_argument("--rename", action="append", default=[], metavar="SPEC", help="rename joints: OLD=NEW, re:PATTERN=REPLACEMENT; prefix link: to rename links (repeatable, first match wins)")
+    ps.add_argument("--armature", action="append", default=[], metavar="REGEX=VALUE", help="reflected rotor inertia (kg·m²) for joints matching REGEX, or REGEX=J_ROTOR*N^2 (repeatable, first match wins)")
+    ps.add_argument("--strip", metavar="KINDS", help="remove gazebo,transmission,ros2_control,dont_collapse,contact,surface (comma list, or all)")
+    ps.add_argument("--repair-inertia", choices=["geometry", "quad_sdk", "off"], help="repair missing/invalid inertials: from geometry, or by Quad-SDK's constants")
+    ps.add_argument("--sanitize-names", action="store_true", default=None, help="make every name a valid USD/Isaac identifier (originals kept as displayName)")
+    ps.add_argument("--unique-materials", action="store_true", default=None, help="one uniquely named material per distinct colour/texture")
+    ps.add_argument("--merge-fixed", action="store_true", default=None, help="lump fixed-joint children into their parents (kept as fixed frames; dont_collapse respected)")
+    ps.add_argument("--copy-meshes", action="store_true", default=None, help="copy meshes into a meshes/ folder next to the output")
+    sdf = comp.add_argument_group("SDF (-t sdf)")
+    sdf.add_argument("--sdf-version", choices=["1.7", "1.9", "1.10", "1.11"], help="SDF version (default 1.10; 1.11 keeps mimic joints; 1.9 for older libsdformat)")
+    sdf.add_argument("--world", action="store_true", help="wrap the model in a world with ground plane, physics and light")
+    sdf.add_argument("--gazebo-classic", action="store_true", help="Gazebo Classic plugins (libgazebo_ros_*) instead of Harmonic's gz-sim systems")
+    sim = comp.add_argument_group("simulation (SDF, USD, Isaac)")
+    sim.add_argument("--fix-base", action="store_true", default=None, help="weld the root link to the world (default: floating base)")
+    ros2 = comp.add_argument_group("ROS 2 (--ros2)")
+    ros2.add_argument("--command-interface", choices=["position", "velocity", "effort"], help="what the controllers command (default position)")
+    ros2.add_argument("--controller", choices=["joint_trajectory", "forward_command"], help="the command controller (default joint_trajectory)")
     comp.add_argument("--json", action="store_true", help="print a JSON summary (findings, files) on standard output")
     comp.add_argument("-q", "--quiet", action="store_true", help="print errors only")
 
@@ -162,14 +187,44 @@ def _report_error(err: RobodescError) -> int:
     return err.exit_code
 
 
+def _target_options(args: argparse.Namespace) -> dict[str, Any]:
+    """Only the flags the user set, so every option class keeps its own defaults."""
+    given = {
+        "version": args.sdf_version,
+        "world": args.world or None,
+        "flavour": "classic" if args.gazebo_classic else None,
+        "fix_base": args.fix_base,
+        "command_interface": args.command_interface,
+        "controller": args.controller,
+    }
+    return {k: v for k, v in given.items() if v is not None}
+
+
+def _pass_options(args: argparse.Namespace) -> dict[str, Any]:
+    given: dict[str, Any] = {
+        "rename": args.rename or None,
+        "armature": args.armature or None,
+        "strip": args.strip,
+        "repair_inertia": args.repair_inertia,
+        "sanitize_names": args.sanitize_names,
+        "unique_materials": args.unique_materials,
+        "merge_fixed": args.merge_fixed,
+        "copy_meshes": args.copy_meshes,
+    }
+    return {k: v for k, v in given.items() if v is not None}
+
+
 def _cmd_compile(args: argparse.Namespace) -> int:
-    opts = build_options({**_common_options(args), "mesh_paths": args.mesh_paths})
+    opts = build_options({**_common_options(args), "mesh_paths": args.mesh_paths, "preset": args.preset})
+    opts.target_options = _target_options(args)
+    opts.passes = _pass_options(args)
+    target = "ros2" if args.ros2 else args.target
 
     def progress(step: str) -> None:
         if not args.quiet and not args.json:
             print(f"robodesc: {step}", file=sys.stderr)
 
-    result = compile_robot(args.input, args.target, args.output, opts, progress)
+    result = compile_robot(args.input, target, args.output, opts, progress)
     if args.json:
         print(
             json.dumps(

@@ -88,3 +88,37 @@ def build_options(values: Mapping[str, Any], *, extra_names: Mapping[str, str] |
                 raise ConfigError(f"option {name}={value!r}: expected one of {allowed}") from None
         setattr(opts, name, value)
     return opts
+
+
+def dataclass_from_mapping(cls: type[Any], values: Mapping[str, Any], what: str) -> Any:
+    """Instantiate an options dataclass from names and loosely typed values (CLI strings, enum
+    values), rejecting unknown names with the closest valid one."""
+    import typing
+
+    hints = typing.get_type_hints(cls)
+    names = [f.name for f in dataclasses.fields(cls)]
+    kwargs: dict[str, Any] = {}
+    for name, value in values.items():
+        if name not in names:
+            raise ConfigError(f"unknown {what} option {name!r}{closest(name, names)}")
+        kwargs[name] = _coerce(hints.get(name), value, f"{what} option {name}")
+    return cls(**kwargs)
+
+
+def _coerce(hint: Any, value: Any, label: str) -> Any:
+    import typing
+
+    candidates = typing.get_args(hint) if typing.get_origin(hint) in (typing.Union, _UNION_TYPE) else (hint,)
+    for candidate in candidates:
+        if isinstance(candidate, type) and issubclass(candidate, enum.Enum):
+            if isinstance(value, candidate):
+                return value
+            try:
+                return candidate(value)
+            except ValueError:
+                allowed = ", ".join(repr(e.value) for e in candidate)
+                raise ConfigError(f"{label}={value!r}: expected one of {allowed}") from None
+    return value
+
+
+_UNION_TYPE = type(int | None)

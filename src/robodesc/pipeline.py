@@ -6,12 +6,15 @@ Only this module and the API above it know every stage; each stage only knows th
 from __future__ import annotations
 
 import copy
+import dataclasses
 import os
-from collections.abc import Callable
+import shutil
+import tempfile
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
-from robodesc.emit.files import write_atomic
+from robodesc.emit.files import replace_dir_atomic, write_atomic
 from robodesc.emit.urdf import UrdfOptions, emit_urdf
 from robodesc.frontends.load import load_path, load_string
 from robodesc.ir.diagnostics import (
@@ -19,12 +22,16 @@ from robodesc.ir.diagnostics import (
     Finding,
     Findings,
     Severity,
-    UnsupportedError,
     VerificationError,
 )
 from robodesc.ir.model import Robot
 from robodesc.ir.verify import PHYSICAL_CODES, verify
-from robodesc.options import CompileOptions, InvalidInertia
+from robodesc.options import CompileOptions, InvalidInertia, dataclass_from_mapping
+from robodesc.passes import pipeline as passes_pipeline
+from robodesc.passes.context import PassContext
+from robodesc.passes.copy_meshes import copy_meshes
+from robodesc.passes.options import PassOptions, RepairPolicy, options_from_mapping
+from robodesc.passes.pipeline import resolve_options
 
 Progress = Callable[[str], None]
 
@@ -81,48 +88,58 @@ def load_source(source: Source, options: CompileOptions, findings: Findings) -> 
     return loaded.robot
 
 
-def verify_source(robot: Robot, options: CompileOptions, findings: Findings) -> bool:
-    """Verify what the frontend built. Returns True when inertia repair was requested for defects."""
+def pass_options(options: CompileOptions) -> PassOptions:
+    """The passes' options: the preset, overridden by explicit options, with the policies the
+    compile options imply."""
+    chosen = options_from_mapping(options.passes)
+    resolved = resolve_options(options.preset, chosen)
+    # Compositions give masses without tensors; those are always filled from geometry.
+    resolved.fill_inertia = True
+    if options.invalid_inertia is InvalidInertia.REPAIR and resolved.repair_inertia is None:
+        resolved.repair_inertia = RepairPolicy.GEOMETRY
+    return resolved
+
+
+def verify_source(robot: Robot, options: CompileOptions, findings: Findings, repairing: bool = False) -> None:
+    """Verify what the frontend built. Structural errors are fatal; physically invalid inertia is
+    fatal unless the passes will repair it or the user asked to pass it through."""
     result = verify(robot)
     structural = [f for f in result.errors if f.code not in PHYSICAL_CODES]
     physical = [f for f in result.errors if f.code in PHYSICAL_CODES]
     findings.extend([f for f in result.items if f.severity is not Severity.ERROR])
     if structural:
         raise VerificationError(structural)
-    if not physical:
-        return False
+    if not physical or repairing:
+        return
     if options.invalid_inertia is InvalidInertia.ERROR:
         raise VerificationError(physical)
-    if options.invalid_inertia is InvalidInertia.WARN:
-        for f in physical:
-            findings.add(
-                Severity.WARNING,
-                f.code,
-                f.message + " (passed through: --invalid-inertia warn)",
-                element=f.element,
-                loc=f.loc,
-                stage=f.stage,
-            )
-        return False
-    return True
+    for f in physical:
+        findings.add(
+            Severity.WARNING,
+            f.code,
+            f.message + " (passed through: --invalid-inertia warn)",
+            element=f.element,
+            loc=f.loc,
+            stage=f.stage,
+        )
 
 
-def run_passes(robot: Robot, options: CompileOptions, findings: Findings, repair: bool) -> Robot:
-    if options.preset is None and not options.passes and not repair:
-        return robot
-    try:
-        from robodesc.passes import pipeline as passes
-    except ImportError:
-        raise UnsupportedError("passes are not available in this build") from None
-    pass_options = passes.PassOptions.from_mapping(options.passes)  # type: ignore[attr-defined]
-    if repair:
-        pass_options.repair_inertia = True
-    findings.extend(passes.run_passes(robot, preset=options.preset, options=pass_options))
+def run_passes(robot: Robot, resolved: PassOptions, preset: str | None, findings: Findings) -> Robot:
+    findings.extend(passes_pipeline.run_passes(robot, options=resolved))
     return robot
 
 
 # ---- targets ---------------------------------------------------------------------------------
 def _emit_urdf(robot: Robot, out: str | None, options: CompileOptions, findings: Findings) -> Emitted:
+    with_armature = [j.name for j in robot.joints if j.armature is not None]
+    if with_armature:
+        findings.info(
+            "urdf-armature",
+            f"armature of {len(with_armature)} joints written as <dynamics armature=...> (URDF has no armature element; "
+            "standard parsers ignore it, the USD output carries physxJoint:armature and newton:armature)",
+            element=f"robot {robot.name!r}",
+            stage="emit:urdf",
+        )
     out_dir = os.path.dirname(os.path.abspath(out)) if out else None
     text = emit_urdf(robot, UrdfOptions(path_mode=options.mesh_paths, out_dir=out_dir))
     emitted = Emitted(text=text)
@@ -132,8 +149,64 @@ def _emit_urdf(robot: Robot, out: str | None, options: CompileOptions, findings:
     return emitted
 
 
+def _emit_sdf(robot: Robot, out: str | None, options: CompileOptions, findings: Findings) -> Emitted:
+    from robodesc.emit.sdf import emit_sdf
+    from robodesc.emit.sdf_options import SdfOptions
+
+    sdf_options = dataclass_from_mapping(SdfOptions, target_options(SdfOptions, options), "sdf")
+    sdf_options.path_mode = options.mesh_paths
+    sdf_options.out_dir = os.path.dirname(os.path.abspath(out)) if out else None
+    text, sdf_findings = emit_sdf(robot, sdf_options)
+    findings.extend(sdf_findings)
+    emitted = Emitted(text=text)
+    if out:
+        write_atomic(out, text)
+        emitted.files["sdf"] = out
+    return emitted
+
+
+def _emit_ros2(robot: Robot, out: str | None, options: CompileOptions, findings: Findings) -> Emitted:
+    from robodesc.emit.ros2 import Ros2Options, build_ros2_package
+
+    if not out:
+        raise ConfigError("the ROS 2 package is several files: give an output folder with -o")
+    ros2_options = dataclass_from_mapping(Ros2Options, target_options(Ros2Options, options), "ros2")
+    ros2_options.out_dir = os.path.abspath(out)
+    package = build_ros2_package(robot, ros2_options)
+    findings.extend(package.findings)
+    return Emitted(files=write_folder(out, package.files))
+
+
+def target_options(cls: type[Any], options: CompileOptions) -> dict[str, Any]:
+    """The target options that belong to the options class ``cls``."""
+    names = {f.name for f in dataclasses.fields(cls)}
+    return {k: v for k, v in options.target_options.items() if k in names}
+
+
+def write_folder(out: str, files: Mapping[str, str | bytes]) -> dict[str, str]:
+    """Write ``files`` into folder ``out`` as one unit: staged beside it, then moved in place."""
+    parent = os.path.dirname(os.path.abspath(out))
+    os.makedirs(parent, exist_ok=True)
+    staging = tempfile.mkdtemp(prefix=".robodesc-", dir=parent)
+    try:
+        written: dict[str, str] = {}
+        for name, data in sorted(files.items()):
+            path = os.path.join(staging, name)
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            with open(path, "wb") as handle:
+                handle.write(data.encode("utf-8") if isinstance(data, str) else data)
+            written[name] = os.path.join(out, name)
+        replace_dir_atomic(staging, out)
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
+    return written
+
+
 Target = Callable[[Robot, str | None, CompileOptions, Findings], Emitted]
-TARGETS: dict[str, Target] = {"urdf": _emit_urdf}
+TARGETS: dict[str, Target] = {"urdf": _emit_urdf, "sdf": _emit_sdf, "ros2": _emit_ros2}
+# Targets whose output is a folder rather than a file.
+FOLDER_TARGETS = {"ros2"}
 
 
 def compile_robot(
@@ -146,18 +219,38 @@ def compile_robot(
     if target not in TARGETS:
         raise ConfigError(f"unknown target {target!r} (one of {', '.join(sorted(TARGETS))})")
     findings = Findings()
+    resolved = pass_options(options)
     progress("loading")
     robot = load_source(source, options, findings)
     progress("verifying")
-    repair = verify_source(robot, options, findings)
-    if options.preset or options.passes or repair:
-        progress("running passes")
-    robot = run_passes(robot, options, findings, repair)
+    verify_source(robot, options, findings, repairing=resolved.repair_inertia is not None)
+    progress("running passes: " + ", ".join(passes_pipeline.enabled_passes(resolved)))
+    run_passes(robot, resolved, options.preset, findings)
     errors = verify(robot).errors
     if options.invalid_inertia is InvalidInertia.WARN:
         errors = [f for f in errors if f.code not in PHYSICAL_CODES]
     if errors:
         raise VerificationError(errors)
+    if resolved.copy_meshes:
+        if not out:
+            raise ConfigError("--copy-meshes needs an output file (-o)")
+        out_dir = out if target in FOLDER_TARGETS else os.path.dirname(os.path.abspath(out))
+        progress(f"copying meshes to {os.path.join(out_dir, 'meshes')}")
+        ctx = PassContext(resolved)
+        copy_meshes(robot, out_dir, ctx)
+        findings.extend(ctx.findings)
     progress(f"writing {target}")
     emitted = TARGETS[target](robot, out, options, findings)
-    return CompileResult(robot=robot, findings=list(findings), target=target, text=emitted.text, files=emitted.files)
+    return CompileResult(robot=robot, findings=_unique(findings), target=target, text=emitted.text, files=emitted.files)
+
+
+def _unique(findings: Findings) -> list[Finding]:
+    """Drop repeats (the verifier and a pass may notice the same thing)."""
+    seen: set[tuple[str, str, str]] = set()
+    out = []
+    for f in findings:
+        key = (f.code, f.element, f.message)
+        if key not in seen:
+            seen.add(key)
+            out.append(f)
+    return out

@@ -185,12 +185,16 @@ class UrdfEmitter:
                 value = getattr(joint.limit, attr)
                 if value is not None:
                     lim.set(attr, fmt(value))
-        if joint.dynamics is not None:
+        if joint.dynamics is not None or joint.armature is not None:
             dyn = E(el, "dynamics")
-            for attr in ("damping", "friction", "spring_stiffness", "spring_reference"):
-                value = getattr(joint.dynamics, attr)
-                if value is not None:
-                    dyn.set(attr, fmt(value))
+            if joint.dynamics is not None:
+                for attr in ("damping", "friction", "spring_stiffness", "spring_reference"):
+                    value = getattr(joint.dynamics, attr)
+                    if value is not None:
+                        dyn.set(attr, fmt(value))
+            # URDF has no armature; robodesc keeps it here (standard parsers ignore the attribute).
+            if joint.armature is not None:
+                dyn.set("armature", fmt(joint.armature))
         if joint.mimic is not None:
             mim = E(el, "mimic", joint=joint.mimic.joint)
             if joint.mimic.multiplier is not None:

@@ -446,6 +446,7 @@ class UrdfReader:
                 spring_reference=self._float(dyn_el, "spring_reference", label),
                 src=self._loc(dyn_el),
             )
+            joint.armature = self._float(dyn_el, "armature", label)
         mimic_el = self._one(el, "mimic", label)
         if mimic_el is not None:
             leader = mimic_el.get("joint")

@@ -113,8 +113,8 @@ def _tree(robot: Robot, out: Findings) -> None:
             # Name the cycle parent-to-child, starting from the link declared first.
             order = list(links)
             down = list(reversed(cycle))
-            first = min(range(len(down)), key=lambda i: order.index(down[i]))
-            down = down[first:] + down[:first]
+            start_at = min(range(len(down)), key=lambda i: order.index(down[i]))
+            down = down[start_at:] + down[:start_at]
             joint = parents[down[0]]
             chain = " -> ".join([*down, down[0]])
             _err(out, "cycle", f"joints form a cycle: {chain}", f"joint {joint.name!r}", joint.src)

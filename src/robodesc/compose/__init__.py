@@ -1,0 +1,27 @@
+"""Compositions: robots written as parts (Python builder, YAML, HoloScript ``.holo``) → IR.
+
+``register(frontends)`` adds the file readers to :data:`robodesc.frontends.load.FRONTENDS`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, MutableMapping
+
+from robodesc.frontends.options import LoadOptions
+from robodesc.ir.diagnostics import Findings
+from robodesc.ir.model import Robot
+
+Frontend = Callable[[str, LoadOptions, Findings], Robot]
+
+
+def register(frontends: MutableMapping[str, Frontend]) -> None:
+    """Register ``.yaml``, ``.yml`` and ``.holo``."""
+    from robodesc.compose.holo_lower import holo_frontend
+    from robodesc.compose.yaml_format import load_yaml
+
+    frontends[".yaml"] = load_yaml
+    frontends[".yml"] = load_yaml
+    frontends[".holo"] = holo_frontend
+
+
+__all__ = ["register"]

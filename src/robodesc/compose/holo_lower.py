@@ -1,0 +1,1133 @@
+"""Lower a HoloScript ``.holo`` robot composition to the IR.
+
+The rules (docs/compositions.md has the full list, each inference is reported as a finding):
+- Positions are world positions of the composition (metres), rotations roll-pitch-yaw in degrees;
+  every link frame sits at its object's world pose, visuals at the link origin, and joint origins
+  are the relative transforms between the world poses.
+- The base is the ``@physics { type: "static" }`` object (else the first object; it then floats).
+- An object with a joint (``@joint``, a ``behavior "RevoluteJoint"`` block, or ``joint_type``)
+  hangs from its ``connectedBody``/``parent``; an object without one is fixed to its enclosing
+  object, else to the most recent robot object declared before it.
+- ``@grabbable`` objects, and static objects nothing connects to, are props, not links.
+
+>>> result = load_holo_text('''composition "Pendulum" {
+...   object "Base" { @physics { type: "static" mass: 1 } geometry: "box" scale: 0.1 position: [0, 0, 1] }
+...   object "Bob" { @joint { jointType: "hinge" connectedBody: "Base" axis: [0, 1, 0] limits: { min: -90, max: 90 } }
+...                  geometry: "sphere" scale: 0.05 position: [0, 0, 0.5] mass: 0.2 }
+... }''', "pendulum.holo")
+>>> result.robot.joint("Bob_joint").origin.xyz
+(0.0, 0.0, -0.5)
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import os
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from robodesc.compose.builder import Part, RobotBuilder, joint_type
+from robodesc.compose.colors import ColorError, parse_color
+from robodesc.compose.holo_parser import Block, Document, Trait, Value, parse
+from robodesc.compose.meshes import resolve_mesh
+from robodesc.frontends.options import LoadOptions, MissingMesh
+from robodesc.frontends.packages import PackageResolver
+from robodesc.ir.diagnostics import BrokenReferenceError, Findings, ParseError, SourceLoc
+from robodesc.ir.geometry import RGBA, Box, Capsule, Cylinder, Geometry, Inertia, Mesh, Pose, Sphere, Vec3
+from robodesc.ir.model import CameraSpec, JointType, RayAxis, RaySpec, Robot, SafetyController
+from robodesc.ir.transforms import Mat, matrix_pose, pose_matrix
+
+STAGE = "compose:holo"
+
+MESH_SUFFIXES = (".stl", ".obj", ".dae", ".glb", ".gltf", ".fbx", ".ply", ".usd", ".usda", ".usdc", ".usdz", ".3ds")
+PRIMITIVES = ("box", "cube", "sphere", "cylinder", "cone", "capsule", "plane")
+OBJECT_KINDS = ("object", "orb")
+GROUP_KINDS = ("spatial_group", "group")
+KNOWN_PROPS = frozenset(
+    {
+        "geometry",
+        "position",
+        "rotation",
+        "scale",
+        "color",
+        "material",
+        "mass",
+        "physics",
+        "parent",
+        "joint_type",
+        "axis",
+        "limits",
+        "joint_name",
+    }
+)
+KNOWN_TRAITS = frozenset({"physics", "rigid", "collidable", "trigger", "grabbable", "joint", "sensor", "actuator"})
+BEHAVIOR_JOINTS: dict[str, str] = {
+    "RevoluteJoint": "revolute",
+    "HingeJoint": "revolute",
+    "ContinuousJoint": "continuous",
+    "PrismaticJoint": "prismatic",
+    "SliderJoint": "prismatic",
+    "FixedJoint": "fixed",
+    "BallJoint": "spherical",
+    "SphericalJoint": "spherical",
+}
+SENSOR_PARAMS = frozenset(
+    {
+        "type",
+        "name",
+        "fov",
+        "width",
+        "height",
+        "near",
+        "far",
+        "format",
+        "topic",
+        "frameName",
+        "updateRate",
+        "samples",
+        "verticalSamples",
+        "minAngle",
+        "maxAngle",
+        "minRange",
+        "maxRange",
+        "noise",
+        "isaac_sim_config",
+        "position",
+        "rotation",
+    }
+)
+
+
+@dataclass(slots=True)
+class HoloProp:
+    """A body of the composition that is not part of the robot (a ``@grabbable`` prop, a static fixture).
+
+    ``pose`` is in the composition's (Z-up) world frame; an SDF world writer can place it as a model.
+    """
+
+    name: str
+    kind: str  # "grabbable" or "static"
+    geometry: Geometry | None
+    pose: Pose
+    mass: float | None
+    color: RGBA | None
+    src: SourceLoc | None = None
+
+
+@dataclass(slots=True)
+class HoloResult:
+    robot: Robot
+    props: list[HoloProp]
+    findings: Findings
+    gravity: Vec3 | None = None
+
+
+def load_holo(path: str, options: LoadOptions | None = None, findings: Findings | None = None) -> HoloResult:
+    try:
+        with open(path, encoding="utf-8") as handle:
+            text = handle.read()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ParseError(f"cannot read file: {exc}", loc=SourceLoc(path)) from None
+    return load_holo_text(text, path, options, findings)
+
+
+def load_holo_text(
+    text: str, file: str, options: LoadOptions | None = None, findings: Findings | None = None
+) -> HoloResult:
+    out = findings if findings is not None else Findings()
+    doc = parse(text, file)
+    return _Lowerer(doc, file, options or LoadOptions(), out).run()
+
+
+def holo_frontend(path: str, options: LoadOptions, findings: Findings) -> Robot:
+    """The frontend registered for ``.holo`` (props are reported as findings; ``load_holo`` returns them)."""
+    return load_holo(path, options, findings).robot
+
+
+# ---- the composition's objects, flattened ------------------------------------------------------
+@dataclass(slots=True)
+class _Obj:
+    name: str
+    block: Block
+    props: dict[str, Value]
+    traits: list[Trait]
+    behaviors: list[Block]
+    world: Mat
+    enclosing: str | None
+    index: int
+
+    @property
+    def label(self) -> str:
+        return f"object {self.name!r}"
+
+    def trait(self, name: str) -> Trait | None:
+        for t in self.traits:
+            if t.name == name:
+                return t
+        return None
+
+    def traits_named(self, name: str) -> list[Trait]:
+        return [t for t in self.traits if t.name == name]
+
+
+@dataclass(slots=True)
+class _JointSpec:
+    type: str
+    type_loc: SourceLoc
+    parent: str | None
+    parent_loc: SourceLoc | None
+    params: dict[str, Value]
+    loc: SourceLoc
+    notation: str
+    name: str | None = None
+    in_degrees: set[str] = field(default_factory=set)
+
+
+class _Lowerer:
+    def __init__(self, doc: Document, file: str, options: LoadOptions, findings: Findings) -> None:
+        self.doc = doc
+        self.file = file
+        self.options = options
+        self.findings = findings
+        self.templates: dict[str, Block] = {}
+        self.objects: dict[str, _Obj] = {}
+        self.up = np.eye(4)
+        self.y_up = False
+        self.gravity: Vec3 | None = None
+        self._cylinder_noted = False
+
+    # ---- messages ----------------------------------------------------------------------------
+    def fail(self, message: str, element: str, loc: SourceLoc | None) -> ParseError:
+        return ParseError(message, element=element, loc=loc)
+
+    def note(
+        self, code: str, message: str, element: str = "", loc: SourceLoc | None = None, *, warn: bool = False
+    ) -> None:
+        if warn:
+            self.findings.warn(code, message, element=element, loc=loc, stage=STAGE)
+        else:
+            self.findings.info(code, message, element=element, loc=loc, stage=STAGE)
+
+    # ---- top level ---------------------------------------------------------------------------
+    def run(self) -> HoloResult:
+        comps = [b for b in self.doc.body.children if b.kind == "composition"]
+        if len(comps) > 1:
+            raise self.fail("one composition per file", f"composition {comps[1].name!r}", comps[1].loc)
+        comp = comps[0] if comps else self.doc.body
+        name = (comp.name if comps else None) or os.path.splitext(os.path.basename(self.file))[0]
+        for key, loc in self.doc.duplicate_keys:
+            self.note("duplicate-key", f"key {key!r} is given twice; the last one counts", loc=loc, warn=True)
+        for skipped in self.doc.skipped:
+            self.note(
+                "ignored-block",
+                f"'{skipped.kind}' block ignored: it is not part of a robot description",
+                loc=skipped.loc,
+            )
+        self._environment(comp)
+        self._collect_templates(comp)
+        self._walk(comp.children, self.up, None)
+        if not self.objects:
+            raise self.fail("the composition has no objects", f"composition {name!r}", comp.loc)
+        return self._build(name, comp)
+
+    def _environment(self, comp: Block) -> None:
+        envs = [b for b in comp.children if b.kind == "environment"]
+        ignored: list[str] = []
+        for env in envs:
+            for key, value in env.props.items():
+                if key == "gravity":
+                    g = self.vec3(value, "environment.gravity", "environment")
+                    self.gravity = g
+                else:
+                    ignored.append(key)
+            for child in env.children:
+                ignored.append(child.kind)
+        if ignored:
+            self.note(
+                "ignored-environment",
+                f"environment settings {', '.join(sorted(set(ignored)))} are simulator settings, not part of the robot",
+                loc=envs[0].loc,
+            )
+        gravity = self.gravity
+        if gravity is None:
+            self.note(
+                "assumed-up-axis",
+                "no environment gravity: positions are read with +z up (the robot convention)",
+                loc=comp.loc,
+            )
+            return
+        norm = math.sqrt(sum(c * c for c in gravity))
+        if norm == 0:
+            return
+        unit = tuple(c / norm for c in gravity)
+        if np.allclose(unit, (0, 0, -1), atol=1e-6):
+            return
+        if np.allclose(unit, (0, -1, 0), atol=1e-6):
+            # A Y-up scene: rotate it +90° about X so that +y becomes +z, as the IR wants.
+            self.y_up = True
+            self.up = np.array([[1, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 0], [0, 0, 0, 1]], dtype=float)
+            self.note(
+                "converted-up-axis",
+                "gravity points along -y: the composition is Y-up; it is rotated +90° about x into robodesc's Z-up frame",
+                loc=envs[0].loc,
+            )
+            return
+        raise self.fail(
+            f"gravity {list(gravity)} is not along -z or -y; robodesc cannot tell which way is up",
+            "environment",
+            envs[0].props["gravity"].loc,
+        )
+
+    def _collect_templates(self, block: Block) -> None:
+        for child in block.children:
+            if child.kind == "template":
+                if not child.name:
+                    raise self.fail("a template needs a name", "template", child.loc)
+                if child.name in self.templates:
+                    first = self.templates[child.name]
+                    raise self.fail(
+                        f"duplicate template name {child.name!r} (first at {first.name_loc})",
+                        f"template {child.name!r}",
+                        child.name_loc,
+                    )
+                self.templates[child.name] = child
+            elif child.kind in GROUP_KINDS:
+                self._collect_templates(child)
+
+    def _walk(self, blocks: Iterable[Block], frame: Mat, enclosing: str | None) -> None:
+        for block in blocks:
+            if block.kind in OBJECT_KINDS:
+                obj = self._object(block, frame, enclosing)
+                self._walk([c for c in block.children if c.kind in (*OBJECT_KINDS, *GROUP_KINDS)], obj.world, obj.name)
+            elif block.kind in GROUP_KINDS:
+                label = f"{block.kind} {block.name!r}"
+                for key in block.props:
+                    if key not in ("origin", "position", "rotation"):
+                        self.note("ignored-property", f"property {key!r} ignored", label, block.prop_locs[key])
+                local = self._pose_matrix(block.props, label, position_keys=("origin", "position"))
+                self._walk(block.children, frame @ local, enclosing)
+            elif block.kind == "behavior":
+                self.note("ignored-block", "behavior outside an object ignored", f"behavior {block.name!r}", block.loc)
+
+    def _object(self, block: Block, frame: Mat, enclosing: str | None) -> _Obj:
+        if not block.name:
+            raise self.fail("an object needs a name", block.kind, block.loc)
+        label = f"object {block.name!r}"
+        if block.name in self.objects:
+            first = self.objects[block.name].block
+            raise self.fail(f"duplicate object name {block.name!r} (first at {first.name_loc})", label, block.name_loc)
+        props = dict(block.props)
+        traits = list(block.traits)
+        behaviors = [c for c in block.children if c.kind == "behavior"]
+        if block.using is not None:
+            template = self.templates.get(block.using)
+            if template is None:
+                raise BrokenReferenceError(
+                    f"template {block.using!r} is not defined{_suggest(block.using, self.templates)}",
+                    element=label,
+                    loc=block.using_loc,
+                )
+            props = _merge_props(template.props, block.props)
+            traits = _merge_traits(template.traits, block.traits)
+            mine = {b.name for b in behaviors}
+            behaviors = [b for b in template.children if b.kind == "behavior" and b.name not in mine] + behaviors
+        local = self._pose_matrix(props, label, position_keys=("position",))
+        obj = _Obj(block.name, block, props, traits, behaviors, frame @ local, enclosing, len(self.objects))
+        self.objects[block.name] = obj
+        return obj
+
+    # ---- values ------------------------------------------------------------------------------
+    def num(self, value: Value, path: str, element: str) -> float:
+        if isinstance(value.data, bool) or not isinstance(value.data, float):
+            raise self.fail(f"{path}: expected a number, got {_describe(value)}", element, value.loc)
+        return value.data
+
+    def string(self, value: Value, path: str, element: str) -> str:
+        if not isinstance(value.data, str):
+            raise self.fail(f"{path}: expected a string, got {_describe(value)}", element, value.loc)
+        return value.data
+
+    def vec3(self, value: Value, path: str, element: str) -> Vec3:
+        if isinstance(value.data, dict):
+            d = value.data
+            unknown = [k for k in d if k not in ("x", "y", "z")]
+            if unknown:
+                raise self.fail(
+                    f"{path}: unknown component {unknown[0]!r} (x, y, z)", element, value.key_locs[unknown[0]]
+                )
+            x, y, z = (self.num(d[k], f"{path}.{k}", element) if k in d else 0.0 for k in ("x", "y", "z"))
+            return (x, y, z)
+        if not isinstance(value.data, list) or len(value.data) != 3:
+            raise self.fail(f"{path}: expected [x, y, z], got {_describe(value)}", element, value.loc)
+        a, b, c = (self.num(v, f"{path}[{i}]", element) for i, v in enumerate(value.data))
+        return (a, b, c)
+
+    def _pose_matrix(self, props: dict[str, Value], label: str, position_keys: tuple[str, ...]) -> Mat:
+        xyz: Vec3 = (0.0, 0.0, 0.0)
+        for key in position_keys:
+            if key in props:
+                xyz = self.vec3(props[key], key, label)
+        rpy: Vec3 = (0.0, 0.0, 0.0)
+        if "rotation" in props:
+            deg = self.vec3(props["rotation"], "rotation", label)
+            if sum(1 for d in deg if d != 0) > 1:
+                self.note(
+                    "rotation-convention",
+                    f"rotation {list(deg)} read as roll-pitch-yaw in degrees about fixed x, y, z axes (URDF's "
+                    "convention); a three.js Euler 'XYZ' reading would differ",
+                    label,
+                    props["rotation"].loc,
+                )
+            rpy = (math.radians(deg[0]), math.radians(deg[1]), math.radians(deg[2]))
+        return pose_matrix(Pose(xyz=xyz, rpy=rpy))
+
+    # ---- building ----------------------------------------------------------------------------
+    def _build(self, name: str, comp: Block) -> HoloResult:
+        props: list[HoloProp] = []
+        joints: dict[str, _JointSpec] = {}
+        for obj in self.objects.values():
+            spec = self._joint_spec(obj)
+            if spec is not None:
+                joints[obj.name] = spec
+            for key in obj.props:
+                if key not in KNOWN_PROPS:
+                    self.note("ignored-property", f"property {key!r} ignored", obj.label, obj.block.prop_locs.get(key))
+            for trait in obj.traits:
+                if trait.name not in KNOWN_TRAITS:
+                    self.note("ignored-trait", f"trait @{trait.name} ignored", obj.label, trait.loc)
+                elif trait.name == "trigger":
+                    self.note(
+                        "ignored-trait", "@trigger volumes are not part of a robot description", obj.label, trait.loc
+                    )
+        referenced = {s.parent for s in joints.values() if s.parent is not None}
+        for spec_owner, spec in joints.items():
+            if spec.parent is not None and spec.parent not in self.objects:
+                raise BrokenReferenceError(
+                    f"{spec.notation} parent {spec.parent!r} is not an object of this composition"
+                    f"{_suggest(spec.parent, self.objects)}",
+                    element=f"object {spec_owner!r}",
+                    loc=spec.parent_loc,
+                )
+        # Which objects are robot bodies.
+        bodies: list[_Obj] = []
+        root: _Obj | None = None
+        for obj in self.objects.values():
+            if obj.trait("grabbable") is not None:
+                if obj.name in referenced:
+                    raise self.fail("a @grabbable prop cannot carry robot joints", obj.label, obj.block.loc)
+                props.append(self._prop(obj, "grabbable"))
+                self.note(
+                    "prop",
+                    "@grabbable object is a free prop, not a robot link (load_holo returns it for world files)",
+                    obj.label,
+                    obj.block.loc,
+                )
+                continue
+            if self._is_static(obj) and root is not None and obj.name not in referenced and obj.name not in joints:
+                props.append(self._prop(obj, "static"))
+                self.note(
+                    "prop",
+                    f"static object is not connected to the robot (its base is {root.name!r}); treated as a fixture",
+                    obj.label,
+                    obj.block.loc,
+                )
+                continue
+            if root is None and self._is_static(obj) and obj.name not in joints:
+                root = obj
+            bodies.append(obj)
+        if not bodies:
+            raise self.fail("the composition has no robot objects (only props)", f"composition {name!r}", comp.loc)
+        if root is None:
+            candidates = [b for b in bodies if b.name not in joints]
+            root = candidates[0] if candidates else bodies[0]
+            self.note(
+                "inferred-base",
+                'no @physics { type: "static" } object: the first object without a joint is the base, and it floats',
+                root.label,
+                root.block.loc,
+                warn=True,
+            )
+        if root.name in joints:
+            raise self.fail("the base cannot have a joint", root.label, joints[root.name].loc)
+        statics = {b.name for b in bodies if self._is_static(b)} - {root.name}
+        for static_name in sorted(statics):
+            obj = self.objects[static_name]
+            self.note(
+                "static-link",
+                "static object inside the robot: read as a link (only the base is fixed)",
+                obj.label,
+                obj.block.loc,
+                warn=True,
+            )
+
+        builder = RobotBuilder(
+            name,
+            source_file=self.file,
+            options=self.options,
+            findings=self.findings,
+            src=comp.loc,
+            fixed_base=self._fixed_base(root),
+        )
+        body_names = [b.name for b in bodies]
+        for obj in bodies:
+            self._link(builder, obj)
+        used_joint_names: set[str] = set()
+        for i, obj in enumerate(bodies):
+            if obj is root:
+                continue
+            spec = joints.get(obj.name)
+            parent = spec.parent if spec is not None else None
+            if parent is None:
+                parent = self._inferred_parent(obj, body_names[:i], root)
+                what = f"its {spec.notation} names no parent" if spec is not None else "it has no joint"
+                how = (
+                    "the object it is declared in"
+                    if obj.enclosing == parent
+                    else "the most recent robot object declared before it"
+                )
+                self.note(
+                    "inferred-parent",
+                    f"{what}: attached to {parent!r}, {how}" + ("" if spec is not None else ", by a fixed joint"),
+                    obj.label,
+                    obj.block.loc,
+                )
+            elif parent not in body_names:
+                raise BrokenReferenceError(
+                    f"{spec.notation if spec else 'joint'} parent {parent!r} is a prop, not part of the robot",
+                    element=obj.label,
+                    loc=spec.parent_loc if spec else obj.block.loc,
+                )
+            if spec is None:
+                actuator = obj.trait("actuator")
+                if actuator is not None:
+                    raise self.fail("@actuator on an object without a joint", obj.label, actuator.loc)
+                jname = _unique(f"{parent}_to_{obj.name}", used_joint_names)
+                builder.joint(jname, JointType.FIXED, parent, obj.name, src=obj.block.loc)
+            else:
+                jname = _unique(spec.name or f"{obj.name}_joint", used_joint_names)
+                self._joint(builder, obj, spec, parent, jname)
+            used_joint_names.add(jname)
+        for obj in bodies:
+            self._sensors(builder, obj)
+        robot = builder.build()
+        return HoloResult(robot, props, self.findings, self.gravity)
+
+    def _is_static(self, obj: _Obj) -> bool:
+        t = obj.trait("physics")
+        if t is None or "type" not in t.params:
+            return False
+        return t.params["type"].data == "static"
+
+    def _fixed_base(self, root: _Obj) -> bool | None:
+        t = root.trait("physics")
+        if t is None or "type" not in t.params:
+            return None
+        return t.params["type"].data in ("static", "kinematic")
+
+    def _inferred_parent(self, obj: _Obj, before: list[str], root: _Obj) -> str:
+        if obj.enclosing is not None and obj.enclosing in before:
+            return obj.enclosing
+        return before[-1] if before else root.name
+
+    # ---- joints ------------------------------------------------------------------------------
+    def _joint_spec(self, obj: _Obj) -> _JointSpec | None:
+        specs: list[_JointSpec] = []
+        label = obj.label
+        for t in obj.traits_named("joint"):
+            p = t.params
+            key = "jointType" if "jointType" in p else "type" if "type" in p else None
+            if key is None:
+                raise self.fail(
+                    "@joint needs jointType (revolute, continuous, prismatic, fixed, ball ...)", label, t.loc
+                )
+            parent = p.get("connectedBody") or p.get("parent")
+            specs.append(
+                _JointSpec(
+                    type=self.string(p[key], f"@joint.{key}", label),
+                    type_loc=p[key].loc,
+                    parent=None if parent is None else self.string(parent, "@joint.connectedBody", label),
+                    parent_loc=None if parent is None else parent.loc,
+                    params=p,
+                    loc=t.loc,
+                    notation="@joint",
+                    name=self.string(p["name"], "@joint.name", label) if "name" in p else None,
+                )
+            )
+        for b in obj.behaviors:
+            if b.name not in BEHAVIOR_JOINTS:
+                self.note("ignored-behavior", f"behavior {b.name!r} ignored", label, b.loc)
+                continue
+            parent = b.props.get("connectedBody") or b.props.get("parent") or obj.props.get("parent")
+            specs.append(
+                _JointSpec(
+                    type=BEHAVIOR_JOINTS[b.name],
+                    type_loc=b.name_loc,
+                    parent=None if parent is None else self.string(parent, "parent", label),
+                    parent_loc=None if parent is None else parent.loc,
+                    params=b.props,
+                    loc=b.loc,
+                    notation=f'behavior "{b.name}"',
+                )
+            )
+        if "joint_type" in obj.props:
+            parent = obj.props.get("parent")
+            specs.append(
+                _JointSpec(
+                    type=self.string(obj.props["joint_type"], "joint_type", label),
+                    type_loc=obj.props["joint_type"].loc,
+                    parent=None if parent is None else self.string(parent, "parent", label),
+                    parent_loc=None if parent is None else parent.loc,
+                    params={k: v for k, v in obj.props.items() if k in ("axis", "limits")},
+                    loc=obj.block.prop_locs["joint_type"],
+                    notation="joint_type",
+                    name=self.string(obj.props["joint_name"], "joint_name", label)
+                    if "joint_name" in obj.props
+                    else None,
+                )
+            )
+        elif "parent" in obj.props and not specs:
+            parent = obj.props["parent"]
+            specs.append(
+                _JointSpec(
+                    type="fixed",
+                    type_loc=parent.loc,
+                    parent=self.string(parent, "parent", label),
+                    parent_loc=parent.loc,
+                    params={},
+                    loc=obj.block.prop_locs["parent"],
+                    notation="parent",
+                )
+            )
+        if len(specs) > 1:
+            raise self.fail(
+                f"joint given twice ({specs[0].notation} at {specs[0].loc} and {specs[1].notation}); keep one",
+                label,
+                specs[1].loc,
+            )
+        return specs[0] if specs else None
+
+    def _joint(self, builder: RobotBuilder, obj: _Obj, spec: _JointSpec, parent: str, name: str) -> None:
+        label = obj.label
+        jtype = joint_type(spec.type, label, spec.type_loc)
+        p = spec.params
+        angular = jtype in (JointType.REVOLUTE, JointType.CONTINUOUS)
+        # Revolute limits, offsets and soft limits are degrees in HoloScript; prismatic ones metres.
+        k = math.pi / 180.0 if angular else 1.0
+        axis: Vec3 | None = None
+        if "axis" in p:
+            axis = self.vec3(p["axis"], f"{spec.notation}.axis", label) if not isinstance(p["axis"].data, str) else None
+            if isinstance(p["axis"].data, str):
+                from robodesc.compose.builder import axis_vector
+
+                try:
+                    axis = axis_vector(p["axis"].data)
+                except ValueError as exc:
+                    raise self.fail(str(exc), label, p["axis"].loc) from None
+            if not any(axis or ()):
+                raise self.fail("axis is the zero vector", label, p["axis"].loc)
+        elif jtype.dof > 0 and jtype is not JointType.SPHERICAL and jtype is not JointType.FLOATING:
+            self.note("default-axis", "no axis given: URDF's default +x applies", label, spec.loc, warn=True)
+        lower = upper = effort = velocity = None
+        limit_loc = spec.loc
+        if spec.notation == "@joint" or spec.notation == "joint_type":
+            if "limits" in p:
+                lim = p["limits"]
+                limit_loc = lim.loc
+                if not isinstance(lim.data, dict):
+                    raise self.fail(
+                        f"limits: expected {{ min, max, effort, velocity }}, got {_describe(lim)}", label, lim.loc
+                    )
+                d = lim.data
+                for key in d:
+                    if key not in ("min", "max", "lower", "upper", "effort", "velocity"):
+                        raise self.fail(
+                            f"limits: unknown key {key!r}{_suggest(key, ('min', 'max', 'effort', 'velocity'))}",
+                            label,
+                            lim.key_locs[key],
+                        )
+                lo = d.get("min") or d.get("lower")
+                hi = d.get("max") or d.get("upper")
+                lower = None if lo is None else self.num(lo, "limits.min", label) * k
+                upper = None if hi is None else self.num(hi, "limits.max", label) * k
+                effort = self.num(d["effort"], "limits.effort", label) if "effort" in d else None
+                velocity = self.num(d["velocity"], "limits.velocity", label) if "velocity" in d else None
+        else:
+            if "lowerLimit" in p:
+                lower = self.num(p["lowerLimit"], "lowerLimit", label) * k
+            if "upperLimit" in p:
+                upper = self.num(p["upperLimit"], "upperLimit", label) * k
+            if "maxVelocity" in p:
+                velocity = self.num(p["maxVelocity"], "maxVelocity", label)
+            for key in ("maxTorque", "maxForce", "maxEffort"):
+                if key in p:
+                    effort = self.num(p[key], key, label)
+        if lower is not None and upper is not None and lower > upper:
+            raise self.fail("the lower limit is above the upper limit", label, limit_loc)
+        if jtype is JointType.REVOLUTE and (lower is None or upper is None):
+            self.note(
+                "unlimited-revolute",
+                "revolute joint without min/max limits: written as a continuous joint (it may turn freely)",
+                label,
+                spec.loc,
+                warn=True,
+            )
+            jtype, lower, upper = JointType.CONTINUOUS, None, None
+        if jtype is JointType.PRISMATIC and (lower is None or upper is None):
+            raise self.fail("a prismatic joint needs limits { min, max } (metres)", label, limit_loc)
+        damping = self.num(p["damping"], "damping", label) if "damping" in p else None
+        friction = self.num(p["friction"], "friction", label) if "friction" in p else None
+        mimic = multiplier = offset = None
+        if "mimic" in p:
+            m = p["mimic"]
+            if isinstance(m.data, str):
+                mimic = m.data
+            elif isinstance(m.data, dict) and "joint" in m.data:
+                mimic = self.string(m.data["joint"], "mimic.joint", label)
+                if "multiplier" in m.data:
+                    multiplier = self.num(m.data["multiplier"], "mimic.multiplier", label)
+                if "offset" in m.data:
+                    offset = self.num(m.data["offset"], "mimic.offset", label) * k
+            else:
+                raise self.fail("mimic: expected { joint, multiplier, offset }", label, m.loc)
+            # The author names the leader by its object; joints are named after their objects.
+            if mimic in self.objects:
+                mimic = f"{mimic}_joint"
+        safety = None
+        if "safetyController" in p:
+            sc = p["safetyController"]
+            if not isinstance(sc.data, dict):
+                raise self.fail("safetyController: expected an object", label, sc.loc)
+            d = sc.data
+
+            def get(*names: str) -> Value | None:
+                for nm in names:
+                    if nm in d:
+                        return d[nm]
+                return None
+
+            kv = get("kVelocity", "k_velocity")
+            if kv is None:
+                raise self.fail("safetyController needs kVelocity", label, sc.loc)
+            kp, sl, su = (
+                get("kPosition", "k_position"),
+                get("softLowerLimit", "soft_lower_limit"),
+                get("softUpperLimit", "soft_upper_limit"),
+            )
+            safety = SafetyController(
+                k_velocity=self.num(kv, "safetyController.kVelocity", label),
+                k_position=None if kp is None else self.num(kp, "safetyController.kPosition", label),
+                soft_lower_limit=None if sl is None else self.num(sl, "safetyController.softLowerLimit", label) * k,
+                soft_upper_limit=None if su is None else self.num(su, "safetyController.softUpperLimit", label) * k,
+                src=sc.loc,
+            )
+        builder.joint(
+            name,
+            jtype,
+            parent,
+            obj.name,
+            axis=axis,
+            lower=lower,
+            upper=upper,
+            effort=effort,
+            velocity=velocity,
+            damping=damping,
+            friction=friction,
+            mimic=mimic,
+            multiplier=multiplier,
+            offset=offset,
+            safety=safety,
+            src=spec.loc,
+            limit_src=limit_loc,
+            display_name=None,
+        )
+        for act in obj.traits_named("actuator"):
+            if jtype is JointType.FIXED:
+                raise self.fail("@actuator on an object whose joint is fixed", label, act.loc)
+            a = act.params
+            builder.actuator(
+                name,
+                type=self.string(a["transmissionType"], "@actuator.transmissionType", label)
+                if "transmissionType" in a
+                else "transmission_interface/SimpleTransmission",
+                interface=self.string(a["hardwareInterface"], "@actuator.hardwareInterface", label)
+                if "hardwareInterface" in a
+                else None,
+                reduction=self.num(a["mechanicalReduction"], "@actuator.mechanicalReduction", label)
+                if "mechanicalReduction" in a
+                else None,
+                name=self.string(a["name"], "@actuator.name", label) if "name" in a else None,
+                src=act.loc,
+            )
+
+    # ---- links -------------------------------------------------------------------------------
+    def _link(self, builder: RobotBuilder, obj: _Obj) -> None:
+        label = obj.label
+        geom, origin, geom_loc = self._geometry(obj)
+        parts: list[Part] = []
+        color = self._color(obj)
+        material = self.string(obj.props["material"], "material", label) if "material" in obj.props else None
+        if geom is not None:
+            parts.append(
+                Part(
+                    geometry=geom,
+                    origin=origin,
+                    color=color,
+                    material=material,
+                    collision=obj.trait("collidable") is not None,
+                    src=geom_loc,
+                )
+            )
+        else:
+            self.note("no-geometry", "object has no geometry: a link without visuals", label, obj.block.loc)
+        mass, inertia = self._mass(obj)
+        if mass is None:
+            self.note(
+                "no-mass",
+                "object has no mass (mass, @physics { mass } or physics: { mass })",
+                label,
+                obj.block.loc,
+                warn=True,
+            )
+        builder.link(
+            obj.name,
+            *parts,
+            mass=mass,
+            inertia=inertia,
+            pose=matrix_pose(obj.world),
+            frame="world",
+            element=label,
+            src=obj.block.name_loc,
+        )
+
+    def _geometry(self, obj: _Obj) -> tuple[Geometry | None, Pose | None, SourceLoc | None]:
+        label = obj.label
+        if "geometry" not in obj.props:
+            return None, None, None
+        gval = obj.props["geometry"]
+        kind = self.string(gval, "geometry", label)
+        scale = self._scale(obj)
+        sx, sy, sz = scale
+        lowered = kind.lower()
+        if lowered.endswith(MESH_SUFFIXES) or "/" in kind or "://" in kind:
+            return Mesh(uri=kind, scale=scale, src=gval.loc), None, gval.loc
+        if lowered not in PRIMITIVES:
+            raise self.fail(
+                f"unknown geometry {kind!r} (one of {', '.join(PRIMITIVES)}, or a mesh file){_suggest(lowered, PRIMITIVES)}",
+                label,
+                gval.loc,
+            )
+        up_rot = Pose(rpy=(-math.pi / 2, 0.0, 0.0)) if self.y_up else None
+        if lowered in ("box", "cube"):
+            return Box(size=(sx, sy, sz), src=gval.loc), None, gval.loc
+        if lowered == "sphere":
+            if not (sx == sy == sz):
+                self.note(
+                    "non-uniform-sphere",
+                    f"sphere scale {list(scale)} is not uniform: radius from the largest",
+                    label,
+                    gval.loc,
+                    warn=True,
+                )
+            return Sphere(radius=max(scale) / 2.0, src=gval.loc), None, gval.loc
+        if lowered == "plane":
+            self.note(
+                "plane-as-box", "plane read as a 1 mm thick box of its x and z extents", label, gval.loc, warn=True
+            )
+            return Box(size=(sx, sz, 0.001), src=gval.loc), None, gval.loc
+        # Cylinder-like primitives: HoloScript's scale is [diameter, height, diameter].
+        if not self._cylinder_noted:
+            self._cylinder_noted = True
+            self.note(
+                "cylinder-convention",
+                "cylinder-like scale read as [diameter, height, diameter] with the height along the up axis",
+                label,
+                gval.loc,
+            )
+        if sx != sz:
+            self.note(
+                "elliptic-cylinder",
+                f"{lowered} scale {list(scale)} has different x and z diameters; the larger is used",
+                label,
+                gval.loc,
+                warn=True,
+            )
+        radius = max(sx, sz) / 2.0
+        if lowered == "cone":
+            self.note(
+                "cone-as-cylinder",
+                "robodesc has no cone shape: written as a cylinder of the same extents",
+                label,
+                gval.loc,
+                warn=True,
+            )
+        if lowered == "capsule":
+            if sy < 2 * radius:
+                raise self.fail(f"capsule height {sy:g} is less than its diameter {2 * radius:g}", label, gval.loc)
+            return Capsule(radius=radius, length=sy - 2 * radius, src=gval.loc), up_rot, gval.loc
+        return Cylinder(radius=radius, length=sy, src=gval.loc), up_rot, gval.loc
+
+    def _scale(self, obj: _Obj) -> Vec3:
+        label = obj.label
+        if "scale" not in obj.props:
+            if "geometry" in obj.props:
+                self.note(
+                    "default-scale", "no scale: the unit primitive (1 m) is used", label, obj.props["geometry"].loc
+                )
+            return (1.0, 1.0, 1.0)
+        value = obj.props["scale"]
+        if isinstance(value.data, float):
+            s = value.data
+            scale = (s, s, s)
+        else:
+            scale = self.vec3(value, "scale", label)
+        if any(not c > 0 for c in scale):
+            raise self.fail(f"scale must be positive, got {list(scale)}", label, value.loc)
+        return scale
+
+    def _color(self, obj: _Obj) -> RGBA | None:
+        if "color" not in obj.props:
+            return None
+        value = obj.props["color"]
+        try:
+            if isinstance(value.data, list):
+                return parse_color([self.num(v, "color", obj.label) for v in value.data])
+            return parse_color(self.string(value, "color", obj.label))
+        except ColorError as exc:
+            raise self.fail(str(exc), obj.label, value.loc) from None
+
+    def _mass(self, obj: _Obj) -> tuple[float | None, Inertia | None]:
+        label = obj.label
+        found: list[tuple[str, float, SourceLoc]] = []
+        inertia_value: Value | None = None
+        if "mass" in obj.props:
+            found.append(("mass", self.num(obj.props["mass"], "mass", label), obj.props["mass"].loc))
+        t = obj.trait("physics")
+        if t is not None:
+            if "mass" in t.params:
+                found.append(
+                    ("@physics.mass", self.num(t.params["mass"], "@physics.mass", label), t.params["mass"].loc)
+                )
+            if "inertia" in t.params:
+                inertia_value = t.params["inertia"]
+        if "physics" in obj.props:
+            ph = obj.props["physics"]
+            if not isinstance(ph.data, dict):
+                raise self.fail(f"physics: expected {{ mass, inertia }}, got {_describe(ph)}", label, ph.loc)
+            if "mass" in ph.data:
+                found.append(("physics.mass", self.num(ph.data["mass"], "physics.mass", label), ph.data["mass"].loc))
+            if "inertia" in ph.data:
+                if inertia_value is not None:
+                    raise self.fail("inertia given twice (@physics and physics:)", label, ph.data["inertia"].loc)
+                inertia_value = ph.data["inertia"]
+        mass = None
+        if found:
+            first = found[0]
+            for other in found[1:]:
+                if not math.isclose(other[1], first[1], rel_tol=1e-9, abs_tol=1e-12):
+                    raise self.fail(
+                        f"{other[0]} {other[1]:g} contradicts {first[0]} {first[1]:g} (at {first[2]})", label, other[2]
+                    )
+            mass = first[1]
+            if mass < 0:
+                raise self.fail(f"mass must be positive, got {mass:g}", label, first[2])
+        inertia = None
+        if inertia_value is not None:
+            if not isinstance(inertia_value.data, dict):
+                raise self.fail("inertia: expected { ixx, iyy, izz, ixy, ixz, iyz }", label, inertia_value.loc)
+            d = inertia_value.data
+            for key in d:
+                if key not in ("ixx", "iyy", "izz", "ixy", "ixz", "iyz"):
+                    raise self.fail(
+                        f"inertia: unknown key {key!r}{_suggest(key, ('ixx', 'iyy', 'izz', 'ixy', 'ixz', 'iyz'))}",
+                        label,
+                        inertia_value.key_locs[key],
+                    )
+            for key in ("ixx", "iyy", "izz"):
+                if key not in d:
+                    raise self.fail(f"inertia needs {key}", label, inertia_value.loc)
+            v = {
+                k: self.num(d[k], f"inertia.{k}", label) if k in d else 0.0
+                for k in ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
+            }
+            inertia = Inertia(v["ixx"], v["iyy"], v["izz"], v["ixy"], v["ixz"], v["iyz"], src=inertia_value.loc)
+            if mass is None:
+                raise self.fail("an inertia tensor needs a mass", label, inertia_value.loc)
+        return mass, inertia
+
+    def _prop(self, obj: _Obj, kind: str) -> HoloProp:
+        geom, _, geom_loc = self._geometry(obj)
+        if isinstance(geom, Mesh):
+            resolver = PackageResolver(explicit=dict(self.options.package_paths), input_file=self.file)
+            policy = self.options.missing_mesh
+            geom = resolve_mesh(
+                geom,
+                element=obj.label,
+                loc=geom_loc,
+                base_dir=os.path.dirname(os.path.abspath(self.file)),
+                resolver=resolver,
+                policy=MissingMesh.WARN if policy is MissingMesh.ERROR else policy,
+                findings=self.findings,
+            )
+        mass, _ = self._mass(obj)
+        return HoloProp(obj.name, kind, geom, matrix_pose(obj.world), mass, self._color(obj), obj.block.loc)
+
+    # ---- sensors -----------------------------------------------------------------------------
+    def _sensors(self, builder: RobotBuilder, obj: _Obj) -> None:
+        label = obj.label
+        for t in obj.traits_named("sensor"):
+            p = t.params
+            if "type" not in p:
+                raise self.fail(
+                    "@sensor needs a type (camera, depth, lidar, imu, force_torque, contact, gps)", label, t.loc
+                )
+            stype = self.string(p["type"], "@sensor.type", label)
+            for key in p:
+                if key not in SENSOR_PARAMS:
+                    self.note("ignored-parameter", f"@sensor parameter {key!r} ignored", label, t.key_locs.get(key))
+            base = self.string(p["name"], "@sensor.name", label) if "name" in p else f"{obj.name}_{stype}"
+            name = base
+            i = 2
+            while builder_has_sensor(builder, name):
+                name = f"{base}_{i}"
+                i += 1
+            pose = self._local_pose(p, label)
+            camera = ray = None
+            if stype in ("camera", "depth"):
+                fov = self._angle_rad(p, "fov", label)
+                camera = CameraSpec(
+                    width=self._int(p, "width", label),
+                    height=self._int(p, "height", label),
+                    hfov=fov,
+                    near=self.num(p["near"], "@sensor.near", label) if "near" in p else None,
+                    far=self.num(p["far"], "@sensor.far", label) if "far" in p else None,
+                    format=self.string(p["format"], "@sensor.format", label) if "format" in p else None,
+                )
+            elif stype in ("lidar", "ray"):
+                horizontal = RayAxis(
+                    samples=self._int(p, "samples", label),
+                    min_angle=self._angle_rad(p, "minAngle", label),
+                    max_angle=self._angle_rad(p, "maxAngle", label),
+                )
+                vertical = RayAxis(samples=self._int(p, "verticalSamples", label)) if "verticalSamples" in p else None
+                ray = RaySpec(
+                    horizontal=horizontal,
+                    vertical=vertical,
+                    min_range=self.num(p["minRange"], "@sensor.minRange", label) if "minRange" in p else None,
+                    max_range=self.num(p["maxRange"], "@sensor.maxRange", label) if "maxRange" in p else None,
+                )
+            builder.sensor(
+                name,
+                stype,
+                obj.name,
+                pose=pose,
+                update_rate=self.num(p["updateRate"], "@sensor.updateRate", label) if "updateRate" in p else None,
+                topic=self.string(p["topic"], "@sensor.topic", label) if "topic" in p else None,
+                noise=self.num(p["noise"], "@sensor.noise", label) if "noise" in p else None,
+                camera=camera,
+                ray=ray,
+                isaac_sim_config=self.string(p["isaac_sim_config"], "@sensor.isaac_sim_config", label)
+                if "isaac_sim_config" in p
+                else None,
+                src=t.loc,
+            )
+            if "frameName" in p:
+                frame_name = self.string(p["frameName"], "@sensor.frameName", label)
+                builder.frame(frame_name, obj.name, pose, src=p["frameName"].loc)
+
+    def _local_pose(self, p: dict[str, Value], label: str) -> Pose | None:
+        if "position" not in p and "rotation" not in p:
+            return None
+        xyz = self.vec3(p["position"], "@sensor.position", label) if "position" in p else (0.0, 0.0, 0.0)
+        deg = self.vec3(p["rotation"], "@sensor.rotation", label) if "rotation" in p else (0.0, 0.0, 0.0)
+        return Pose(xyz=xyz, rpy=(math.radians(deg[0]), math.radians(deg[1]), math.radians(deg[2])))
+
+    def _angle_rad(self, p: dict[str, Value], key: str, label: str) -> float | None:
+        if key not in p:
+            return None
+        value = self.num(p[key], f"@sensor.{key}", label)
+        if abs(value) > 2 * math.pi:
+            self.note(
+                "sensor-angle-unit",
+                f"@sensor.{key} = {value:g} is read in radians (as URDF and SDF sensors are) but looks like degrees",
+                label,
+                p[key].loc,
+                warn=True,
+            )
+        return value
+
+    def _int(self, p: dict[str, Value], key: str, label: str) -> int | None:
+        if key not in p:
+            return None
+        value = self.num(p[key], f"@sensor.{key}", label)
+        if value != int(value) or value < 0:
+            raise self.fail(f"@sensor.{key}: expected a whole number, got {value:g}", label, p[key].loc)
+        return int(value)
+
+
+def builder_has_sensor(builder: RobotBuilder, name: str) -> bool:
+    return name in builder._sensors
+
+
+def _merge_props(base: dict[str, Value], over: dict[str, Value]) -> dict[str, Value]:
+    out = dict(base)
+    for key, value in over.items():
+        out[key] = _merge_value(out[key], value) if key in out else value
+    return out
+
+
+def _merge_value(base: Value, over: Value) -> Value:
+    if isinstance(base.data, dict) and isinstance(over.data, dict):
+        merged = dict(base.data)
+        locs = dict(base.key_locs)
+        for key, value in over.data.items():
+            merged[key] = _merge_value(merged[key], value) if key in merged else value
+            locs[key] = over.key_locs.get(key, over.loc)
+        return Value(merged, over.loc, locs)
+    return over
+
+
+def _merge_traits(base: list[Trait], over: list[Trait]) -> list[Trait]:
+    """Template traits overridden key by key by the object's; sensors accumulate."""
+    out: list[Trait] = []
+    over_names = {t.name for t in over if t.name != "sensor"}
+    for t in base:
+        if t.name in over_names:
+            mine = next(o for o in over if o.name == t.name)
+            params = _merge_props(t.params, mine.params)
+            out.append(Trait(t.name, params, mine.loc, {**t.key_locs, **mine.key_locs}))
+        else:
+            out.append(t)
+    done = {t.name for t in base}
+    out += [t for t in over if t.name == "sensor" or t.name not in done]
+    return out
+
+
+def _unique(name: str, used: set[str]) -> str:
+    out, i = name, 2
+    while out in used:
+        out = f"{name}_{i}"
+        i += 1
+    return out
+
+
+def _describe(value: Value) -> str:
+    d = value.data
+    if isinstance(d, bool):
+        return f"a boolean ({str(d).lower()})"
+    if isinstance(d, float):
+        return f"a number ({d:g})"
+    if isinstance(d, str):
+        return f"a string ({d!r})"
+    if isinstance(d, list):
+        return f"a list of {len(d)}"
+    if isinstance(d, dict):
+        return "an object"
+    return "null"
+
+
+def _suggest(name: str, known: Iterable[str]) -> str:
+    close = difflib.get_close_matches(name, list(known), n=1)
+    return f"; did you mean {close[0]!r}?" if close else ""

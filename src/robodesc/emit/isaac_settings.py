@@ -1,0 +1,143 @@
+"""The settings of an Isaac Sim import, and the importer-settings file that applies them.
+
+One :class:`IsaacSettings` drives the USD emitter, the importer-settings file (in both the Isaac Sim
+5.x ``ImportConfig`` and Isaac Lab ``UrdfConverterCfg`` vocabularies) and the Isaac Lab module, so
+the three can never disagree.
+
+Units: ``stiffness``/``damping`` are SI here (N·m/rad and N·m·s/rad for revolute joints; N/m and
+N·s/m for prismatic). Isaac Sim's importer and USD drives take angular gains per DEGREE; the
+conversion happens in exactly one place, :func:`usd_gain`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Mapping
+from dataclasses import asdict, dataclass, field
+
+from robodesc.ir.model import Joint, Robot
+from robodesc.ir.rules import lookup
+
+DEG_PER_RAD = 180.0 / math.pi
+
+Gains = float | dict[str, float]
+
+
+@dataclass(slots=True)
+class IsaacSettings:
+    fix_base: bool = True
+    merge_fixed_joints: bool = False
+    drive_type: str = "force"  # force | acceleration
+    target_type: str = "position"  # none | position | velocity
+    stiffness: Gains = 0.0
+    damping: Gains = 0.0
+    self_collision: bool = False
+    collision_approximation: str = "convexHull"  # convexHull | convexDecomposition | boundingCube | boundingSphere | none
+    solver_position_iterations: int | None = None
+    solver_velocity_iterations: int | None = None
+    contact_offset: float | None = None
+    rest_offset: float | None = None
+    import_inertia_tensor: bool = True
+    # Spawn pose for Isaac Lab: base position (m) and the initial joint positions (rad) by regex.
+    init_pos: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    init_joint_pos: dict[str, float] = field(default_factory=dict)
+
+    def gains(self, joint: Joint) -> tuple[float, float]:
+        """SI (stiffness, damping) for ``joint``; 0 where no rule matches."""
+        k = lookup(self.stiffness, joint.name, "stiffness") or 0.0
+        d = lookup(self.damping, joint.name, "damping") or 0.0
+        return k, d
+
+
+def usd_gain(value: float, joint: Joint) -> float:
+    """SI gain → USD drive units: angular gains are per degree (x π/180), linear ones unchanged."""
+    return value / DEG_PER_RAD if joint.type.is_angular else value
+
+
+_APPROX_TO_LAB = {"convexHull": "Convex Hull", "convexDecomposition": "Convex Decomposition"}
+
+
+def importer_settings(robot: Robot, settings: IsaacSettings) -> dict[str, object]:
+    """The importer-settings document (JSON-ready)."""
+    joints = robot.actuated_joints()
+    per_joint = {j.name: dict(zip(("stiffness", "damping"), settings.gains(j), strict=True)) for j in joints}
+    uniform_k = _uniform([v["stiffness"] for v in per_joint.values()])
+    uniform_d = _uniform([v["damping"] for v in per_joint.values()])
+    angular = any(j.type.is_angular for j in joints)
+    scale = 1.0 / DEG_PER_RAD if angular else 1.0
+    sim5: dict[str, object] = {
+        "merge_fixed_joints": settings.merge_fixed_joints,
+        "replace_cylinders_with_capsules": False,
+        "convex_decomp": settings.collision_approximation == "convexDecomposition",
+        "import_inertia_tensor": settings.import_inertia_tensor,
+        "fix_base": settings.fix_base,
+        "self_collision": settings.self_collision,
+        "density": 0.0,
+        "default_drive_type": settings.target_type,
+        "joint_drive_type": settings.drive_type,
+        # Isaac Sim 5.x takes angular gains per degree.
+        "default_drive_strength": (uniform_k if uniform_k is not None else 0.0) * scale,
+        "default_position_drive_damping": (uniform_d if uniform_d is not None else 0.0) * scale,
+        "distance_scale": 1.0,
+        "up_vector": [0.0, 0.0, 1.0],
+        "create_physics_scene": False,
+        "make_default_prim": True,
+        "collision_from_visuals": False,
+        "parse_mimic": True,
+        "override_joint_dynamics": False,
+    }
+    lab: dict[str, object] = {
+        "fix_base": settings.fix_base,
+        "root_link_name": robot.root.name,
+        "link_density": 0.0,
+        "merge_fixed_joints": settings.merge_fixed_joints,
+        "joint_drive": {
+            "drive_type": settings.drive_type,
+            "target_type": settings.target_type,
+            "gains": {
+                "stiffness": settings.stiffness,
+                "damping": settings.damping,
+            },
+        },
+        "collision_from_visuals": False,
+        "collision_type": _APPROX_TO_LAB.get(settings.collision_approximation, "Convex Hull"),
+        "self_collision": settings.self_collision,
+        "force_usd_conversion": True,
+        "make_instanceable": False,
+    }
+    doc: dict[str, object] = {
+        "robot": robot.name,
+        "units": {
+            "isaac_sim_5_importer": "angular gains per degree (USD drive units), linear per metre",
+            "isaaclab_urdf_converter_cfg": "gains in SI: N·m/rad, N·m·s/rad (Isaac Lab converts)",
+        },
+        "isaac_sim_5_importer": sim5,
+        "isaaclab_urdf_converter_cfg": lab,
+        "physx": {
+            "solver_position_iteration_count": settings.solver_position_iterations,
+            "solver_velocity_iteration_count": settings.solver_velocity_iterations,
+            "contact_offset": settings.contact_offset,
+            "rest_offset": settings.rest_offset,
+        },
+        "per_joint_si_gains": per_joint,
+        "robodesc_settings": asdict(settings),
+    }
+    if uniform_k is None or uniform_d is None:
+        sim5["note"] = "gains differ per joint: the USD asset carries each joint's drive; see per_joint_si_gains"
+    return doc
+
+
+def importer_settings_json(robot: Robot, settings: IsaacSettings) -> str:
+    return json.dumps(importer_settings(robot, settings), indent=2, sort_keys=False) + "\n"
+
+
+def _uniform(values: list[float]) -> float | None:
+    if not values:
+        return 0.0
+    return values[0] if all(v == values[0] for v in values) else None
+
+
+def settings_from_mapping(values: Mapping[str, object]) -> IsaacSettings:
+    """Build settings from option names, rejecting unknown ones (the API reports the closest)."""
+    return IsaacSettings(**values)  # type: ignore[arg-type]

@@ -1,0 +1,143 @@
+"""Reading mesh files into the arrays a UsdGeom.Mesh needs.
+
+STL (the most common format in robot descriptions) is read with numpy directly: importing trimesh
+alone costs about a second, more than converting a whole robot. Other formats (OBJ, DAE, ...) go
+through trimesh, imported on first use. Results are cached per (file, scale) for one emitter run,
+because visuals and colliders often share a file.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from robodesc.ir.geometry import Vec3
+
+F32 = NDArray[np.float32]
+I32 = NDArray[np.int32]
+
+
+@dataclass(slots=True, frozen=True)
+class MeshData:
+    points: F32  # (n, 3), scale applied
+    face_vertex_counts: I32  # (m,)
+    face_vertex_indices: I32  # (sum counts,)
+    normals: F32  # (sum counts, 3): faceVarying, one per face corner
+    extent: F32  # (2, 3)
+    uv: F32 | None = None  # (n, 2) per vertex, when the file has texture coordinates
+
+
+class MeshReadError(Exception):
+    pass
+
+
+_STL_RECORD = np.dtype([("normal", "<f4", (3,)), ("v", "<f4", (3, 3)), ("attr", "<u2")])
+
+
+def read_triangles(path: str) -> tuple[NDArray[np.float64], I32, NDArray[np.float64] | None]:
+    """(vertices, triangle indices, per-vertex uv or None) of a mesh file, in file units."""
+    if path.lower().endswith(".stl"):
+        tri = _read_stl(path)
+        if tri is not None:
+            return _weld(tri) + (None,)
+    return _read_trimesh(path)
+
+
+def _read_stl(path: str) -> NDArray[np.float64] | None:
+    """(m, 3, 3) triangles of a binary STL; None for ASCII STL (left to trimesh)."""
+    with open(path, "rb") as handle:
+        data = handle.read()
+    if len(data) < 84:
+        raise MeshReadError("file is too short to be an STL mesh")
+    count = int(np.frombuffer(data, dtype="<u4", count=1, offset=80)[0])
+    if 84 + count * 50 != len(data):
+        if data.lstrip()[:5].lower() == b"solid":
+            return None
+        raise MeshReadError(f"binary STL says {count} triangles but has {len(data)} bytes")
+    records = np.frombuffer(data, dtype=_STL_RECORD, count=count, offset=84)
+    return records["v"].astype(np.float64)
+
+
+def _weld(tri: NDArray[np.float64]) -> tuple[NDArray[np.float64], I32]:
+    """Merge identical corners so points are shared (STL stores each corner on its own)."""
+    flat = np.ascontiguousarray(tri.reshape(-1, 3))
+    if len(flat) == 0:
+        return flat, np.zeros(0, dtype=np.int32)
+    keys = flat.view(np.dtype((np.void, flat.dtype.itemsize * 3))).ravel()
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    # np.unique sorts by bytes; renumber by first appearance so the output follows the file order.
+    order = np.argsort(first, kind="stable")
+    rank = np.empty_like(order)
+    rank[order] = np.arange(len(order))
+    return flat[first[order]], rank[inverse.ravel()].astype(np.int32)
+
+
+def _read_trimesh(path: str) -> tuple[NDArray[np.float64], I32, NDArray[np.float64] | None]:
+    import trimesh
+
+    try:
+        loaded = trimesh.load(path, force="mesh", process=False)
+    except Exception as exc:  # trimesh raises many types for bad files
+        raise MeshReadError(f"{type(exc).__name__}: {exc}") from None
+    if not isinstance(loaded, trimesh.Trimesh):
+        raise MeshReadError("file holds no triangle mesh")
+    vertices = np.asarray(loaded.vertices, dtype=np.float64)
+    faces = np.asarray(loaded.faces, dtype=np.int32).reshape(-1)
+    uv = None
+    visual = getattr(loaded, "visual", None)
+    raw_uv = getattr(visual, "uv", None)
+    if raw_uv is not None and len(raw_uv) == len(vertices):
+        uv = np.asarray(raw_uv, dtype=np.float64)
+    return vertices, faces, uv
+
+
+def build_mesh(path: str, scale: Vec3 | None) -> MeshData:
+    if not os.path.isfile(path):
+        raise MeshReadError("file does not exist")
+    vertices, indices, uv = read_triangles(path)
+    if len(indices) == 0 or len(vertices) == 0:
+        raise MeshReadError("mesh has no triangles")
+    tri = indices.reshape(-1, 3)
+    if scale is not None:
+        s = np.asarray(scale, dtype=np.float64)
+        vertices = vertices * s
+        if float(np.prod(s)) < 0:
+            # A mirroring scale turns the faces inside out: flip the winding back.
+            tri = tri[:, ::-1]
+    corners = vertices[tri]
+    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    length = np.linalg.norm(normals, axis=1, keepdims=True)
+    normals = np.divide(normals, length, out=np.zeros_like(normals), where=length > 0)
+    points = vertices.astype(np.float32)
+    extent = np.stack([points.min(axis=0), points.max(axis=0)])
+    return MeshData(
+        points=points,
+        face_vertex_counts=np.full(len(tri), 3, dtype=np.int32),
+        face_vertex_indices=np.ascontiguousarray(tri.reshape(-1), dtype=np.int32),
+        normals=np.repeat(normals, 3, axis=0).astype(np.float32),
+        extent=extent,
+        uv=uv.astype(np.float32) if uv is not None else None,
+    )
+
+
+class MeshCache:
+    def __init__(self) -> None:
+        self._data: dict[tuple[str, Vec3 | None], MeshData | MeshReadError] = {}
+
+    def get(self, path: str, scale: Vec3 | None) -> MeshData:
+        key = (path, scale)
+        hit = self._data.get(key)
+        if hit is None:
+            try:
+                hit = build_mesh(path, scale)
+            except MeshReadError as exc:
+                hit = exc
+            except (OSError, ValueError, IndexError) as exc:
+                hit = MeshReadError(f"{type(exc).__name__}: {exc}")
+            self._data[key] = hit
+        if isinstance(hit, MeshReadError):
+            raise hit
+        return hit

@@ -1,0 +1,99 @@
+"""The ordered pass pipeline.
+
+Each pass is ``def <pass>(robot: Robot, ctx: PassContext) -> Robot``; it mutates the robot in place,
+returns it, and records what it changed in ``ctx`` (stage ``pass:<name>``). A pass runs when its
+switch in :class:`PassOptions` is on; presets are named option sets (:mod:`robodesc.passes.presets`).
+``copy_meshes`` is not here: it needs the output folder, so emitters call it
+(:func:`robodesc.passes.copy_meshes.copy_meshes`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from robodesc.ir.diagnostics import Finding, Findings, VerificationError
+from robodesc.ir.model import Robot
+from robodesc.ir.verify import check
+from robodesc.passes.armature import armature
+from robodesc.passes.context import PassContext
+from robodesc.passes.geometric_inertia import geometric_inertia
+from robodesc.passes.isaac_limits import isaac_limits
+from robodesc.passes.merge_fixed import merge_fixed
+from robodesc.passes.options import PassOptions, merge_options
+from robodesc.passes.rename import rename
+from robodesc.passes.repair_inertia import repair_inertia
+from robodesc.passes.sanitize_names import sanitize_names
+from robodesc.passes.strip_tags import strip_tags
+from robodesc.passes.unique_materials import unique_materials
+from robodesc.passes.zero_pose import zero_pose
+
+PassFn = Callable[[Robot, PassContext], Robot]
+
+
+@dataclass(slots=True, frozen=True)
+class Pass:
+    name: str
+    run: PassFn
+    enabled: Callable[[PassOptions], bool]
+
+
+PASSES: tuple[Pass, ...] = (
+    Pass("rename", rename, lambda o: bool(o.rename)),
+    Pass("sanitize_names", sanitize_names, lambda o: o.sanitize_names),
+    Pass("unique_materials", unique_materials, lambda o: o.unique_materials),
+    Pass("geometric_inertia", geometric_inertia, lambda o: o.fill_inertia),
+    Pass("repair_inertia", repair_inertia, lambda o: o.repair_inertia is not None),
+    # Before strip_tags: merging must still see dont_collapse.
+    Pass("merge_fixed", merge_fixed, lambda o: o.merge_fixed),
+    Pass("strip_tags", strip_tags, lambda o: bool(o.strip)),
+    Pass("armature", armature, lambda o: bool(o.armature or o.armature_by_robot)),
+    Pass("isaac_limits", isaac_limits, lambda o: o.isaac_limits),
+    Pass("zero_pose", zero_pose, lambda o: o.zero_pose_check),
+)
+
+
+def enabled_passes(options: PassOptions) -> tuple[str, ...]:
+    return tuple(p.name for p in PASSES if p.enabled(options))
+
+
+def resolve_options(preset: str | None, options: PassOptions | None) -> PassOptions:
+    """The preset's options, overridden by every non-default field of ``options``."""
+    from robodesc.passes.presets import preset_options
+
+    if preset is None:
+        return options or PassOptions()
+    base = preset_options(preset)
+    return merge_options(base, options) if options is not None else base
+
+
+def run_passes(
+    robot: Robot,
+    *,
+    preset: str | None = None,
+    options: PassOptions | None = None,
+    verify_each: bool = False,
+) -> Findings:
+    """Run the enabled passes in order on ``robot`` (in place); return their findings.
+
+    ``verify_each`` runs :func:`robodesc.ir.verify.check` after every pass and raises
+    :class:`VerificationError` naming the pass that broke an invariant.
+    """
+    ctx = PassContext(resolve_options(preset, options))
+    for p in PASSES:
+        if not p.enabled(ctx.options):
+            continue
+        ctx.stage = p.name
+        result = p.run(robot, ctx)
+        assert result is robot, f"pass {p.name} must rewrite the robot in place"
+        if verify_each:
+            try:
+                check(robot)
+            except VerificationError as exc:
+                raise VerificationError(
+                    [
+                        Finding(f.severity, f.code, f"after pass {p.name}: {f.message}", f.element, f.loc, f.stage)
+                        for f in exc.findings
+                    ]
+                ) from None
+    return ctx.findings

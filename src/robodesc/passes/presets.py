@@ -1,0 +1,96 @@
+"""Named option sets, one per target. ``PRESETS`` lists the passes each one runs (in pipeline
+order); ``PRESET_OPTIONS`` holds the option values behind it."""
+
+from __future__ import annotations
+
+from robodesc.ir.diagnostics import ConfigError
+from robodesc.passes.options import (
+    STRIP_KINDS,
+    ArmatureRule,
+    PassOptions,
+    RenameRule,
+    RepairPolicy,
+    closest,
+    options_from_mapping,
+)
+
+# Quad-SDK's leg joints (leg 0 front-left, 1 back-left, 2 front-right, 3 back-right).
+QUAD_SDK_RENAME: tuple[RenameRule, ...] = (
+    *(RenameRule(str(8 + leg), f"j_abad_{leg}") for leg in range(4)),
+    *(RenameRule(str(2 * leg), f"j_hip_{leg}") for leg in range(4)),
+    *(RenameRule(str(2 * leg + 1), f"j_knee_{leg}") for leg in range(4)),
+)
+
+# J_rotor 1.231e-4 kg·m², gear ratio 6 (abad, hip) and 12 (knee); values as Quad-SDK's bridge set them.
+SPIRIT_ARMATURE: tuple[ArmatureRule, ...] = (
+    ArmatureRule(r"^j_abad_[0-3]$", 4.4316e-3),
+    ArmatureRule(r"^j_hip_[0-3]$", 4.4316e-3),
+    ArmatureRule(r"^j_knee_[0-3]$", 1.77264e-2),
+)
+
+# Non-URDF leftovers no consumer of the target reads.
+_LEFTOVERS = frozenset({"contact", "surface"})
+
+PRESET_OPTIONS: dict[str, dict[str, object]] = {
+    "isaac_sim": {
+        "sanitize_names": True,
+        "unique_materials": True,
+        "fill_inertia": True,
+        "repair_inertia": RepairPolicy.GEOMETRY,
+        # dont_collapse is read by Isaac: kept.
+        "strip": frozenset({"gazebo", "transmission", "ros2_control"}) | _LEFTOVERS,
+        "isaac_limits": True,
+    },
+    "ros2": {
+        "unique_materials": True,
+        "fill_inertia": True,
+        "strip": _LEFTOVERS,
+    },
+    "gazebo": {
+        "unique_materials": True,
+        "fill_inertia": True,
+        "repair_inertia": RepairPolicy.GEOMETRY,
+        "strip": _LEFTOVERS | {"dont_collapse"},
+    },
+    "mujoco": {
+        "unique_materials": True,
+        "fill_inertia": True,
+        "repair_inertia": RepairPolicy.GEOMETRY,
+        "strip": frozenset(STRIP_KINDS),
+        "convert_meshes": {".dae": ".obj"},
+    },
+    "quad_sdk": {
+        "rename": QUAD_SDK_RENAME,
+        "strip": frozenset(STRIP_KINDS),
+        "repair_inertia": RepairPolicy.QUAD_SDK,
+        "repair_missing": True,
+        "unique_materials": True,
+        "armature_by_robot": {"spirit": SPIRIT_ARMATURE},
+    },
+}
+
+PRESETS: dict[str, tuple[str, ...]] = {
+    "isaac_sim": (
+        "sanitize_names",
+        "unique_materials",
+        "geometric_inertia",
+        "repair_inertia",
+        "strip_tags",
+        "isaac_limits",
+        "zero_pose",
+    ),
+    "ros2": ("unique_materials", "geometric_inertia", "strip_tags", "zero_pose"),
+    "gazebo": ("unique_materials", "geometric_inertia", "repair_inertia", "strip_tags", "zero_pose"),
+    "mujoco": ("unique_materials", "geometric_inertia", "repair_inertia", "strip_tags", "zero_pose"),
+    "quad_sdk": ("rename", "unique_materials", "repair_inertia", "strip_tags", "armature", "zero_pose"),
+}
+
+
+def preset_options(name: str, **overrides: object) -> PassOptions:
+    """The options a preset implies, with ``overrides`` (option names checked) on top."""
+    if name not in PRESET_OPTIONS:
+        raise ConfigError(
+            f"unknown preset {name!r}{closest(name, PRESET_OPTIONS)}; presets are {', '.join(PRESET_OPTIONS)}",
+            element="option 'preset'",
+        )
+    return options_from_mapping(overrides, options_from_mapping(PRESET_OPTIONS[name]))

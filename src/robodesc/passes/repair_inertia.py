@@ -1,0 +1,186 @@
+"""Repair missing and non-physical inertials by a declared policy (:class:`RepairPolicy`).
+
+``quad_sdk`` reproduces Quad-SDK's step 4 exactly:
+- a link without ``<inertial>`` gets 0.001 kg and a 1e-6 kg·m² diagonal at the link origin;
+- a mass ≤ 0 (or absent) becomes 0.001 kg, then each diagonal term ≤ 0 becomes 1e-6 (off-diagonals
+  untouched);
+and closes its gap: a tensor that is still missing or non-physical (not positive definite, triangle
+inequality broken: :func:`robodesc.ir.inertia.inertia_problem`) is recomputed from the link's
+geometry for its mass, or set to the 1e-6 diagonal when the link has no geometry.
+
+``geometry`` derives everything it repairs from the geometry (mass = density × volume when the mass
+is not positive), and uses the Quad-SDK constants only for links without geometry.
+
+``repair_missing=False`` leaves links without ``<inertial>`` alone. Every repair is a finding.
+"""
+
+from __future__ import annotations
+
+import math
+
+from robodesc.ir.geometry import Inertia, Inertial, Pose
+from robodesc.ir.inertia import inertia_problem
+from robodesc.ir.model import Link, Robot
+from robodesc.passes.context import PassContext
+from robodesc.passes.options import RepairPolicy
+from robodesc.passes.shape_inertia import inertial_from_props, link_props
+
+NAME = "repair_inertia"
+QUAD_SDK_MASS = 0.001  # kg
+QUAD_SDK_DIAGONAL = 1e-6  # kg·m²
+
+
+def _constant_tensor() -> Inertia:
+    return Inertia(ixx=QUAD_SDK_DIAGONAL, iyy=QUAD_SDK_DIAGONAL, izz=QUAD_SDK_DIAGONAL)
+
+
+def _mass_ok(mass: float | None) -> bool:
+    return mass is not None and math.isfinite(mass) and mass > 0
+
+
+def _tensor_problem(inertial: Inertial) -> str | None:
+    if inertial.inertia is None:
+        return "no inertia tensor"
+    return inertia_problem(inertial.inertia)
+
+
+def repair_inertia(robot: Robot, ctx: PassContext) -> Robot:
+    ctx.stage = NAME
+    policy = ctx.options.repair_inertia
+    if policy is None:
+        return robot
+    for link in robot.links:
+        if link.inertial is None:
+            if ctx.options.repair_missing:
+                _missing(link, policy, ctx)
+            continue
+        if policy is RepairPolicy.QUAD_SDK:
+            _quad_sdk(link, ctx)
+        else:
+            _geometry(link, ctx)
+    return robot
+
+
+def _missing(link: Link, policy: RepairPolicy, ctx: PassContext) -> None:
+    label = f"link {link.name!r}"
+    found = link_props(link) if policy is RepairPolicy.GEOMETRY else None
+    if found is None:
+        link.inertial = Inertial(mass=QUAD_SDK_MASS, origin=Pose(), inertia=_constant_tensor())
+        ctx.warn(
+            "inertial-added",
+            f"no <inertial>: given {QUAD_SDK_MASS:g} kg and a {QUAD_SDK_DIAGONAL:g} kg·m² diagonal at the link origin",
+            element=label,
+            loc=link.src,
+        )
+        return
+    props, source = found
+    mass = ctx.options.density * props.volume
+    link.inertial = inertial_from_props(props, mass=mass)
+    _notes(props.notes, label, link, ctx)
+    ctx.warn(
+        "inertial-added",
+        f"no <inertial>: derived from its {source} geometry at {ctx.options.density:g} kg/m³ ({mass:.6g} kg)",
+        element=label,
+        loc=link.src,
+    )
+
+
+def _quad_sdk(link: Link, ctx: PassContext) -> None:
+    inertial = link.inertial
+    assert inertial is not None
+    label = f"link {link.name!r}"
+    loc = inertial.src or link.src
+    if not _mass_ok(inertial.mass):
+        old = inertial.mass
+        inertial.mass = QUAD_SDK_MASS
+        ctx.warn("mass-repaired", f"mass {old!s} -> {QUAD_SDK_MASS:g} kg", element=label, loc=loc)
+        i = inertial.inertia
+        if i is not None:
+            fixed = [a for a in ("ixx", "iyy", "izz") if not getattr(i, a) > 0]
+            for a in fixed:
+                setattr(i, a, QUAD_SDK_DIAGONAL)
+            if fixed:
+                ctx.warn(
+                    "inertia-diagonal-repaired",
+                    f"{', '.join(fixed)} <= 0 -> {QUAD_SDK_DIAGONAL:g} kg·m²",
+                    element=label,
+                    loc=i.src or loc,
+                )
+    problem = _tensor_problem(inertial)
+    if problem is not None:
+        _retensor(link, problem, ctx, gap=True)
+
+
+def _geometry(link: Link, ctx: PassContext) -> None:
+    inertial = link.inertial
+    assert inertial is not None
+    label = f"link {link.name!r}"
+    loc = inertial.src or link.src
+    mass_ok = _mass_ok(inertial.mass)
+    problem = _tensor_problem(inertial)
+    if mass_ok and problem is None:
+        return
+    if mass_ok:
+        assert problem is not None
+        _retensor(link, problem, ctx, gap=False)
+        return
+    found = link_props(link)
+    old = inertial.mass
+    if found is None:
+        inertial.mass = QUAD_SDK_MASS
+        message = f"mass {old!s} -> {QUAD_SDK_MASS:g} kg (no geometry)"
+        if problem is not None:
+            inertial.inertia = _constant_tensor()
+            message += f"; {problem}: tensor set to a {QUAD_SDK_DIAGONAL:g} kg·m² diagonal"
+        ctx.warn("mass-repaired", message, element=label, loc=loc)
+        return
+    props, source = found
+    mass = ctx.options.density * props.volume
+    new = inertial_from_props(props, mass=mass)
+    new.src = inertial.src
+    link.inertial = new
+    _notes(props.notes, label, link, ctx)
+    ctx.warn(
+        "mass-repaired",
+        f"mass {old!s} -> {mass:.6g} kg and tensor from its {source} geometry at {ctx.options.density:g} kg/m³",
+        element=label,
+        loc=loc,
+    )
+
+
+def _retensor(link: Link, problem: str, ctx: PassContext, *, gap: bool) -> None:
+    """New tensor for the link's (valid) mass: from geometry, else the constant diagonal."""
+    inertial = link.inertial
+    assert inertial is not None and inertial.mass is not None
+    label = f"link {link.name!r}"
+    loc = inertial.src or link.src
+    found = link_props(link)
+    suffix = " (a gap Quad-SDK leaves open)" if gap else ""
+    if found is None:
+        inertial.inertia = _constant_tensor()
+        ctx.warn(
+            "inertia-repaired",
+            f"{problem}: no geometry, tensor set to a {QUAD_SDK_DIAGONAL:g} kg·m² diagonal{suffix}",
+            element=label,
+            loc=loc,
+        )
+        return
+    props, source = found
+    new = inertial_from_props(props, mass=inertial.mass, origin=inertial.origin)
+    new.src = inertial.src
+    link.inertial = new
+    _notes(props.notes, label, link, ctx)
+    i = new.inertia
+    assert i is not None
+    ctx.warn(
+        "inertia-repaired",
+        f"{problem}: tensor recomputed from its {source} geometry for {inertial.mass:g} kg "
+        f"(ixx={i.ixx:.6g} iyy={i.iyy:.6g} izz={i.izz:.6g}){suffix}",
+        element=label,
+        loc=loc,
+    )
+
+
+def _notes(notes: list[str], label: str, link: Link, ctx: PassContext) -> None:
+    for note in notes:
+        ctx.warn("mesh-not-watertight", note, element=label, loc=link.src)

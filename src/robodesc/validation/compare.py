@@ -1,0 +1,421 @@
+"""Compare a compiled MuJoCo model with the IR it was emitted from.
+
+Per link: presence, parent, mass, centre of mass and inertia tensor (in the link frame). Per
+joint: presence, type, axis, limits, damping, friction, mimic coupling. Then forward kinematics
+of every link relative to the root at random configurations within the limits. Every mismatch is
+a failing check naming the element; passing elements are summed up in one row per quantity.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import mujoco
+import numpy as np
+from numpy.typing import NDArray
+
+from robodesc.ir.inertia import tensor
+from robodesc.ir.model import Joint, JointType, Link, Robot
+from robodesc.ir.transforms import forward_kinematics, quat_wxyz_to_matrix, resolve_mimic, rpy_to_matrix
+from robodesc.validation.options import ValidateOptions
+from robodesc.validation.report import Status, Tally, ValidationReport
+
+Mat = NDArray[np.float64]
+# Plain ints: MuJoCo's enums do not compare reliably with numpy integers inside ``in``.
+FREE = int(mujoco.mjtJoint.mjJNT_FREE)
+BALL = int(mujoco.mjtJoint.mjJNT_BALL)
+HINGE = int(mujoco.mjtJoint.mjJNT_HINGE)
+SLIDE = int(mujoco.mjtJoint.mjJNT_SLIDE)
+EQ_JOINT = int(mujoco.mjtEq.mjEQ_JOINT)
+_EXPECTED_TYPE = {
+    JointType.REVOLUTE: HINGE,
+    JointType.CONTINUOUS: HINGE,
+    JointType.PRISMATIC: SLIDE,
+    JointType.FLOATING: FREE,
+    JointType.SPHERICAL: BALL,
+}
+_TYPE_NAME = {HINGE: "hinge", SLIDE: "slide", FREE: "free", BALL: "ball"}
+
+
+class Ids:
+    """Name look-ups in the compiled model (``-1`` when absent)."""
+
+    def __init__(self, model: Any) -> None:
+        self.model = model
+
+    def body(self, name: str) -> int:
+        return int(mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, name))
+
+    def joint(self, name: str) -> int:
+        return int(mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_JOINT, name))
+
+
+def link_label(name: str) -> str:
+    return f"link {name!r}"
+
+
+def joint_label(name: str) -> str:
+    return f"joint {name!r}"
+
+
+def compare_structure(robot: Robot, model: Any, report: ValidationReport) -> set[str]:
+    """Links and joints present with the right parents. Returns the links MuJoCo lacks."""
+    ids = Ids(model)
+    tally = Tally(report, "bodies", None, "")
+    missing: set[str] = set()
+    for link in robot.links:
+        if ids.body(link.name) < 0:
+            missing.add(link.name)
+            tally.fail(
+                link_label(link.name),
+                "link is missing from the MuJoCo model (dropped or merged away); its mass and frames are lost",
+            )
+        else:
+            tally.ok()
+    ir_names = {link.name for link in robot.links}
+    for b in range(1, model.nbody):
+        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, b) or f"#{b}"
+        if name not in ir_names:
+            tally.fail(f"body {name!r}", "MuJoCo has a body that is not a link of the robot")
+    tally.finish("links")
+
+    parents = Tally(report, "parents", None, "")
+    for joint in robot.joints:
+        c, p = ids.body(joint.child), ids.body(joint.parent)
+        if c < 0 or p < 0:
+            continue
+        actual = int(model.body_parentid[c])
+        if actual != p:
+            got = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, actual) or "world"
+            parents.fail(
+                joint_label(joint.name), f"child link {joint.child!r} hangs from {got!r}, not {joint.parent!r}"
+            )
+        else:
+            parents.ok()
+    parents.finish("joints")
+    return missing
+
+
+def compare_inertials(
+    robot: Robot, model: Any, patched: dict[str, str], options: ValidateOptions, report: ValidationReport
+) -> None:
+    ids = Ids(model)
+    mass = Tally(report, "mass", options.mass_rel_tol, "relative")
+    com = Tally(report, "com", options.position_tol, "m")
+    inertia = Tally(report, "inertia", options.inertia_rel_tol, "relative")
+    for link in robot.links:
+        b = ids.body(link.name)
+        label = link_label(link.name)
+        if b < 0:
+            continue
+        if link.name in patched:
+            for t in (mass, com, inertia):
+                t.skip(label, f"patched to load: {patched[link.name]}")
+            continue
+        if b == 0:  # a link named "world" is MuJoCo's world body, which has no inertia
+            continue
+        m_ir, com_ir, tensor_ir = expected_inertial(link)
+        m_mj = float(model.body_mass[b])
+        err = abs(m_mj - m_ir) / max(abs(m_ir), 1e-12) if (m_mj or m_ir) else 0.0
+        mass.measure(label, err, f"MuJoCo mass {m_mj:.9g} kg, source {m_ir:.9g} kg")
+        if m_ir > 0:
+            c_mj = np.asarray(model.body_ipos[b], dtype=float)
+            e = float(np.linalg.norm(c_mj - com_ir))
+            com.measure(
+                label,
+                e,
+                (f"MuJoCo centre of mass {_vec(c_mj)}, source {_vec(com_ir)} (link frame, m)"),
+            )
+            if tensor_ir is None:
+                inertia.skip(label, "source gives no inertia tensor")
+            else:
+                t_mj = mujoco_inertia(model, b)
+                scale = max(float(np.max(np.abs(np.linalg.eigvalsh(tensor_ir)))), 1e-12)
+                e = float(np.max(np.abs(t_mj - tensor_ir))) / scale
+                inertia.measure(
+                    label,
+                    e,
+                    (f"MuJoCo tensor {_tensor(t_mj)} vs source {_tensor(tensor_ir)} (link frame, kg·m²)"),
+                )
+    mass.finish("links", "mass")
+    com.finish("links", "com")
+    inertia.finish("links", "inertia")
+
+
+def expected_inertial(link: Link) -> tuple[float, Mat, Mat | None]:
+    """Mass, centre of mass and inertia tensor in the link frame, as the IR says."""
+    inertial = link.inertial
+    if inertial is None or inertial.mass is None:
+        return 0.0, np.zeros(3), np.zeros((3, 3))
+    origin = inertial.origin
+    c = np.asarray(origin.xyz if origin is not None else (0.0, 0.0, 0.0), dtype=float)
+    if inertial.inertia is None:
+        return float(inertial.mass), c, None
+    r = rpy_to_matrix(origin.rpy) if origin is not None else np.eye(3)
+    t: Mat = r @ tensor(inertial.inertia) @ r.T
+    return float(inertial.mass), c, t
+
+
+def mujoco_inertia(model: Any, body: int) -> Mat:
+    r = quat_wxyz_to_matrix(tuple(float(x) for x in model.body_iquat[body]))  # type: ignore[arg-type]
+    out: Mat = r @ np.diag(np.asarray(model.body_inertia[body], dtype=float)) @ r.T
+    return out
+
+
+def compare_joints(robot: Robot, model: Any, options: ValidateOptions, report: ValidationReport) -> None:
+    ids = Ids(model)
+    present = Tally(report, "joints", None, "")
+    kinds = Tally(report, "joint-type", None, "")
+    axes = Tally(report, "axis", options.axis_tol, "")
+    limits = Tally(report, "limits", options.limit_tol, "rad or m")
+    dynamics = Tally(report, "dynamics", options.limit_tol, "")
+    mimics = Tally(report, "mimic", options.limit_tol, "")
+    ir_joint_names = set()
+    for joint in robot.joints:
+        label = joint_label(joint.name)
+        child = ids.body(joint.child)
+        j = ids.joint(joint.name)
+        if joint.type is JointType.FIXED:
+            if child >= 0 and int(model.body_jntnum[child]) != 0 and j < 0:
+                kinds.fail(label, f"fixed joint, but MuJoCo gives link {joint.child!r} a degree of freedom")
+            else:
+                kinds.ok()
+            continue
+        ir_joint_names.add(joint.name)
+        if joint.type is JointType.PLANAR:
+            present.skip(label, "planar joints are not compared")
+            continue
+        if j < 0:
+            present.fail(label, f"{joint.type.value} joint is missing from the MuJoCo model")
+            continue
+        present.ok()
+        jtype = int(model.jnt_type[j])
+        want = _EXPECTED_TYPE[joint.type]
+        if jtype != want:
+            kinds.fail(label, f"MuJoCo made a {_TYPE_NAME.get(jtype, str(jtype))} joint of a {joint.type.value} joint")
+            continue
+        kinds.ok()
+        if joint.type.dof != 1:
+            continue
+        a_ir = np.asarray(joint.effective_axis, dtype=float)
+        a_ir = a_ir / np.linalg.norm(a_ir)
+        a_mj = np.asarray(model.jnt_axis[j], dtype=float)
+        axes.measure(
+            label,
+            float(np.linalg.norm(a_mj - a_ir)),
+            f"MuJoCo axis {_vec(a_mj)}, source {_vec(a_ir)} (child link frame)",
+        )
+        _compare_limit(joint, model, j, limits)
+        dof = int(model.jnt_dofadr[j])
+        dyn = joint.dynamics
+        for attr, got in (("damping", model.dof_damping[dof]), ("friction", model.dof_frictionloss[dof])):
+            want_v = getattr(dyn, attr) if dyn is not None else None
+            want_f = float(want_v) if want_v is not None else 0.0
+            dynamics.measure(
+                label,
+                abs(float(got) - want_f),
+                f"MuJoCo {attr} {float(got):.9g}, source {want_f:.9g}",
+            )
+        if joint.mimic is not None:
+            _compare_mimic(joint, model, ids, j, mimics)
+    for k in range(model.njnt):
+        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, k)
+        if int(model.jnt_type[k]) == FREE and not name:
+            continue  # the free joint added for a floating base
+        if name not in ir_joint_names:
+            present.fail(f"joint {name!r}", "MuJoCo has a joint that the robot does not")
+    present.finish("movable joints")
+    kinds.finish("joints")
+    axes.finish("joints", "axis")
+    limits.finish("joints", "limit")
+    dynamics.finish("values")
+    mimics.finish("mimic joints")
+
+
+def _compare_limit(joint: Joint, model: Any, j: int, tally: Tally) -> None:
+    label = joint_label(joint.name)
+    limited = bool(model.jnt_limited[j])
+    lim = joint.limit
+    has = joint.type is not JointType.CONTINUOUS and lim is not None and lim.lower is not None and lim.upper is not None
+    if not has:
+        if limited:
+            lo, hi = (float(x) for x in model.jnt_range[j])
+            tally.fail(label, f"source has no position limits, MuJoCo limits it to [{lo:.9g}, {hi:.9g}]")
+        else:
+            tally.ok()
+        return
+    assert lim is not None and lim.lower is not None and lim.upper is not None
+    if lim.lower >= lim.upper:
+        # MuJoCo ignores a zero-width or inverted range and leaves the joint unlimited.
+        tally.report.add(
+            "limits",
+            Status.WARN,
+            label,
+            f"limits [{lim.lower:.9g}, {lim.upper:.9g}] have no width; MuJoCo ignores them and the joint moves freely",
+        )
+        return
+    if not limited:
+        tally.fail(label, f"MuJoCo leaves the joint unlimited; source limits [{lim.lower:.9g}, {lim.upper:.9g}]")
+        return
+    lo, hi = (float(x) for x in model.jnt_range[j])
+    err = max(abs(lo - lim.lower), abs(hi - lim.upper))
+    unit = "rad" if joint.type.is_angular else "m"
+    tally.measure(
+        label,
+        err,
+        f"MuJoCo range [{lo:.9g}, {hi:.9g}] {unit}, source [{lim.lower:.9g}, {lim.upper:.9g}] {unit}",
+    )
+
+
+def _compare_mimic(joint: Joint, model: Any, ids: Ids, j: int, tally: Tally) -> None:
+    assert joint.mimic is not None
+    label = joint_label(joint.name)
+    leader = ids.joint(joint.mimic.joint)
+    for e in range(model.neq):
+        if int(model.eq_type[e]) == EQ_JOINT and int(model.eq_obj1id[e]) == j and int(model.eq_obj2id[e]) == leader:
+            mult = joint.mimic.multiplier if joint.mimic.multiplier is not None else 1.0
+            off = joint.mimic.offset if joint.mimic.offset is not None else 0.0
+            got_off, got_mult = float(model.eq_data[e][0]), float(model.eq_data[e][1])
+            tally.measure(
+                label,
+                max(abs(got_off - off), abs(got_mult - mult)),
+                (f"MuJoCo couples q = {got_mult:.9g}·q_leader + {got_off:.9g}, source {mult:.9g}·q_leader + {off:.9g}"),
+            )
+            return
+    tally.fail(label, f"no MuJoCo equality constraint makes it follow joint {joint.mimic.joint!r}")
+
+
+# ---- forward kinematics -----------------------------------------------------------------------
+def sample_configurations(robot: Robot, n: int, seed: int) -> list[dict[str, float]]:
+    """q = 0 plus ``n`` uniform samples within the limits (±pi or ±0.5 m where unlimited)."""
+    rng = np.random.default_rng(seed)
+    out: list[dict[str, float]] = [{}]
+    movable = [j for j in robot.joints if j.type.dof == 1 and j.mimic is None]
+    for _ in range(n):
+        q: dict[str, float] = {}
+        for joint in movable:
+            lo, hi = (-math.pi, math.pi) if joint.type.is_angular else (-0.5, 0.5)
+            lim = joint.limit
+            if (
+                joint.type is not JointType.CONTINUOUS
+                and lim is not None
+                and lim.lower is not None
+                and lim.upper is not None
+            ):
+                if lim.lower < lim.upper:
+                    lo, hi = lim.lower, lim.upper
+                else:
+                    lo = hi = lim.lower
+            q[joint.name] = float(rng.uniform(lo, hi))
+        out.append(q)
+    return out
+
+
+def mujoco_fk(model: Any, data: Any, ids: Ids, q: dict[str, float]) -> None:
+    data.qpos[:] = model.qpos0
+    for name, value in q.items():
+        j = ids.joint(name)
+        if j >= 0 and int(model.jnt_type[j]) in (HINGE, SLIDE):
+            data.qpos[model.jnt_qposadr[j]] = value
+    mujoco.mj_kinematics(model, data)
+
+
+def _body_pose(data: Any, b: int) -> Mat:
+    t = np.eye(4)
+    t[:3, :3] = quat_wxyz_to_matrix(tuple(float(x) for x in data.xquat[b]))  # type: ignore[arg-type]
+    t[:3, 3] = data.xpos[b]
+    return t
+
+
+def rotation_angle(r: Mat) -> float:
+    """Angle of a rotation matrix; atan2 keeps full precision near 0, where acos loses half the digits."""
+    s = 0.5 * math.sqrt(float((r[2, 1] - r[1, 2]) ** 2 + (r[0, 2] - r[2, 0]) ** 2 + (r[1, 0] - r[0, 1]) ** 2))
+    c = (float(np.trace(r)) - 1.0) / 2.0
+    return math.atan2(s, c)
+
+
+def compare_fk(robot: Robot, model: Any, options: ValidateOptions, report: ValidationReport) -> None:
+    ids = Ids(model)
+    roots = robot.root_links()
+    if len(roots) != 1 or ids.body(roots[0].name) < 0:
+        report.add("fk", Status.SKIP, "robot", "no single root link present in MuJoCo; FK not compared")
+        return
+    root_id = ids.body(roots[0].name)
+    data = mujoco.MjData(model)
+    worst: dict[str, tuple[float, float, dict[str, float]]] = {}
+    configs = sample_configurations(robot, options.fk_samples, options.seed)
+    for q in configs:
+        expected = forward_kinematics(robot, q)
+        mujoco_fk(model, data, ids, resolve_mimic(robot, q))
+        inv_root = np.linalg.inv(_body_pose(data, root_id))
+        for link in robot.links:
+            b = ids.body(link.name)
+            if b < 0 or link.name not in expected:
+                continue
+            got = inv_root @ _body_pose(data, b)
+            want = expected[link.name]
+            ep = float(np.linalg.norm(got[:3, 3] - want[:3, 3]))
+            er = rotation_angle(want[:3, :3].T @ got[:3, :3])
+            prev = worst.get(link.name)
+            if prev is None or max(ep / options.position_tol, er / options.rotation_tol) > max(
+                prev[0] / options.position_tol, prev[1] / options.rotation_tol
+            ):
+                worst[link.name] = (ep, er, q)
+    max_p = max((w[0] for w in worst.values()), default=0.0)
+    max_r = max((w[1] for w in worst.values()), default=0.0)
+    report.note_error("fk_position", max_p)
+    report.note_error("fk_rotation", max_r)
+
+    def bad(name: str) -> bool:
+        w = worst.get(name)
+        return w is not None and not (w[0] <= options.position_tol and w[1] <= options.rotation_tol)
+
+    parent_joint = robot.parent_joint()
+    failing = [link.name for link in robot.links if bad(link.name)]
+    # A wrong joint moves its whole subtree: report the topmost wrong links, count the rest.
+    culprits = [n for n in failing if not (n in parent_joint and bad(parent_joint[n].parent))]
+    for name in culprits:
+        ep, er, q = worst[name]
+        joint = parent_joint.get(name)
+        below = _descendants(robot, name) & set(failing)
+        where = f" (reached through joint {joint.name!r})" if joint is not None else ""
+        q_text = ", ".join(f"{k}={v:.4g}" for k, v in sorted(q.items())[:6]) or "all joints at 0"
+        report.add(
+            "fk",
+            Status.FAIL,
+            link_label(name),
+            f"pose relative to the root differs by {ep:.3g} m and {er:.3g} rad{where} at {q_text}"
+            + (f"; {len(below)} links below it are off as a consequence" if below else ""),
+            error=max(ep, er),
+            tolerance=max(options.position_tol, options.rotation_tol),
+        )
+    if not failing:
+        report.add(
+            "fk",
+            Status.PASS,
+            f"{len(worst)} links × {len(configs)} configurations",
+            f"largest error {max_p:.3g} m, {max_r:.3g} rad",
+            error=max(max_p, max_r),
+            tolerance=max(options.position_tol, options.rotation_tol),
+        )
+
+
+def _descendants(robot: Robot, name: str) -> set[str]:
+    by_parent = robot.child_joints()
+    out: set[str] = set()
+    stack = [name]
+    while stack:
+        for joint in by_parent.get(stack.pop(), []):
+            if joint.child not in out:
+                out.add(joint.child)
+                stack.append(joint.child)
+    return out
+
+
+def _vec(v: Any) -> str:
+    return "(" + ", ".join(f"{float(x):.9g}" for x in v) + ")"
+
+
+def _tensor(t: Mat) -> str:
+    return "[" + ", ".join(f"{float(t[i, j]):.6g}" for i, j in ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))) + "]"

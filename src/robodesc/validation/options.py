@@ -1,0 +1,34 @@
+"""Tolerances and switches of the validation pass."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+
+@dataclass(slots=True)
+class ValidateOptions:
+    # Give the root a free joint (a floating base). MuJoCo welds a URDF root to the world; the
+    # comparisons are relative to the root either way, so this only changes the simulation check.
+    floating_base: bool = False
+    # Forward kinematics at this many random configurations within the joint limits (plus q = 0).
+    fk_samples: int = 8
+    seed: int = 0
+    # Tolerances. Emitted numbers round-trip exactly and independent parsers agree to ~1e-15, so
+    # these are tight: anything above them is a real difference, not noise.
+    mass_rel_tol: float = 1e-6
+    inertia_rel_tol: float = 1e-6  # relative to the largest principal moment of the link
+    position_tol: float = 1e-6  # m: centre of mass and FK positions
+    rotation_tol: float = 1e-6  # rad: FK orientations
+    axis_tol: float = 1e-9  # unit-vector difference
+    limit_tol: float = 1e-9  # rad or m
+    # Simulation: hold every joint at its start position and step under gravity.
+    simulate: bool = True
+    sim_duration: float = 0.5  # s
+    sim_timestep: float = 0.002  # s
+    max_speed: float = 100.0  # rad/s or m/s in any degree of freedom counts as an explosion
+    penetration_tol: float = 1e-3  # m: deeper contacts between robot geoms at rest are reported
+    # Meshes MuJoCo cannot read (DAE ...) are converted to STL here (default: a folder in the temp dir).
+    mesh_cache_dir: str | None = None
+    # Package roots for ``package://`` URIs left in the text under validation.
+    package_paths: Mapping[str, str] = field(default_factory=dict)

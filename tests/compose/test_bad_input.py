@@ -1,0 +1,86 @@
+"""Bad compositions: one precise message with file:line:column, the right error class, no traceback."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from robodesc.cli import main
+from robodesc.frontends.load import load_path
+from robodesc.ir.diagnostics import BrokenReferenceError, ParseError, RobodescError
+
+BAD = Path(__file__).parent / "bad"
+
+# file -> (error class, "line:col", fragment of the message after the location)
+CASES: dict[str, tuple[type[RobodescError], str, str]] = {
+    "unknown_key.yaml": (
+        ParseError,
+        "4:40",
+        "links.base.geometry.cylinder: unknown key 'lenght'; did you mean 'length'?",
+    ),
+    "wrong_type.yaml": (ParseError, "12:14", "joints.elbow.limits.lower: expected a number, got a string ('ninety')"),
+    "dangling_parent.yaml": (
+        BrokenReferenceError,
+        "7:5",
+        "joint 'shoulder': parent link 'basee' is not defined; did you mean 'base'?",
+    ),
+    "cycle.yaml": (ParseError, "8:7", "joint 'j2': joints form a cycle: b -> a -> b"),
+    "duplicate_name.yaml": (ParseError, "4:3", "links: duplicate key 'base' (first at line 3)"),
+    "duplicate_template_name.yaml": (ParseError, "8:13", "link 'L_foot': duplicate link name 'L_foot'"),
+    "invalid_inertia.yaml": (
+        ParseError,
+        "6:14",
+        "link 'base': invalid inertia tensor: principal moments break the triangle inequality",
+    ),
+    "missing_mesh.yaml": (
+        BrokenReferenceError,
+        "4:5",
+        "link 'base': mesh file 'meshes/no_such_part.stl' does not exist",
+    ),
+    "bad_yaml_syntax.yaml": (ParseError, "4:1", "YAML syntax: expected ',' or '}'"),
+    "unbalanced.holo": (ParseError, "1:1", "unbalanced braces: composition Bad opened here is never closed"),
+    "bad_token.holo": (ParseError, "5:13", "unexpected character '%'"),
+    "bad_value.holo": (ParseError, "4:22", "expected a value, found character '#'"),
+    "unterminated_string.holo": (ParseError, "3:15", "unterminated string"),
+    "dangling.holo": (
+        BrokenReferenceError,
+        "4:51",
+        "object 'Arm': @joint parent 'Basee' is not an object of this composition; did you mean 'BaseLink'?",
+    ),
+    "duplicate.holo": (ParseError, "4:10", "object 'Arm': duplicate object name 'Arm' (first at "),
+    "cycle.holo": (ParseError, "4:5", "joint 'A_joint': joints form a cycle: B -> A -> B"),
+    "invalid_inertia.holo": (
+        ParseError,
+        "8:16",
+        "object 'Base': invalid inertia tensor: inertia tensor is not positive",
+    ),
+    "missing_mesh.holo": (BrokenReferenceError, "4:15", "object 'Base': mesh file 'meshes/base_v9.stl' does not exist"),
+    "wrong_type.holo": (ParseError, "3:37", "object 'Base': @physics.mass: expected a number, got a string ('heavy')"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_one_precise_message(name: str) -> None:
+    cls, where, what = CASES[name]
+    path = str(BAD / name)
+    with pytest.raises(RobodescError) as info:
+        load_path(path)
+    assert type(info.value) is cls
+    text = str(info.value)
+    assert text.startswith(f"{path}:{where}: "), text
+    assert what in text, text
+    assert "\n" not in text
+
+
+@pytest.mark.parametrize("name", ["unknown_key.yaml", "unbalanced.holo", "missing_mesh.holo", "cycle.yaml"])
+def test_cli_prints_one_line_and_exits_2(name: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "robot.urdf"
+    code = main(["compile", str(BAD / name), "-o", str(out), "-q"])
+    err = capsys.readouterr().err
+    _, where, _ = CASES[name]
+    assert code == 2, err
+    assert "Traceback" not in err
+    errors = [line for line in err.splitlines() if line.startswith("error:")]
+    assert errors and f"{name}:{where}:" in errors[0], err
+    assert not out.exists()

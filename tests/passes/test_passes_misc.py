@@ -1,0 +1,209 @@
+"""unique_materials, strip_tags, armature, isaac_limits, zero_pose."""
+
+from __future__ import annotations
+
+import hashlib
+import math
+
+import pytest
+
+from robodesc.ir import (
+    Collision,
+    ConfigError,
+    Extension,
+    Inertia,
+    Inertial,
+    Joint,
+    JointType,
+    Limit,
+    Link,
+    Material,
+    Mimic,
+    Robot,
+    Ros2Control,
+    Sphere,
+    Transmission,
+    Visual,
+)
+from robodesc.ir.verify import check
+from robodesc.passes.armature import armature
+from robodesc.passes.isaac_limits import isaac_limits
+from robodesc.passes.options import ArmatureRule, parse_armature
+from robodesc.passes.strip_tags import strip_tags
+from robodesc.passes.unique_materials import unique_materials
+from robodesc.passes.zero_pose import zero_pose
+from tests.passes.pass_helpers import chain, codes, ctx, resolved_color
+
+WHITE = (1.0, 1.0, 1.0, 1.0)
+RED = (1.0, 0.0, 0.0, 1.0)
+
+
+def _sha6(rgba: tuple[float, ...]) -> str:
+    return hashlib.sha1(f"rgba={' '.join(repr(c) for c in rgba)};texture=".encode()).hexdigest()[:6]
+
+
+# ---- unique_materials --------------------------------------------------------------------
+
+
+def test_unnamed_materials_get_unique_shared_names() -> None:
+    robot = chain("body", "hip", "leg", "foot")
+    colors = [WHITE, WHITE, RED, WHITE]
+    for link, color in zip(robot.links, colors, strict=True):
+        link.visuals[0].material = Material("", color=color)
+    c = ctx(unique_materials=True)
+    unique_materials(robot, c)
+    check(robot)
+    white = f"material_body_{_sha6(WHITE)}"
+    red = f"material_leg_{_sha6(RED)}"
+    assert [link.visuals[0].material.name for link in robot.links] == [white, white, red, white]  # type: ignore[union-attr]
+    assert [(m.name, m.color) for m in robot.materials] == [(white, WHITE), (red, RED)]
+    assert all(link.visuals[0].material.is_reference() for link in robot.links)  # type: ignore[union-attr]
+    assert codes(c) == ["material-named", "material-named", "unnamed-materials"]
+    assert "4 unnamed inline material(s) -> 2" in c.findings.items[-1].message
+
+
+def test_named_materials_keep_names_and_conflicts_split() -> None:
+    robot = chain("a", "b", "c")
+    robot.materials = [Material("grey", color=(0.5, 0.5, 0.5, 1.0))]
+    robot.links[0].visuals[0].material = Material("grey")  # reference
+    robot.links[1].visuals[0].material = Material("grey", color=RED)  # same name, other colour
+    robot.links[2].visuals[0].material = Material("paint", color=RED)  # named: not merged with the red one
+    c = ctx(unique_materials=True)
+    unique_materials(robot, c)
+    check(robot)
+    split = f"grey_{_sha6(RED)}"
+    assert [link.visuals[0].material.name for link in robot.links] == ["grey", split, "paint"]  # type: ignore[union-attr]
+    assert [resolved_color(robot, link.visuals[0].material) for link in robot.links] == [
+        (0.5, 0.5, 0.5, 1.0),
+        RED,
+        RED,
+    ]
+    assert "material-renamed" in codes(c)
+    names = [m.name for m in robot.materials]
+    assert len(names) == len(set(names)) == 3
+
+
+# ---- strip_tags --------------------------------------------------------------------------
+
+
+def _cluttered() -> Robot:
+    robot = chain("a", "b")
+    robot.extensions = [Extension("gazebo", "<gazebo/>"), Extension("gazebo", '<gazebo reference="a"/>', reference="a")]
+    robot.links[0].extensions = [Extension("contact", "<contact/>"), Extension("gazebo", "<gazebo/>")]
+    robot.links[0].collisions = [Collision(Sphere(0.1), extensions=[Extension("surface", "<surface/>")])]
+    robot.transmissions = [Transmission("t")]
+    robot.ros2_controls = [Ros2Control("rc")]
+    robot.joints[0].dont_collapse = True
+    return robot
+
+
+def test_strip_each_kind_with_counts() -> None:
+    robot = _cluttered()
+    c = ctx(strip="gazebo,transmission,ros2_control,dont_collapse,contact,surface")
+    strip_tags(robot, c)
+    assert robot.extensions == [] and robot.links[0].extensions == []
+    assert robot.links[0].collisions[0].extensions == []
+    assert robot.transmissions == [] and robot.ros2_controls == [] and robot.joints[0].dont_collapse is None
+    assert [(f.code, f.message) for f in c.findings] == [
+        ("stripped-gazebo", "removed 3 <gazebo> block(s)"),
+        ("stripped-transmission", "removed 1 <transmission>(s)"),
+        ("stripped-ros2_control", "removed 1 <ros2_control>(s)"),
+        ("stripped-dont_collapse", "removed 1 dont_collapse attribute(s)"),
+        ("stripped-contact", "removed 1 link-level <contact>(s)"),
+        ("stripped-surface", "removed 1 collision-level <surface>(s)"),
+    ]
+
+
+def test_strip_only_selected_kinds() -> None:
+    robot = _cluttered()
+    c = ctx(strip=["contact"])
+    strip_tags(robot, c)
+    assert [e.tag for e in robot.links[0].extensions] == ["gazebo"]
+    assert len(robot.extensions) == 2 and robot.transmissions and robot.joints[0].dont_collapse is True
+    assert codes(c) == ["stripped-contact"]
+
+
+def test_unknown_strip_kind_names_the_closest() -> None:
+    with pytest.raises(ConfigError, match="did you mean 'gazebo'"):
+        ctx(strip="gazbo")
+
+
+# ---- armature ----------------------------------------------------------------------------
+
+
+def test_armature_first_matching_rule_wins_and_unmatched_reported() -> None:
+    robot = chain("a", "b", "c", "d", joint_names=["j_knee_0", "j_hip_0", "wrist"])
+    rules = (
+        ArmatureRule(r"^j_knee_[0-3]$", j_rotor=1.231e-4, gear_ratio=12.0),
+        ArmatureRule(r"^j_", 4.4316e-3),
+        ArmatureRule(r"knee", 99.0),  # never reached for j_knee_0
+    )
+    c = ctx(armature=rules)
+    armature(robot, c)
+    assert robot.joints[0].armature == pytest.approx(1.231e-4 * 144, rel=1e-15)
+    assert robot.joints[0].armature == pytest.approx(1.77264e-2, rel=1e-12)
+    assert robot.joints[1].armature == 4.4316e-3
+    assert robot.joints[2].armature is None
+    assert codes(c) == ["armature-set", "armature-set", "armature-unmatched"]
+    assert "wrist" in c.findings.items[-1].message
+
+
+def test_armature_by_robot_and_parse() -> None:
+    assert parse_armature("^j_knee_=1.231e-4*12^2").armature() == pytest.approx(1.77264e-2)
+    assert parse_armature("^j_=4.4316e-3") == ArmatureRule("^j_", 4.4316e-3)
+    robot = chain("a", "b", joint_names=["j_hip_0"])
+    c = ctx(armature_by_robot={"spirit": (ArmatureRule("j_", 1.0),)})
+    armature(robot, c)
+    assert robot.joints[0].armature is None and codes(c) == ["no-armature-table"]
+    robot.name = "spirit"
+    armature(robot, c)
+    assert robot.joints[0].armature == 1.0
+
+
+def test_mimic_joints_are_not_actuated() -> None:
+    robot = chain("a", "b", "c", joint_names=["x", "y"])
+    robot.joints[1].mimic = Mimic("x")
+    c = ctx(armature=(ArmatureRule("^x$", 1.0),))
+    armature(robot, c)
+    assert "armature-unmatched" not in codes(c)
+
+
+# ---- isaac_limits and zero_pose ----------------------------------------------------------
+
+
+def test_isaac_limits() -> None:
+    robot = chain("root", "a", "b", "c", joint_names=["rev", "pri", "cont"])
+    robot.joints[0].limit = None
+    robot.joints[1].type = JointType.PRISMATIC
+    robot.joints[1].limit = Limit(lower=0.0, upper=0.5)  # effort and velocity missing
+    robot.joints[2].type = JointType.CONTINUOUS
+    robot.joints[2].limit = None
+    robot.links.insert(0, Link("world"))
+    robot.joints.insert(0, Joint("fix", JointType.FIXED, "world", "root"))
+    c = ctx(isaac_limits=True)
+    isaac_limits(robot, c)
+    check(robot)
+    lim = robot.joint("rev").limit
+    assert lim is not None and (lim.lower, lim.upper) == (-math.pi, math.pi)
+    pri = robot.joint("pri").limit
+    assert pri is not None and (pri.lower, pri.upper, pri.effort, pri.velocity) == (0.0, 0.5, 1000.0, 100.0)
+    assert robot.joint("cont").type is JointType.CONTINUOUS and robot.joint("cont").limit is None
+    world = robot.link("world").inertial
+    assert world is not None and world.mass == 0.001 and world.inertia == Inertia(1e-6, 1e-6, 1e-6)
+    assert codes(c) == ["limit-added", "limit-completed", "empty-root-link"]
+
+
+def test_zero_pose_outside_limits() -> None:
+    robot = chain("a", "b", "c", joint_names=["knee", "hip"])
+    robot.joints[0].limit = Limit(lower=-2.7227, upper=-0.83776, effort=1.0, velocity=1.0)
+    c = ctx()
+    zero_pose(robot, c)
+    assert [(f.code, f.element) for f in c.findings] == [("zero-outside-limits", "joint 'knee'")]
+    assert "[-2.7227, -0.83776]" in c.findings.items[0].message
+
+
+def test_pass_leaves_inertial_alone_when_given() -> None:
+    link = Link("x", inertial=Inertial(mass=1.0), visuals=[Visual(Sphere(0.1))])
+    robot = Robot("r", links=[link])
+    isaac_limits(robot, ctx(isaac_limits=True))
+    assert link.inertial is not None and link.inertial.inertia is None
