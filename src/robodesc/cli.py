@@ -123,7 +123,16 @@ def _parser() -> argparse.ArgumentParser:
     ros2 = comp.add_argument_group("ROS 2 (--ros2)")
     ros2.add_argument("--command-interface", choices=["position", "velocity", "effort"], help="what the controllers command (default position)")
     ros2.add_argument("--controller", choices=["joint_trajectory", "forward_command"], help="the command controller (default joint_trajectory)")
-    comp.add_argument("--json", action="store_true", help="print a JSON summary (findings, files) on standard output")
+    val = comp.add_argument_group("validation")
+    val.add_argument(
+        "--validate",
+        action=argparse.BooleanOptionalAction,
+        default=True,
+        help="load the output in an independent consumer (MuJoCo for URDF, Drake for SDF, mujoco-usd for USD when "
+        "installed) and compare masses, inertias, joints, limits and forward kinematics with the IR (default: on)",
+    )
+    val.add_argument("--report", metavar="FILE.md", help="also write the validation report as Markdown")
+    comp.add_argument("--json", action="store_true", help="print a JSON summary (findings, files, validation) on standard output")
     comp.add_argument("-q", "--quiet", action="store_true", help="print errors only")
 
     insp = sub.add_parser(
@@ -134,6 +143,20 @@ def _parser() -> argparse.ArgumentParser:
     insp.add_argument("input")
     _add_input_options(insp)
     insp.add_argument("--json", action="store_true", help="machine-readable output")
+
+    valp = sub.add_parser(
+        "validate",
+        help="compile a robot in memory and check the result in an independent consumer",
+        description="Load INPUT (URDF, .xacro, .yaml, .holo), emit the target in memory, load it in MuJoCo "
+        "(URDF), Drake (SDF) or mujoco-usd (USD), and compare masses, COMs, inertias, joint types, axes, "
+        "limits and forward kinematics at random configurations with the IR; then step a short simulation "
+        "under gravity. Exit 1 when a check fails.",
+    )
+    valp.add_argument("input")
+    valp.add_argument("-t", "--target", choices=["urdf", "sdf", "usd"], default="urdf")
+    _add_input_options(valp)
+    valp.add_argument("--report", metavar="FILE.md", help="write the report as Markdown")
+    valp.add_argument("--json", action="store_true", help="print the report as JSON")
 
     exp = sub.add_parser(
         "expand",
@@ -224,14 +247,21 @@ def _cmd_compile(args: argparse.Namespace) -> int:
         if not args.quiet and not args.json:
             print(f"robodesc: {step}", file=sys.stderr)
 
+    opts.validate = args.validate
     result = compile_robot(args.input, target, args.output, opts, progress)
+    report = result.validation
+    if args.report and report is not None:
+        from robodesc.emit.files import write_atomic
+
+        write_atomic(args.report, report.to_markdown())
     if args.json:
-        print(
-            json.dumps(
-                {"target": result.target, "files": result.files, "findings": [f.as_dict() for f in result.findings]},
-                indent=2,
-            )
-        )
+        summary: dict[str, Any] = {
+            "target": result.target,
+            "files": result.files,
+            "findings": [f.as_dict() for f in result.findings],
+            "validation": json.loads(report.to_json()) if report is not None else None,
+        }
+        print(json.dumps(summary, indent=2))
     else:
         _print_findings(result.findings, args.quiet)
         if args.output is None and result.text is not None:
@@ -239,7 +269,44 @@ def _cmd_compile(args: argparse.Namespace) -> int:
         elif not args.quiet:
             for role, path in result.files.items():
                 print(f"robodesc: wrote {role}: {path}", file=sys.stderr)
+        if report is not None and (not args.quiet or not report.ok):
+            print(report.to_text(), file=sys.stderr)
+    if report is not None and not report.ok:
+        print("error: the output failed validation (see the report above); --no-validate skips it", file=sys.stderr)
+        return 1
     return 0
+
+
+def _cmd_validate(args: argparse.Namespace) -> int:
+    import tempfile
+
+    lower = args.input.lower()
+    if lower.endswith((".sdf", ".usd", ".usda", ".usdc")):
+        kind = "sdf" if lower.endswith(".sdf") else "usd"
+        print(
+            f"error: {args.input}: robodesc validates an output against the robot it was compiled from; "
+            f"run: robodesc validate SOURCE -t {kind}",
+            file=sys.stderr,
+        )
+        return 2
+    opts = build_options(_common_options(args))
+    with tempfile.TemporaryDirectory(prefix="robodesc-validate-") as tmp:
+        out = f"{tmp}/robot.{'usda' if args.target == 'usd' else args.target}"
+        result = compile_robot(args.input, args.target, out, opts)
+        report = result.validation
+        if report is None:
+            print("error: nothing to validate", file=sys.stderr)
+            return 2
+        if args.report:
+            from robodesc.emit.files import write_atomic
+
+            write_atomic(args.report, report.to_markdown())
+        if args.json:
+            print(report.to_json())
+        else:
+            _print_findings(result.findings, quiet=True)
+            print(report.to_text())
+    return 0 if report.ok else 1
 
 
 def _cmd_inspect(args: argparse.Namespace) -> int:
@@ -278,12 +345,19 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _cmd_compile(args)
         if args.command == "expand":
             return _cmd_expand(args)
+        if args.command == "validate":
+            return _cmd_validate(args)
         return _cmd_inspect(args)
     except RobodescError as err:
         return _report_error(err)
     except KeyboardInterrupt:
         print("error: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:  # the reader (| head) went away: not an error of ours
+        import os
+
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
 
 
 if __name__ == "__main__":

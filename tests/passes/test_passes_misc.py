@@ -207,3 +207,18 @@ def test_pass_leaves_inertial_alone_when_given() -> None:
     robot = Robot("r", links=[link])
     isaac_limits(robot, ctx(isaac_limits=True))
     assert link.inertial is not None and link.inertial.inertia is None
+
+
+def test_keep_bodies_marks_fixed_joints_carrying_sensors_and_frames() -> None:
+    from robodesc.frontends.load import load_path
+    from robodesc.passes import PassOptions, run_passes
+    from tests.conftest import EXAMPLES
+
+    robot = load_path(str(EXAMPLES / "urdf" / "gripper_arm.urdf")).robot
+    # The camera and tcp hang on 'hand' (behind a continuous joint): nothing to mark there.
+    run_passes(robot, options=PassOptions(keep_bodies=True))
+    assert robot.joint("tool_mount").dont_collapse is None
+    robot.sensors[0].parent = "tool"
+    findings = run_passes(robot, options=PassOptions(keep_bodies=True))
+    assert robot.joint("tool_mount").dont_collapse is True
+    assert [f.code for f in findings if f.element == "joint 'tool_mount'"] == ["dont-collapse"]

@@ -28,6 +28,7 @@ def test_pipeline_reads_like_a_table_of_contents() -> None:
         "strip_tags",
         "armature",
         "isaac_limits",
+        "keep_bodies",
         "zero_pose",
     ]
 

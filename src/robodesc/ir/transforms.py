@@ -128,7 +128,9 @@ def resolve_mimic(robot: Robot, q: Mapping[str, float]) -> dict[str, float]:
     def value(name: str, depth: int = 0) -> float:
         if name in out:
             return out[name]
-        joint = joints[name]
+        joint = joints.get(name)
+        if joint is None:  # a dangling mimic leader (the verifier reports it): treat as at zero
+            return 0.0
         if joint.mimic is None or depth > len(joints):
             return 0.0
         m = joint.mimic

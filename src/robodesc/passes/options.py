@@ -93,6 +93,8 @@ class PassOptions:
     armature_by_robot: Mapping[str, tuple[ArmatureRule, ...]] = field(default_factory=dict)
     merge_fixed: bool = False
     isaac_limits: bool = False
+    # Isaac: dont_collapse on fixed joints whose child carries a sensor, frame or loop-joint end.
+    keep_bodies: bool = False
     # Report joints whose zero position lies outside their limits (go2's knees).
     zero_pose_check: bool = True
     # copy_meshes (emit time): copy meshes/textures next to the output; convert suffixes the target

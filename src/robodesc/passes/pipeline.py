@@ -19,6 +19,7 @@ from robodesc.passes.armature import armature
 from robodesc.passes.context import PassContext
 from robodesc.passes.geometric_inertia import geometric_inertia
 from robodesc.passes.isaac_limits import isaac_limits
+from robodesc.passes.keep_bodies import keep_bodies
 from robodesc.passes.merge_fixed import merge_fixed
 from robodesc.passes.options import PassOptions, merge_options
 from robodesc.passes.rename import rename
@@ -49,6 +50,7 @@ PASSES: tuple[Pass, ...] = (
     Pass("strip_tags", strip_tags, lambda o: bool(o.strip)),
     Pass("armature", armature, lambda o: bool(o.armature or o.armature_by_robot)),
     Pass("isaac_limits", isaac_limits, lambda o: o.isaac_limits),
+    Pass("keep_bodies", keep_bodies, lambda o: o.keep_bodies),
     Pass("zero_pose", zero_pose, lambda o: o.zero_pose_check),
 )
 

@@ -40,6 +40,7 @@ PRESET_OPTIONS: dict[str, dict[str, object]] = {
         # dont_collapse is read by Isaac: kept.
         "strip": frozenset({"gazebo", "transmission", "ros2_control"}) | _LEFTOVERS,
         "isaac_limits": True,
+        "keep_bodies": True,
     },
     "ros2": {
         "unique_materials": True,
@@ -77,6 +78,7 @@ PRESETS: dict[str, tuple[str, ...]] = {
         "repair_inertia",
         "strip_tags",
         "isaac_limits",
+        "keep_bodies",
         "zero_pose",
     ),
     "ros2": ("unique_materials", "geometric_inertia", "strip_tags", "zero_pose"),

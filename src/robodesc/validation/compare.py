@@ -380,7 +380,10 @@ def compare_fk(robot: Robot, model: Any, options: ValidateOptions, report: Valid
         joint = parent_joint.get(name)
         below = _descendants(robot, name) & set(failing)
         where = f" (reached through joint {joint.name!r})" if joint is not None else ""
-        q_text = ", ".join(f"{k}={v:.4g}" for k, v in sorted(q.items())[:6]) or "all joints at 0"
+        if joint is not None and joint.name in q:
+            q_text = f"{joint.name}={q[joint.name]:.4g} with the other joints at sampled values"
+        else:
+            q_text = "q = 0" if not q else "a sampled configuration"
         report.add(
             "fk",
             Status.FAIL,

@@ -206,6 +206,25 @@ def _patch(
     return False
 
 
+def explain_parse_failure(robot: Robot, text: str, report: ValidationReport) -> None:
+    """MuJoCo's parse errors give a line, not a name: say which links and joints the text lacks."""
+    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+    links = {el.get("name") for el in root.findall("link")}
+    joints = {el.get("name"): el for el in root.findall("joint")}
+    for link in robot.links:
+        if link.name not in links:
+            report.add("bodies", Status.FAIL, f"link {link.name!r}", "link is missing from the URDF text")
+    for joint in robot.joints:
+        if joint.name not in joints:
+            report.add("joints", Status.FAIL, f"joint {joint.name!r}", "joint is missing from the URDF text")
+    for name, el in joints.items():
+        for end in ("parent", "child"):
+            ref = el.find(end)
+            target = ref.get("link") if ref is not None else None
+            if target not in links:
+                report.add("parents", Status.FAIL, f"joint {name!r}", f"{end} link {target!r} is not in the URDF text")
+
+
 def add_floating_base(spec: Any, robot: Robot) -> None:
     """A free joint on the root body, unless the root is MuJoCo's world or already moves."""
     roots = robot.root_links()
@@ -232,6 +251,7 @@ def load_urdf_in_mujoco(
             spec = mujoco.MjSpec.from_string(text)
     except ValueError as exc:
         report.add("mujoco-parse", Status.FAIL, "document", f"MuJoCo cannot parse the URDF: {str(exc).strip()}")
+        explain_parse_failure(robot, text, report)
         return None
     report.add("mujoco-parse", Status.PASS, "document", f"parsed by MuJoCo {mujoco.__version__}")
     fix_meshes(spec, robot, base_dir, options, report)

@@ -229,11 +229,13 @@ class Tally:
             self.report.add(self.name, Status.SKIP, f"{len(self.skipped)} {what}", f"not compared: {shown}")
         if self.checked and not self.failed:
             err = self.max_error if self.tolerance is not None else None
+            unit = f" {self.unit}" if self.unit else ""
+            largest = f"largest error {self.max_error:.3g}{unit}" if err is not None else ""
             self.report.add(
                 self.name,
                 Status.PASS,
                 f"{self.checked} {what}",
-                f"all match{f' (largest error {self.max_error:.3g} {self.unit})' if err is not None else ''}",
+                f"all match ({largest})" if largest else "all match",
                 error=err,
                 tolerance=self.tolerance,
             )
