@@ -8,18 +8,24 @@ __version__ = "0.1.0"
 from robodesc.api import (  # noqa: E402  (the version must exist before the API imports)
     CompileResult,
     compile_for_gazebo,
+    compile_for_isaac_sim,
     compile_for_ros2,
     compile_to_sdf,
     compile_to_urdf,
+    compile_to_usd,
     load,
+    validate,
 )
 
 __all__ = [
     "CompileResult",
     "__version__",
     "compile_for_gazebo",
+    "compile_for_isaac_sim",
     "compile_for_ros2",
     "compile_to_sdf",
     "compile_to_urdf",
+    "compile_to_usd",
     "load",
+    "validate",
 ]

@@ -21,7 +21,17 @@ from robodesc.ir.model import Robot
 from robodesc.options import build_options
 from robodesc.pipeline import CompileResult, Progress, Source, compile_robot, load_source, verify_source
 
-__all__ = ["CompileResult", "compile_for_gazebo", "compile_for_ros2", "compile_to_sdf", "compile_to_urdf", "load"]
+__all__ = [
+    "CompileResult",
+    "compile_for_gazebo",
+    "compile_for_isaac_sim",
+    "compile_for_ros2",
+    "compile_to_sdf",
+    "compile_to_urdf",
+    "compile_to_usd",
+    "load",
+    "validate",
+]
 
 
 def _option_names(*classes: type[Any]) -> dict[str, str]:
@@ -103,3 +113,66 @@ def compile_for_gazebo(
     result.files["sdf"] = sdf_path
     result.findings.extend(sdf.findings)
     return result
+
+
+def compile_to_usd(
+    source: Source, out: str | os.PathLike[str], *, progress: Progress | None = None, **options: Any
+) -> CompileResult:
+    """Compile to a UsdPhysics articulation (``.usda``, ``.usdc`` or ``.usd``). Names are sanitized
+    and materials made unique first (USD needs both). Options: ``fix_base``, ``drive_type``,
+    ``target_type``, ``stiffness``/``damping`` (SI; a number or a ``{regex: value}`` table),
+    ``collision_approximation``, ``layered``, ``solver_position_iterations``, ... (docs/usd.md)."""
+    from robodesc.emit.usd_options import UsdOptions
+
+    return _compile("usd", source, out, progress, options, UsdOptions)
+
+
+def compile_for_isaac_sim(
+    source: Source, out_dir: str | os.PathLike[str] | None = None, *, progress: Progress | None = None, **options: Any
+) -> CompileResult:
+    """Everything Isaac Sim and Isaac Lab need, in one folder: the USD asset, the Isaac-flavoured
+    URDF, ``importer_settings.json``, an Isaac Lab ``ArticulationCfg`` module, the validation report
+    and the findings. Runs the ``isaac_sim`` preset unless ``preset`` says otherwise.
+
+    ``out_dir=None`` writes into a new temporary folder (its paths are in ``result.files``).
+    Options (docs/isaac.md): ``fix_base``, ``merge_fixed_joints``, ``drive_type`` (force |
+    acceleration), ``target_type`` (none | position | velocity), ``stiffness``/``damping`` (SI, a
+    number or ``{regex: value}``), ``armature`` (rules), ``self_collision``,
+    ``collision_approximation``, ``solver_position_iterations``, ``solver_velocity_iterations``,
+    ``contact_offset``, ``rest_offset``, ``init_pos``, ``init_joint_pos``, ``layered``, and every
+    pass and input option.
+    """
+    import tempfile
+
+    from robodesc.emit.isaac_settings import IsaacSettings
+
+    target = os.fspath(out_dir) if out_dir is not None else tempfile.mkdtemp(prefix="robodesc-isaac-")
+    return _compile("isaac", source, target, progress, options, IsaacSettings)
+
+
+def validate(source: Source, target: str = "urdf", **options: Any) -> Any:
+    """Compile ``source`` to ``target`` in a temporary folder and return the validation report
+    (``report.ok``, ``report.to_text()``, ``to_json()``, ``to_markdown()``)."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="robodesc-validate-") as tmp:
+        suffix = {"usd": "usda", "isaac": ""}.get(target, target)
+        out = os.path.join(tmp, f"robot.{suffix}" if suffix else "robot")
+        result = _compile(target, source, out, None, {**options, "validate": True}, *_target_classes(target))
+    return result.validation
+
+
+def _target_classes(target: str) -> tuple[type[Any], ...]:
+    if target == "sdf":
+        from robodesc.emit.sdf_options import SdfOptions
+
+        return (SdfOptions,)
+    if target == "usd":
+        from robodesc.emit.usd_options import UsdOptions
+
+        return (UsdOptions,)
+    if target == "isaac":
+        from robodesc.emit.isaac_settings import IsaacSettings
+
+        return (IsaacSettings,)
+    return ()

@@ -15,7 +15,7 @@ from typing import Any
 from robodesc import __version__
 from robodesc.emit.paths import PathMode
 from robodesc.frontends.options import MissingMesh
-from robodesc.ir.diagnostics import Finding, RobodescError, Severity, VerificationError
+from robodesc.ir.diagnostics import ConfigError, Finding, RobodescError, Severity, VerificationError
 from robodesc.options import InvalidInertia, build_options
 from robodesc.pipeline import compile_robot
 
@@ -90,6 +90,12 @@ def _parser() -> argparse.ArgumentParser:
     comp.add_argument("-t", "--target", choices=["urdf", "sdf", "usd"], default="urdf", help="output format (default: urdf)")
     comp.add_argument("-o", "--output", help="output file, or folder for --ros2/--isaac-sim (default: standard output for text targets)")
     comp.add_argument(
+        "--isaac-sim",
+        action="store_true",
+        help="write everything Isaac Sim / Isaac Lab need to the folder -o: USD asset, Isaac-flavoured URDF, "
+        "importer_settings.json, an Isaac Lab ArticulationCfg module, the validation report (runs --preset isaac_sim)",
+    )
+    comp.add_argument(
         "--ros2",
         action="store_true",
         help="write a ROS 2 / Gazebo Harmonic folder to -o: URDF with <ros2_control> (gz_ros2_control), "
@@ -119,7 +125,29 @@ def _parser() -> argparse.ArgumentParser:
     sdf.add_argument("--world", action="store_true", help="wrap the model in a world with ground plane, physics and light")
     sdf.add_argument("--gazebo-classic", action="store_true", help="Gazebo Classic plugins (libgazebo_ros_*) instead of Harmonic's gz-sim systems")
     sim = comp.add_argument_group("simulation (SDF, USD, Isaac)")
-    sim.add_argument("--fix-base", action="store_true", default=None, help="weld the root link to the world (default: floating base)")
+    sim.add_argument(
+        "--fix-base",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="weld the root link to the world, or float it with --no-fix-base (defaults: SDF floats, "
+        "USD/Isaac fix, as their importers do; a composition's own choice wins)",
+    )
+    isaac = comp.add_argument_group("USD and Isaac Sim (-t usd, --isaac-sim; see docs/isaac.md)")
+    isaac.add_argument("--drive-type", choices=["force", "acceleration"], help="joint drive type (default force)")
+    isaac.add_argument("--target-type", choices=["none", "position", "velocity"], help="drive target (default position; none = passive joints, gains 0)")
+    isaac.add_argument("--stiffness", action="append", metavar="VALUE|REGEX=VALUE", help="drive stiffness in SI (N·m/rad, N/m), one number or rules (repeatable, first match wins); written per degree in USD")
+    isaac.add_argument("--damping", action="append", metavar="VALUE|REGEX=VALUE", help="drive damping in SI (N·m·s/rad, N·s/m), like --stiffness")
+    isaac.add_argument("--collision-approximation", choices=["convexHull", "convexDecomposition", "boundingCube", "boundingSphere", "none"], help="how mesh colliders are approximated (default convexHull)")
+    isaac.add_argument("--self-collision", action="store_true", default=None, help="collide the robot's links with each other")
+    isaac.add_argument("--solver-position-iterations", type=int, metavar="N", help="PhysX articulation position iterations")
+    isaac.add_argument("--solver-velocity-iterations", type=int, metavar="N", help="PhysX articulation velocity iterations")
+    isaac.add_argument("--contact-offset", type=float, metavar="M", help="PhysX contact offset on every collider (default PhysX's ~2 cm)")
+    isaac.add_argument("--rest-offset", type=float, metavar="M", help="PhysX rest offset on every collider")
+    isaac.add_argument("--merge-fixed-joints", action="store_true", default=None, help="importer setting: merge fixed joints on URDF import (dont_collapse keeps marked bodies)")
+    isaac.add_argument("--layered", action="store_true", default=None, help="USD as an interface layer + payload (like NVIDIA's converter) instead of one file")
+    isaac.add_argument("--physics-scene", action="store_true", default=None, help="add a /PhysicsScene beside the robot (outside the default prim)")
+    isaac.add_argument("--init-pos", metavar="X,Y,Z", help="Isaac Lab spawn position of the base (m)")
+    isaac.add_argument("--init-joint-pos", action="append", metavar="REGEX=VALUE", help="Isaac Lab initial joint positions (rad; repeatable, first match wins)")
     ros2 = comp.add_argument_group("ROS 2 (--ros2)")
     ros2.add_argument("--command-interface", choices=["position", "velocity", "effort"], help="what the controllers command (default position)")
     ros2.add_argument("--controller", choices=["joint_trajectory", "forward_command"], help="the command controller (default joint_trajectory)")
@@ -210,9 +238,53 @@ def _report_error(err: RobodescError) -> int:
     return err.exit_code
 
 
+def _gains(values: list[str] | None, flag: str) -> float | dict[str, float] | None:
+    """``--stiffness 100`` or ``--stiffness 'knee.*=50' --stiffness '.*=20'``."""
+    if not values:
+        return None
+    if len(values) == 1 and "=" not in values[0]:
+        return _number(values[0], flag)
+    table: dict[str, float] = {}
+    for item in values:
+        pattern, sep, value = item.rpartition("=")
+        if not sep or not pattern:
+            raise ConfigError(f"{flag} {item!r}: expected a number or REGEX=VALUE")
+        table[pattern] = _number(value, flag)
+    return table
+
+
+def _number(text: str, flag: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise ConfigError(f"{flag} {text!r}: expected a number") from None
+
+
 def _target_options(args: argparse.Namespace) -> dict[str, Any]:
     """Only the flags the user set, so every option class keeps its own defaults."""
+    init_pos = None
+    if args.init_pos:
+        parts = args.init_pos.split(",")
+        if len(parts) != 3:
+            raise ConfigError(f"--init-pos {args.init_pos!r}: expected X,Y,Z")
+        init_pos = tuple(_number(p, "--init-pos") for p in parts)
+    joint_pos = _gains(args.init_joint_pos, "--init-joint-pos")
     given = {
+        "drive_type": args.drive_type,
+        "target_type": args.target_type,
+        "stiffness": _gains(args.stiffness, "--stiffness"),
+        "damping": _gains(args.damping, "--damping"),
+        "collision_approximation": args.collision_approximation,
+        "self_collision": args.self_collision,
+        "solver_position_iterations": args.solver_position_iterations,
+        "solver_velocity_iterations": args.solver_velocity_iterations,
+        "contact_offset": args.contact_offset,
+        "rest_offset": args.rest_offset,
+        "merge_fixed_joints": args.merge_fixed_joints,
+        "layered": args.layered,
+        "physics_scene": args.physics_scene,
+        "init_pos": init_pos,
+        "init_joint_pos": {".*": joint_pos} if isinstance(joint_pos, float) else joint_pos,
         "version": args.sdf_version,
         "world": args.world or None,
         "flavour": "classic" if args.gazebo_classic else None,
@@ -237,11 +309,25 @@ def _pass_options(args: argparse.Namespace) -> dict[str, Any]:
     return {k: v for k, v in given.items() if v is not None}
 
 
+def _accepted(target: str) -> set[str]:
+    import dataclasses
+
+    from robodesc.emit.isaac_settings import IsaacSettings
+    from robodesc.emit.ros2_options import Ros2Options
+    from robodesc.emit.sdf_options import SdfOptions
+    from robodesc.emit.usd_options import UsdOptions
+
+    cls = {"sdf": SdfOptions, "usd": UsdOptions, "isaac": IsaacSettings, "ros2": Ros2Options}.get(target)
+    return {f.name for f in dataclasses.fields(cls)} if cls is not None else set()
+
+
 def _cmd_compile(args: argparse.Namespace) -> int:
     opts = build_options({**_common_options(args), "mesh_paths": args.mesh_paths, "preset": args.preset})
     opts.target_options = _target_options(args)
     opts.passes = _pass_options(args)
-    target = "ros2" if args.ros2 else args.target
+    target = "isaac" if args.isaac_sim else "ros2" if args.ros2 else args.target
+    # Each target takes only its own options.
+    opts.target_options = {k: v for k, v in opts.target_options.items() if k in _accepted(target)}
 
     def progress(step: str) -> None:
         if not args.quiet and not args.json:

@@ -90,11 +90,13 @@ def load_source(source: Source, options: CompileOptions, findings: Findings) -> 
     return loaded.robot
 
 
-def pass_options(options: CompileOptions) -> PassOptions:
+def pass_options(options: CompileOptions, target: str = "urdf") -> PassOptions:
     """The passes' options: the preset, overridden by explicit options, with the policies the
-    compile options imply."""
+    compile options and the target imply."""
     chosen = options_from_mapping(options.passes)
-    resolved = resolve_options(options.preset, chosen)
+    resolved = resolve_options(options.preset or TARGET_PRESETS.get(target), chosen)
+    for name, value in TARGET_PASSES.get(target, {}).items():
+        setattr(resolved, name, value)
     # Compositions give masses without tensors; those are always filled from geometry.
     resolved.fill_inertia = True
     if options.invalid_inertia is InvalidInertia.REPAIR and resolved.repair_inertia is None:
@@ -180,6 +182,34 @@ def _emit_ros2(robot: Robot, out: str | None, options: CompileOptions, findings:
     return Emitted(files=write_folder(out, package.files))
 
 
+def _emit_usd(robot: Robot, out: str | None, options: CompileOptions, findings: Findings) -> Emitted:
+    from robodesc.emit.usd import emit_usd
+    from robodesc.emit.usd_options import UsdOptions
+
+    if not out:
+        raise ConfigError("USD is written to a file: give one with -o robot.usda|.usdc|.usd")
+    usd_options = dataclass_from_mapping(UsdOptions, target_options(UsdOptions, options), "usd")
+    if "fix_base" not in options.target_options and robot.fixed_base is not None:
+        usd_options.fix_base = robot.fixed_base
+    findings.extend(emit_usd(robot, out, usd_options))
+    return Emitted(files={"usd": out})
+
+
+def _emit_isaac(robot: Robot, out: str | None, options: CompileOptions, findings: Findings) -> Emitted:
+    from robodesc.emit.isaac_settings import IsaacSettings
+    from robodesc.isaac import write_isaac_folder
+
+    if not out:
+        raise ConfigError("the Isaac Sim target writes a folder: give it with -o OUT_DIR")
+    settings = dataclass_from_mapping(IsaacSettings, target_options(IsaacSettings, options), "isaac")
+    if "fix_base" not in options.target_options and robot.fixed_base is not None:
+        settings.fix_base = robot.fixed_base
+    if "init_pos" not in options.target_options and robot.placement is not None:
+        settings.init_pos = robot.placement.xyz  # where the composition put the robot
+    files = write_isaac_folder(robot, out, settings, findings, options.mesh_paths)
+    return Emitted(files=files, extra={"settings": settings})
+
+
 def target_options(cls: type[Any], options: CompileOptions) -> dict[str, Any]:
     """The target options that belong to the options class ``cls``."""
     names = {f.name for f in dataclasses.fields(cls)}
@@ -207,9 +237,23 @@ def write_folder(out: str, files: Mapping[str, str | bytes]) -> dict[str, str]:
 
 
 Target = Callable[[Robot, str | None, CompileOptions, Findings], Emitted]
-TARGETS: dict[str, Target] = {"urdf": _emit_urdf, "sdf": _emit_sdf, "ros2": _emit_ros2}
+TARGETS: dict[str, Target] = {
+    "urdf": _emit_urdf,
+    "sdf": _emit_sdf,
+    "usd": _emit_usd,
+    "ros2": _emit_ros2,
+    "isaac": _emit_isaac,
+}
 # Targets whose output is a folder rather than a file.
-FOLDER_TARGETS = {"ros2"}
+FOLDER_TARGETS = {"ros2", "isaac"}
+# What a target cannot do without: USD prim names must be identifiers, and Isaac merges materials
+# that share a name.
+TARGET_PASSES: dict[str, dict[str, bool]] = {
+    "usd": {"sanitize_names": True, "unique_materials": True},
+    "isaac": {"sanitize_names": True, "unique_materials": True},
+}
+# The preset a target implies when the user names none.
+TARGET_PRESETS = {"isaac": "isaac_sim"}
 
 
 def compile_robot(
@@ -222,7 +266,7 @@ def compile_robot(
     if target not in TARGETS:
         raise ConfigError(f"unknown target {target!r} (one of {', '.join(sorted(TARGETS))})")
     findings = Findings()
-    resolved = pass_options(options)
+    resolved = pass_options(options, target)
     progress("loading")
     robot = load_source(source, options, findings)
     progress("verifying")
@@ -248,6 +292,16 @@ def compile_robot(
     if options.validate:
         progress("validating")
         result.validation = validate_emitted(robot, target, emitted, out, options)
+    if target == "isaac" and out:
+        from robodesc.isaac import findings_markdown
+
+        # Written after the folder moved in place: the report describes the files as written.
+        write_atomic(os.path.join(out, "findings.md"), findings_markdown(robot, result.findings))
+        result.files["findings"] = os.path.join(out, "findings.md")
+        if result.validation is not None:
+            write_atomic(os.path.join(out, "validation.md"), result.validation.to_markdown())
+            write_atomic(os.path.join(out, "validation.json"), result.validation.to_json())
+            result.files["validation"] = os.path.join(out, "validation.md")
     return result
 
 

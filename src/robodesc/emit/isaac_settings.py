@@ -30,8 +30,8 @@ class IsaacSettings:
     merge_fixed_joints: bool = False
     drive_type: str = "force"  # force | acceleration
     target_type: str = "position"  # none | position | velocity
-    stiffness: Gains = 0.0
-    damping: Gains = 0.0
+    stiffness: Gains = 100.0
+    damping: Gains = 1.0
     self_collision: bool = False
     collision_approximation: str = "convexHull"  # convexHull | convexDecomposition | boundingCube | boundingSphere | none
     solver_position_iterations: int | None = None
@@ -39,6 +39,9 @@ class IsaacSettings:
     contact_offset: float | None = None
     rest_offset: float | None = None
     import_inertia_tensor: bool = True
+    # One .usda, or an interface layer + payload as NVIDIA's converter writes.
+    layered: bool = False
+    physics_scene: bool = False
     # Spawn pose for Isaac Lab: base position (m) and the initial joint positions (rad) by regex.
     init_pos: tuple[float, float, float] = (0.0, 0.0, 0.0)
     init_joint_pos: dict[str, float] = field(default_factory=dict)

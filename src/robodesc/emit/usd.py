@@ -153,6 +153,11 @@ def _plan_paths(ctx: UsdContext) -> None:
             if end not in ctx.link_paths:
                 raise BrokenReferenceError(f"refers to unknown link {end!r}", element=label, loc=joint.src)
         ctx.joint_paths[joint.name] = scope.AppendChild(joint.name)
+    for joint in robot.joints:
+        if joint.mimic is not None and joint.mimic.joint not in ctx.joint_paths:
+            raise BrokenReferenceError(
+                f"mimics unknown joint {joint.mimic.joint!r}", element=f"joint {joint.name!r}", loc=joint.mimic.src
+            )
     children: dict[str, set[str]] = {}
     nodes: list[tuple[str, str, str, object]] = [("fixed_frame", f.name, f.parent, f.src) for f in robot.fixed_frames]
     nodes += [("sensor", s.name, s.parent, s.src) for s in robot.sensors]

@@ -9,7 +9,7 @@ Layered (NVIDIA's converter layout)::
     Payload/Contents.usda       /robot itself; sublayers the three below
     Payload/Physics.usda        bodies, masses, colliders' physics APIs, joints, articulation
     Payload/Materials.usda      /robot/Looks and material bindings
-    Payload/Geometry.usda       link transforms, visual and collision shapes, frames, sensors
+    Payload/Geometry.usdc       link transforms, visual and collision shapes, frames, sensors
 
 Everything is written into a staging folder beside the output, then moved into place (the payload
 folder first, the interface file last, so a reader never sees an interface without its payload).
@@ -60,9 +60,13 @@ class LayerSet:
         os.makedirs(payload)
         contents = Sdf.Layer.CreateNew(os.path.join(payload, CONTENTS + sub_ext))
         roles: dict[str, Sdf.Layer] = {}
+        names = []
         for stem, role in SUBLAYERS:
-            roles[role] = Sdf.Layer.CreateNew(os.path.join(payload, stem + sub_ext))
-        contents.subLayerPaths = [f"./{stem}{sub_ext}" for stem, _ in SUBLAYERS]
+            # Mesh arrays are the bulk of an asset: always binary (as NVIDIA's converter does).
+            name = stem + (".usdc" if role == GEOMETRY else sub_ext)
+            roles[role] = Sdf.Layer.CreateNew(os.path.join(payload, name))
+            names.append(f"./{name}")
+        contents.subLayerPaths = names
         stage = Usd.Stage.Open(contents)
         return LayerSet(
             stage,

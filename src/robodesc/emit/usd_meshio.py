@@ -1,8 +1,8 @@
 """Reading mesh files into the arrays a UsdGeom.Mesh needs.
 
-STL (the most common format in robot descriptions) is read with numpy directly: importing trimesh
-alone costs about a second, more than converting a whole robot. Other formats (OBJ, DAE, ...) go
-through trimesh, imported on first use. Results are cached per (file, scale) for one emitter run,
+STL and OBJ are read with numpy directly and COLLADA with pycollada: importing trimesh alone costs
+over a second, more than converting a whole robot. Other formats go through trimesh, imported on
+first use. Texture coordinates are only read through trimesh (not for STL, OBJ, DAE yet). Results are cached per (file, scale) for one emitter run,
 because visuals and colliders often share a file.
 """
 
@@ -39,11 +39,44 @@ _STL_RECORD = np.dtype([("normal", "<f4", (3,)), ("v", "<f4", (3, 3)), ("attr", 
 
 def read_triangles(path: str) -> tuple[NDArray[np.float64], I32, NDArray[np.float64] | None]:
     """(vertices, triangle indices, per-vertex uv or None) of a mesh file, in file units."""
-    if path.lower().endswith(".stl"):
+    lower = path.lower()
+    if lower.endswith(".stl"):
         tri = _read_stl(path)
         if tri is not None:
-            return _weld(tri) + (None,)
+            return (*_weld(tri), None)
+    elif lower.endswith(".dae"):
+        return (*_weld(_read_collada(path)), None)
+    elif lower.endswith(".obj"):
+        return (*_read_obj(path), None)
     return _read_trimesh(path)
+
+
+def _read_obj(path: str) -> tuple[NDArray[np.float64], I32]:
+    """Vertices and fan-triangulated faces of every object in a Wavefront OBJ file."""
+    with open(path, "rb") as handle:
+        text = handle.read().decode("utf-8", "replace")
+    coords: list[list[str]] = []
+    tris: list[int] = []
+    for line in text.splitlines():
+        if line.startswith("v "):
+            coords.append(line.split()[1:4])
+        elif line.startswith("f "):
+            count = len(coords)
+            try:
+                idx = [int(tok.split("/", 1)[0]) for tok in line.split()[1:]]
+            except ValueError:
+                raise MeshReadError(f"bad face line {line.strip()!r}") from None
+            idx = [i - 1 if i > 0 else count + i for i in idx]
+            for k in range(1, len(idx) - 1):
+                tris.extend((idx[0], idx[k], idx[k + 1]))
+    try:
+        vertices = np.array(coords, dtype=np.float64).reshape(-1, 3)
+    except ValueError:
+        raise MeshReadError("bad vertex line") from None
+    indices = np.array(tris, dtype=np.int32)
+    if len(indices) and (indices.min() < 0 or indices.max() >= len(vertices)):
+        raise MeshReadError("a face refers to a vertex that does not exist")
+    return vertices, indices
 
 
 def _read_stl(path: str) -> NDArray[np.float64] | None:
@@ -59,6 +92,41 @@ def _read_stl(path: str) -> NDArray[np.float64] | None:
         raise MeshReadError(f"binary STL says {count} triangles but has {len(data)} bytes")
     records = np.frombuffer(data, dtype=_STL_RECORD, count=count, offset=84)
     return records["v"].astype(np.float64)
+
+
+def _read_collada(path: str) -> NDArray[np.float64]:
+    """(m, 3, 3) triangles of every geometry instance in a COLLADA scene, node transforms applied
+    and scaled by the file's ``<unit meter>`` (as ROS's loaders do; trimesh ignores it)."""
+    import collada  # type: ignore[import-untyped]
+
+    ignore = [
+        collada.common.DaeIncompleteError,
+        collada.common.DaeBrokenRefError,
+        collada.common.DaeMalformedError,
+        collada.common.DaeUnsupportedError,
+    ]
+    try:
+        dae = collada.Collada(path, ignore=ignore)
+    except Exception as exc:  # pycollada raises many types for bad files
+        raise MeshReadError(f"{type(exc).__name__}: {exc}") from None
+    parts: list[NDArray[np.float64]] = []
+    if dae.scene is not None:
+        for geometry in dae.scene.objects("geometry"):
+            for prim in geometry.primitives():
+                if isinstance(prim, collada.polylist.BoundPolylist | collada.polygons.BoundPolygons):
+                    prim = prim.triangleset()
+                if not isinstance(prim, collada.triangleset.BoundTriangleSet) or prim.vertex is None:
+                    continue
+                if len(prim.vertex_index) == 0:
+                    continue
+                parts.append(np.asarray(prim.vertex, dtype=np.float64)[np.asarray(prim.vertex_index)])
+    if not parts:
+        raise MeshReadError("COLLADA file has no triangles")
+    tri = np.concatenate(parts).reshape(-1, 3, 3)
+    unit = dae.assetInfo.unitmeter
+    if unit is not None and unit > 0 and unit != 1.0:
+        tri = tri * float(unit)
+    return tri
 
 
 def _weld(tri: NDArray[np.float64]) -> tuple[NDArray[np.float64], I32]:
@@ -111,6 +179,7 @@ def build_mesh(path: str, scale: Vec3 | None) -> MeshData:
     normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
     length = np.linalg.norm(normals, axis=1, keepdims=True)
     normals = np.divide(normals, length, out=np.zeros_like(normals), where=length > 0)
+    normals += 0.0  # no negative zeros in the text output
     points = vertices.astype(np.float32)
     extent = np.stack([points.min(axis=0), points.max(axis=0)])
     return MeshData(

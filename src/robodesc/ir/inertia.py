@@ -68,3 +68,21 @@ def parallel_axis(m: Mat3, mass: float, offset: NDArray[np.float64]) -> Mat3:
     d = np.asarray(offset, dtype=float)
     out: Mat3 = m + mass * (float(d @ d) * np.eye(3) - np.outer(d, d))
     return out
+
+
+def balance(m: Mat3, margin: float = 1e-6) -> tuple[Mat3, float]:
+    """Make a computed tensor strictly satisfy the triangle inequality.
+
+    A flat or thin shape (a decal, a plate) gives principal moments with A + B = C up to rounding,
+    and consumers (MuJoCo's ``A + B >= C`` check) refuse a rounding error's worth of violation.
+    Adding ``delta * I`` keeps the principal axes and raises every moment by ``delta``, which restores
+    ``A + B >= C (1 + margin)`` for ``delta = C (1 + margin) - A - B``. Returns the tensor and ``delta``
+    (0 when nothing was needed).
+    """
+    eig = np.linalg.eigvalsh(m)
+    a, b, c = (float(x) for x in eig)
+    delta = c * (1.0 + margin) - a - b
+    if delta <= 0:
+        return m, 0.0
+    out: Mat3 = m + delta * np.eye(3)
+    return out, delta

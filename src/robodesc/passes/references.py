@@ -28,14 +28,16 @@ def retarget_extension(ext: Extension, kind: str, mapping: Mapping[str, str], na
         ext.xml = etree.tostring(root, encoding="unicode")
 
 
-def rename_links(robot: Robot, mapping: Mapping[str, str]) -> None:
-    """Rename links by ``{old: new}``; ``display_name`` keeps the first original name."""
+def rename_links(robot: Robot, mapping: Mapping[str, str], *, keep_original: bool = True) -> None:
+    """Rename links by ``{old: new}``. With ``keep_original`` (sanitization) ``display_name`` keeps the
+    first original name; an explicit rename is the name the user wants shown, so it keeps none."""
     if not mapping:
         return
     old_names = {link.name for link in robot.links}
     for link in robot.links:
         if link.name in mapping:
-            link.display_name = link.display_name or link.name
+            if keep_original:
+                link.display_name = link.display_name or link.name
             link.name = mapping[link.name]
     for joint in robot.joints:
         joint.parent = mapping.get(joint.parent, joint.parent)
@@ -51,15 +53,17 @@ def rename_links(robot: Robot, mapping: Mapping[str, str]) -> None:
         retarget_extension(ext, "link", mapping, old_names)
 
 
-def rename_joints(robot: Robot, mapping: Mapping[str, str]) -> None:
-    """Rename joints by ``{old: new}`` and every mimic, transmission, ros2_control and sensor reference."""
+def rename_joints(robot: Robot, mapping: Mapping[str, str], *, keep_original: bool = True) -> None:
+    """Rename joints by ``{old: new}`` and every mimic, transmission, ros2_control and sensor reference
+    (``keep_original`` as in :func:`rename_links`)."""
     if not mapping:
         return
     link_names = {link.name for link in robot.links}
     old_names = {joint.name for joint in robot.joints} - link_names
     for joint in robot.joints:
         if joint.name in mapping:
-            joint.display_name = joint.display_name or joint.name
+            if keep_original:
+                joint.display_name = joint.display_name or joint.name
             joint.name = mapping[joint.name]
         if joint.mimic is not None:
             joint.mimic.joint = mapping.get(joint.mimic.joint, joint.mimic.joint)

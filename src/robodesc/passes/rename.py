@@ -59,8 +59,8 @@ def rename(robot: Robot, ctx: PassContext) -> Robot:
     joint_src = {joint.name: joint.src for joint in robot.joints}
     for old, new in joints.items():
         ctx.info("renamed", f"{old!r} -> {new!r}", element=f"joint {old!r}", loc=joint_src[old])
-    rename_links(robot, links)
-    rename_joints(robot, joints)
+    rename_links(robot, links, keep_original=False)
+    rename_joints(robot, joints, keep_original=False)
     if ctx.options.rename_actuators and joints:
         _rename_actuators(robot, joints, ctx)
     return robot

@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Inertial, Mesh, Pose, Sphere
-from robodesc.ir.inertia import from_tensor, parallel_axis, rotate
+from robodesc.ir.inertia import balance, from_tensor, parallel_axis, rotate
 from robodesc.ir.model import Link
 from robodesc.ir.transforms import rpy_to_matrix
 
@@ -156,7 +156,8 @@ def inertial_from_props(props: MassProps, *, mass: float, origin: Pose | None = 
     origin is kept (the input said where the centre of mass is) and the tensor is taken about it.
     """
     scale = mass / props.volume
-    tensor = props.tensor * scale
+    # Flat shapes sit on the triangle-inequality boundary; nudge them strictly inside (ir.inertia.balance).
+    tensor, _ = balance(props.tensor * scale)
     if origin is None:
         xyz = (float(props.com[0]), float(props.com[1]), float(props.com[2]))
         return Inertial(mass=mass, origin=Pose(xyz=xyz), inertia=from_tensor(tensor))

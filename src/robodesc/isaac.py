@@ -1,0 +1,117 @@
+"""The Isaac Sim target: one folder with everything Isaac Sim and Isaac Lab need.
+
+- ``<robot>.usda``: the UsdPhysics articulation (drives, armature, limits in degrees ...);
+- ``<robot>.urdf``: the Isaac-flavoured URDF (``<loop_joint>``, ``<fixed_frame>``, ``<sensor>``,
+  ``dont_collapse``, a ``<limit>`` on every revolute/prismatic joint);
+- ``importer_settings.json``: the same choices in Isaac Sim 5.x ``ImportConfig`` and Isaac Lab
+  ``UrdfConverterCfg`` vocabularies, for users who import the URDF themselves;
+- ``<robot>_isaaclab.py``: an Isaac Lab ``ArticulationCfg`` (plain data, importable anywhere);
+- ``validation.md`` / ``validation.json``: what the independent consumers saw;
+- ``findings.md``: every finding of the compile.
+
+One :class:`IsaacSettings` feeds all of them, so they cannot disagree.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+from typing import Any
+
+from robodesc import __version__
+from robodesc.emit.files import replace_dir_atomic
+from robodesc.emit.isaac_lab import isaac_lab_module
+from robodesc.emit.isaac_settings import IsaacSettings, importer_settings_json
+from robodesc.emit.paths import PathMode
+from robodesc.emit.urdf import UrdfOptions, emit_urdf
+from robodesc.emit.usd import emit_usd
+from robodesc.emit.usd_options import UsdOptions
+from robodesc.ir.diagnostics import Finding, Findings
+from robodesc.ir.model import Robot
+
+
+def usd_options(settings: IsaacSettings) -> UsdOptions:
+    return UsdOptions(
+        fix_base=settings.fix_base,
+        drive_type=settings.drive_type,
+        target_type=settings.target_type,
+        stiffness=settings.stiffness,
+        damping=settings.damping,
+        collision_approximation=settings.collision_approximation,
+        layered=settings.layered,
+        solver_position_iterations=settings.solver_position_iterations,
+        solver_velocity_iterations=settings.solver_velocity_iterations,
+        self_collision=settings.self_collision,
+        contact_offset=settings.contact_offset,
+        rest_offset=settings.rest_offset,
+        physics_scene=settings.physics_scene,
+    )
+
+
+def isaac_file_names(robot: Robot) -> dict[str, str]:
+    return {
+        "usd": f"{robot.name}.usda",
+        "urdf": f"{robot.name}.urdf",
+        "importer_settings": "importer_settings.json",
+        "isaaclab": f"{robot.name}_isaaclab.py",
+    }
+
+
+def write_isaac_folder(
+    robot: Robot,
+    out_dir: str,
+    settings: IsaacSettings,
+    findings: Findings,
+    path_mode: PathMode,
+    extra_files: dict[str, str] | None = None,
+) -> dict[str, str]:
+    """Write the folder atomically (staged beside ``out_dir``, then moved in place)."""
+    names = isaac_file_names(robot)
+    parent = os.path.dirname(os.path.abspath(out_dir))
+    os.makedirs(parent, exist_ok=True)
+    staging = tempfile.mkdtemp(prefix=".robodesc-isaac-", dir=parent)
+    try:
+        findings.extend(emit_usd(robot, os.path.join(staging, names["usd"]), usd_options(settings)))
+        # Relative mesh paths are computed against the final folder (a sibling of the staging one).
+        urdf = emit_urdf(robot, UrdfOptions(path_mode=path_mode, out_dir=os.path.abspath(out_dir)))
+        files: dict[str, str | bytes] = {
+            names["urdf"]: urdf,
+            names["importer_settings"]: importer_settings_json(robot, settings),
+            names["isaaclab"]: isaac_lab_module(robot, settings, names["usd"], findings, __version__).text,
+        }
+        files.update(extra_files or {})
+        for name, data in files.items():
+            with open(os.path.join(staging, name), "wb") as handle:
+                handle.write(data.encode("utf-8") if isinstance(data, str) else data)
+        written = {role: os.path.join(out_dir, name) for role, name in names.items()}
+        for name in sorted(os.listdir(staging)):
+            if name not in names.values():
+                written.setdefault(name, os.path.join(out_dir, name))
+        replace_dir_atomic(staging, out_dir)
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
+    return written
+
+
+def findings_markdown(robot: Robot, findings: list[Finding]) -> str:
+    lines = [f"# robodesc findings for {robot.name}", "", f"robodesc {__version__}; {len(findings)} findings.", ""]
+    if findings:
+        lines += ["| severity | stage | element | where | message |", "|---|---|---|---|---|"]
+        for f in findings:
+            where = str(f.loc) if f.loc else ""
+            message = f.message.replace("|", "\\|")
+            lines.append(f"| {f.severity.value} | {f.stage} | {f.element} | {where} | {message} |")
+    return "\n".join(lines) + "\n"
+
+
+def settings_names() -> set[str]:
+    import dataclasses
+
+    return {f.name for f in dataclasses.fields(IsaacSettings)}
+
+
+def settings_kwargs(values: dict[str, Any]) -> dict[str, Any]:
+    names = settings_names()
+    return {k: v for k, v in values.items() if k in names}
