@@ -148,7 +148,7 @@ def sensor_element(
             if spec.height is not None:
                 E(image, "height").text = str(spec.height)
             if spec.format is not None:
-                E(image, "format").text = spec.format
+                E(image, "format").text = sdf_image_format(spec.format)
         if spec is not None and (spec.near is not None or spec.far is not None):
             clip = E(cam, "clip")
             if spec.near is not None:
@@ -205,3 +205,24 @@ def classic_ft_plugin(parent: etree._Element, robot: Robot, sensor: Sensor, link
     E(plugin, "frame_name").text = link
     if sensor.update_rate is not None:
         E(plugin, "update_rate").text = fmt(sensor.update_rate)
+
+
+# URDF/Isaac and ROS image encodings → SDF's <image><format> values (libsdformat rejects the others).
+_IMAGE_FORMATS = {
+    "rgb8": "R8G8B8",
+    "bgr8": "B8G8R8",
+    "rgba8": "R8G8B8",  # SDF cameras have no alpha format
+    "mono8": "L8",
+    "l8": "L8",
+    "mono16": "L16",
+    "l16": "L16",
+    "r8g8b8": "R8G8B8",
+    "b8g8r8": "B8G8R8",
+    "r_float32": "R_FLOAT32",
+    "r_float16": "R_FLOAT16",
+}
+
+
+def sdf_image_format(name: str) -> str:
+    """The SDF spelling of an image format (``RGB8`` → ``R8G8B8``); unknown names pass through."""
+    return _IMAGE_FORMATS.get(name.strip().lower(), name)
