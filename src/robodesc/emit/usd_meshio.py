@@ -1,6 +1,6 @@
 """Reading mesh files into the arrays a UsdGeom.Mesh needs.
 
-STL and OBJ are read with numpy directly and COLLADA with pycollada: importing trimesh alone costs
+STL (binary and ASCII) and OBJ are read with numpy directly and COLLADA with pycollada: importing trimesh alone costs
 over a second, more than converting a whole robot. Other formats go through trimesh, imported on
 first use. Texture coordinates are only read through trimesh (not for STL, OBJ, DAE yet). Results are cached per (file, scale) for one emitter run,
 because visuals and colliders often share a file.
@@ -41,9 +41,7 @@ def read_triangles(path: str) -> tuple[NDArray[np.float64], I32, NDArray[np.floa
     """(vertices, triangle indices, per-vertex uv or None) of a mesh file, in file units."""
     lower = path.lower()
     if lower.endswith(".stl"):
-        tri = _read_stl(path)
-        if tri is not None:
-            return (*_weld(tri), None)
+        return (*_weld(_read_stl(path)), None)
     elif lower.endswith(".dae"):
         return (*_weld(_read_collada(path)), None)
     elif lower.endswith(".obj"):
@@ -79,8 +77,8 @@ def _read_obj(path: str) -> tuple[NDArray[np.float64], I32]:
     return vertices, indices
 
 
-def _read_stl(path: str) -> NDArray[np.float64] | None:
-    """(m, 3, 3) triangles of a binary STL; None for ASCII STL (left to trimesh)."""
+def _read_stl(path: str) -> NDArray[np.float64]:
+    """(m, 3, 3) triangles of a binary or ASCII STL."""
     with open(path, "rb") as handle:
         data = handle.read()
     if len(data) < 84:
@@ -88,10 +86,23 @@ def _read_stl(path: str) -> NDArray[np.float64] | None:
     count = int(np.frombuffer(data, dtype="<u4", count=1, offset=80)[0])
     if 84 + count * 50 != len(data):
         if data.lstrip()[:5].lower() == b"solid":
-            return None
+            return _read_ascii_stl(data)
         raise MeshReadError(f"binary STL says {count} triangles but has {len(data)} bytes")
     records = np.frombuffer(data, dtype=_STL_RECORD, count=count, offset=84)
     return records["v"].astype(np.float64)
+
+
+def _read_ascii_stl(data: bytes) -> NDArray[np.float64]:
+    tokens = np.array(data.lower().split())
+    at = np.nonzero(tokens == b"vertex")[0]
+    if len(at) == 0 or len(at) % 3 or at[-1] + 3 >= len(tokens):
+        raise MeshReadError("ASCII STL without complete triangles")
+    try:
+        coords = tokens[at[:, None] + np.arange(1, 4)].astype(np.float64)
+    except ValueError:
+        raise MeshReadError("ASCII STL has a bad vertex line") from None
+    out: NDArray[np.float64] = coords.reshape(-1, 3, 3)
+    return out
 
 
 def _read_collada(path: str) -> NDArray[np.float64]:
