@@ -36,8 +36,7 @@ def _key_value(text: str) -> tuple[str, str]:
     return name, value
 
 
-def _add_input_options(p: argparse.ArgumentParser) -> None:
-    g = p.add_argument_group("input")
+def _add_package_and_arg(g: argparse._ActionsContainer) -> None:
     g.add_argument(
         "--package",
         metavar="NAME=DIR",
@@ -51,6 +50,11 @@ def _add_input_options(p: argparse.ArgumentParser) -> None:
     g.add_argument(
         "--arg", metavar="NAME=VALUE", action="append", type=_key_value, default=[], help="xacro argument (repeatable)"
     )
+
+
+def _add_input_options(p: argparse.ArgumentParser) -> None:
+    g = p.add_argument_group("input")
+    _add_package_and_arg(g)
     g.add_argument(
         "--missing-mesh",
         choices=[m.value for m in MissingMesh],
@@ -192,17 +196,7 @@ def _parser() -> argparse.ArgumentParser:
         description="Expand a .xacro file and print the URDF; line numbers in robodesc's messages about xacro input refer to this text.",
     )
     exp.add_argument("input")
-    exp.add_argument(
-        "--package",
-        metavar="NAME=DIR",
-        action="append",
-        type=_key_value,
-        default=[],
-        help="where ROS package NAME lives (repeatable)",
-    )
-    exp.add_argument(
-        "--arg", metavar="NAME=VALUE", action="append", type=_key_value, default=[], help="xacro argument (repeatable)"
-    )
+    _add_package_and_arg(exp)
     return parser
 
 

@@ -12,44 +12,32 @@ import dataclasses
 import os
 from typing import Any
 
-USD_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "IsaacSimRobotArm.usda")
+USD_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'IsaacSimRobotArm.usda')
 
-ROBOT: dict[str, Any] = {
-    "name": "IsaacSimRobotArm",
-    "fix_base": True,
-    "init_state": {
-        "pos": (0.0, 0.0, 0.05),
-        "rot": (1.0, 0.0, 0.0, 0.0),
-        "joint_pos": {"ShoulderJoint_joint": 0.0, "ElbowJoint_joint": 0.0},
-        "joint_vel": {".*": 0.0},
-    },
-    "articulation": {
-        "enabled_self_collisions": False,
-        "solver_position_iteration_count": 8,
-        "solver_velocity_iteration_count": 4,
-        "fix_root_link": True,
-    },
-    "actuators": {
-        "ShoulderJoint_joint": {
-            "joint_names_expr": ["ShoulderJoint_joint"],
-            "stiffness": 100.0,
-            "damping": 1.0,
-            "effort_limit_sim": 10.0,
-            "velocity_limit_sim": 2.0,
-            "armature": None,
-            "friction": 0.1,
-        },
-        "ElbowJoint_joint": {
-            "joint_names_expr": ["ElbowJoint_joint"],
-            "stiffness": 100.0,
-            "damping": 1.0,
-            "effort_limit_sim": 5.0,
-            "velocity_limit_sim": 1.5,
-            "armature": None,
-            "friction": 0.05,
-        },
-    },
-}
+ROBOT: dict[str, Any] = {   'name': 'IsaacSimRobotArm',
+    'fix_base': True,
+    'init_state': {   'pos': (0.0, 0.0, 0.05),
+                      'rot': (1.0, 0.0, 0.0, 0.0),
+                      'joint_pos': {'ShoulderJoint_joint': 0.0, 'ElbowJoint_joint': 0.0},
+                      'joint_vel': {'.*': 0.0}},
+    'articulation': {   'enabled_self_collisions': False,
+                        'solver_position_iteration_count': 8,
+                        'solver_velocity_iteration_count': 4,
+                        'fix_root_link': True},
+    'actuators': {   'ShoulderJoint_joint': {   'joint_names_expr': ['ShoulderJoint_joint'],
+                                                'stiffness': 100.0,
+                                                'damping': 1.0,
+                                                'effort_limit_sim': 10.0,
+                                                'velocity_limit_sim': 2.0,
+                                                'armature': None,
+                                                'friction': 0.1},
+                     'ElbowJoint_joint': {   'joint_names_expr': ['ElbowJoint_joint'],
+                                             'stiffness': 100.0,
+                                             'damping': 1.0,
+                                             'effort_limit_sim': 5.0,
+                                             'velocity_limit_sim': 1.5,
+                                             'armature': None,
+                                             'friction': 0.05}}}
 
 
 def _fit(cls: Any, values: dict[str, Any], aliases: dict[str, tuple[str, ...]]) -> Any:
