@@ -5,7 +5,7 @@ The public API lives in :mod:`robodesc.api` and is re-exported here.
 
 __version__ = "0.1.0"
 
-from robodesc.api import (  # noqa: E402  (the version must exist before the API imports)
+from robodesc.api import (
     CompileResult,
     compile_for_gazebo,
     compile_for_isaac_sim,

@@ -43,7 +43,14 @@ def _option_names(*classes: type[Any]) -> dict[str, str]:
     return names
 
 
-def _compile(target: str, source: Source, out: str | os.PathLike[str] | None, progress: Progress | None, options: dict[str, Any], *classes: type[Any]) -> CompileResult:
+def _compile(
+    target: str,
+    source: Source,
+    out: str | os.PathLike[str] | None,
+    progress: Progress | None,
+    options: dict[str, Any],
+    *classes: type[Any],
+) -> CompileResult:
     opts = build_options(options, extra_names={**_pass_names(), **_option_names(*classes)})
     return compile_robot(source, target, _out(out), opts, **({"progress": progress} if progress else {}))
 

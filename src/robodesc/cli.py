@@ -91,8 +91,14 @@ def _parser() -> argparse.ArgumentParser:
         epilog=EPILOG,
     )
     comp.add_argument("input", help="URDF, .xacro, composition (.yaml, .holo) file")
-    comp.add_argument("-t", "--target", choices=["urdf", "sdf", "usd"], default="urdf", help="output format (default: urdf)")
-    comp.add_argument("-o", "--output", help="output file, or folder for --ros2/--isaac-sim (default: standard output for text targets)")
+    comp.add_argument(
+        "-t", "--target", choices=["urdf", "sdf", "usd"], default="urdf", help="output format (default: urdf)"
+    )
+    comp.add_argument(
+        "-o",
+        "--output",
+        help="output file, or folder for --ros2/--isaac-sim (default: standard output for text targets)",
+    )
     comp.add_argument(
         "--isaac-sim",
         action="store_true",
@@ -115,19 +121,70 @@ def _parser() -> argparse.ArgumentParser:
         "package:// where the input used a package, or keep exactly as written",
     )
     ps = comp.add_argument_group("passes (see docs/passes.md)")
-    ps.add_argument("--preset", choices=["isaac_sim", "ros2", "gazebo", "mujoco", "quad_sdk"], help="a named set of passes for a target or a workflow")
-    ps.add_argument("--rename", action="append", default=[], metavar="SPEC", help="rename joints: OLD=NEW, re:PATTERN=REPLACEMENT; prefix link: to rename links (repeatable, first match wins)")
-    ps.add_argument("--armature", action="append", default=[], metavar="REGEX=VALUE", help="reflected rotor inertia (kg·m²) for joints matching REGEX, or REGEX=J_ROTOR*N^2 (repeatable, first match wins)")
-    ps.add_argument("--strip", metavar="KINDS", help="remove gazebo,transmission,ros2_control,dont_collapse,contact,surface (comma list, or all)")
-    ps.add_argument("--repair-inertia", choices=["geometry", "quad_sdk", "off"], help="repair missing/invalid inertials: from geometry, or by Quad-SDK's constants")
-    ps.add_argument("--sanitize-names", action="store_true", default=None, help="make every name a valid USD/Isaac identifier (originals kept as displayName)")
-    ps.add_argument("--unique-materials", action="store_true", default=None, help="one uniquely named material per distinct colour/texture")
-    ps.add_argument("--merge-fixed", action="store_true", default=None, help="lump fixed-joint children into their parents (kept as fixed frames; dont_collapse respected)")
-    ps.add_argument("--copy-meshes", action="store_true", default=None, help="copy meshes into a meshes/ folder next to the output")
+    ps.add_argument(
+        "--preset",
+        choices=["isaac_sim", "ros2", "gazebo", "mujoco", "quad_sdk"],
+        help="a named set of passes for a target or a workflow",
+    )
+    ps.add_argument(
+        "--rename",
+        action="append",
+        default=[],
+        metavar="SPEC",
+        help="rename joints: OLD=NEW, re:PATTERN=REPLACEMENT; prefix link: to rename links (repeatable, first match wins)",
+    )
+    ps.add_argument(
+        "--armature",
+        action="append",
+        default=[],
+        metavar="REGEX=VALUE",
+        help="reflected rotor inertia (kg·m²) for joints matching REGEX, or REGEX=J_ROTOR*N^2 (repeatable, first match wins)",
+    )
+    ps.add_argument(
+        "--strip",
+        metavar="KINDS",
+        help="remove gazebo,transmission,ros2_control,dont_collapse,contact,surface (comma list, or all)",
+    )
+    ps.add_argument(
+        "--repair-inertia",
+        choices=["geometry", "quad_sdk", "off"],
+        help="repair missing/invalid inertials: from geometry, or by Quad-SDK's constants",
+    )
+    ps.add_argument(
+        "--sanitize-names",
+        action="store_true",
+        default=None,
+        help="make every name a valid USD/Isaac identifier (originals kept as displayName)",
+    )
+    ps.add_argument(
+        "--unique-materials",
+        action="store_true",
+        default=None,
+        help="one uniquely named material per distinct colour/texture",
+    )
+    ps.add_argument(
+        "--merge-fixed",
+        action="store_true",
+        default=None,
+        help="lump fixed-joint children into their parents (kept as fixed frames; dont_collapse respected)",
+    )
+    ps.add_argument(
+        "--copy-meshes", action="store_true", default=None, help="copy meshes into a meshes/ folder next to the output"
+    )
     sdf = comp.add_argument_group("SDF (-t sdf)")
-    sdf.add_argument("--sdf-version", choices=["1.7", "1.9", "1.10", "1.11"], help="SDF version (default 1.10; 1.11 keeps mimic joints; 1.9 for older libsdformat)")
-    sdf.add_argument("--world", action="store_true", help="wrap the model in a world with ground plane, physics and light")
-    sdf.add_argument("--gazebo-classic", action="store_true", help="Gazebo Classic plugins (libgazebo_ros_*) instead of Harmonic's gz-sim systems")
+    sdf.add_argument(
+        "--sdf-version",
+        choices=["1.7", "1.9", "1.10", "1.11"],
+        help="SDF version (default 1.10; 1.11 keeps mimic joints; 1.9 for older libsdformat)",
+    )
+    sdf.add_argument(
+        "--world", action="store_true", help="wrap the model in a world with ground plane, physics and light"
+    )
+    sdf.add_argument(
+        "--gazebo-classic",
+        action="store_true",
+        help="Gazebo Classic plugins (libgazebo_ros_*) instead of Harmonic's gz-sim systems",
+    )
     sim = comp.add_argument_group("simulation (SDF, USD, Isaac)")
     sim.add_argument(
         "--fix-base",
@@ -138,23 +195,80 @@ def _parser() -> argparse.ArgumentParser:
     )
     isaac = comp.add_argument_group("USD and Isaac Sim (-t usd, --isaac-sim; see docs/isaac.md)")
     isaac.add_argument("--drive-type", choices=["force", "acceleration"], help="joint drive type (default force)")
-    isaac.add_argument("--target-type", choices=["none", "position", "velocity"], help="drive target (default position; none = passive joints, gains 0)")
-    isaac.add_argument("--stiffness", action="append", metavar="VALUE|REGEX=VALUE", help="drive stiffness in SI (N·m/rad, N/m), one number or rules (repeatable, first match wins); written per degree in USD")
-    isaac.add_argument("--damping", action="append", metavar="VALUE|REGEX=VALUE", help="drive damping in SI (N·m·s/rad, N·s/m), like --stiffness")
-    isaac.add_argument("--collision-approximation", choices=["convexHull", "convexDecomposition", "boundingCube", "boundingSphere", "none"], help="how mesh colliders are approximated (default convexHull)")
-    isaac.add_argument("--self-collision", action="store_true", default=None, help="collide the robot's links with each other")
-    isaac.add_argument("--solver-position-iterations", type=int, metavar="N", help="PhysX articulation position iterations")
-    isaac.add_argument("--solver-velocity-iterations", type=int, metavar="N", help="PhysX articulation velocity iterations")
-    isaac.add_argument("--contact-offset", type=float, metavar="M", help="PhysX contact offset on every collider (default PhysX's ~2 cm)")
+    isaac.add_argument(
+        "--target-type",
+        choices=["none", "position", "velocity"],
+        help="drive target (default position; none = passive joints, gains 0)",
+    )
+    isaac.add_argument(
+        "--stiffness",
+        action="append",
+        metavar="VALUE|REGEX=VALUE",
+        help="drive stiffness in SI (N·m/rad, N/m), one number or rules (repeatable, first match wins); written per degree in USD",
+    )
+    isaac.add_argument(
+        "--damping",
+        action="append",
+        metavar="VALUE|REGEX=VALUE",
+        help="drive damping in SI (N·m·s/rad, N·s/m), like --stiffness",
+    )
+    isaac.add_argument(
+        "--collision-approximation",
+        choices=["convexHull", "convexDecomposition", "boundingCube", "boundingSphere", "none"],
+        help="how mesh colliders are approximated (default convexHull)",
+    )
+    isaac.add_argument(
+        "--self-collision", action="store_true", default=None, help="collide the robot's links with each other"
+    )
+    isaac.add_argument(
+        "--solver-position-iterations", type=int, metavar="N", help="PhysX articulation position iterations"
+    )
+    isaac.add_argument(
+        "--solver-velocity-iterations", type=int, metavar="N", help="PhysX articulation velocity iterations"
+    )
+    isaac.add_argument(
+        "--contact-offset",
+        type=float,
+        metavar="M",
+        help="PhysX contact offset on every collider (default PhysX's ~2 cm)",
+    )
     isaac.add_argument("--rest-offset", type=float, metavar="M", help="PhysX rest offset on every collider")
-    isaac.add_argument("--merge-fixed-joints", action="store_true", default=None, help="importer setting: merge fixed joints on URDF import (dont_collapse keeps marked bodies)")
-    isaac.add_argument("--layered", action="store_true", default=None, help="USD as an interface layer + payload (like NVIDIA's converter) instead of one file")
-    isaac.add_argument("--physics-scene", action="store_true", default=None, help="add a /PhysicsScene beside the robot (outside the default prim)")
+    isaac.add_argument(
+        "--merge-fixed-joints",
+        action="store_true",
+        default=None,
+        help="importer setting: merge fixed joints on URDF import (dont_collapse keeps marked bodies)",
+    )
+    isaac.add_argument(
+        "--layered",
+        action="store_true",
+        default=None,
+        help="USD as an interface layer + payload (like NVIDIA's converter) instead of one file",
+    )
+    isaac.add_argument(
+        "--physics-scene",
+        action="store_true",
+        default=None,
+        help="add a /PhysicsScene beside the robot (outside the default prim)",
+    )
     isaac.add_argument("--init-pos", metavar="X,Y,Z", help="Isaac Lab spawn position of the base (m)")
-    isaac.add_argument("--init-joint-pos", action="append", metavar="REGEX=VALUE", help="Isaac Lab initial joint positions (rad; repeatable, first match wins)")
+    isaac.add_argument(
+        "--init-joint-pos",
+        action="append",
+        metavar="REGEX=VALUE",
+        help="Isaac Lab initial joint positions (rad; repeatable, first match wins)",
+    )
     ros2 = comp.add_argument_group("ROS 2 (--ros2)")
-    ros2.add_argument("--command-interface", choices=["position", "velocity", "effort"], help="what the controllers command (default position)")
-    ros2.add_argument("--controller", choices=["joint_trajectory", "forward_command"], help="the command controller (default joint_trajectory)")
+    ros2.add_argument(
+        "--command-interface",
+        choices=["position", "velocity", "effort"],
+        help="what the controllers command (default position)",
+    )
+    ros2.add_argument(
+        "--controller",
+        choices=["joint_trajectory", "forward_command"],
+        help="the command controller (default joint_trajectory)",
+    )
     val = comp.add_argument_group("validation")
     val.add_argument(
         "--validate",
@@ -164,7 +278,9 @@ def _parser() -> argparse.ArgumentParser:
         "installed) and compare masses, inertias, joints, limits and forward kinematics with the IR (default: on)",
     )
     val.add_argument("--report", metavar="FILE.md", help="also write the validation report as Markdown")
-    comp.add_argument("--json", action="store_true", help="print a JSON summary (findings, files, validation) on standard output")
+    comp.add_argument(
+        "--json", action="store_true", help="print a JSON summary (findings, files, validation) on standard output"
+    )
     comp.add_argument("-q", "--quiet", action="store_true", help="print errors only")
 
     insp = sub.add_parser(

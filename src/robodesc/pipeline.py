@@ -295,7 +295,9 @@ def compile_robot(
         findings.extend(ctx.findings)
     progress(f"writing {target}")
     emitted = TARGETS[target](robot, out, options, findings)
-    result = CompileResult(robot=robot, findings=_unique(findings), target=target, text=emitted.text, files=emitted.files)
+    result = CompileResult(
+        robot=robot, findings=_unique(findings), target=target, text=emitted.text, files=emitted.files
+    )
     if options.validate:
         progress("validating")
         result.validation = validate_emitted(robot, target, emitted, out, options)
@@ -326,9 +328,16 @@ def validate_emitted(robot: Robot, target: str, emitted: Emitted, out: str | Non
         if robot.loop_joints:
             # Drake models trees only: check the tree, and say the closures went unchecked.
             text = build_sdf(robot, dataclasses.replace(emitted.extra["sdf_options"], loop_joints=False)).text
-        report = validate_sdf(robot, text, vopts, link_names=emitted.extra.get("link_names"), joint_names=emitted.extra.get("joint_names"))
+        report = validate_sdf(
+            robot, text, vopts, link_names=emitted.extra.get("link_names"), joint_names=emitted.extra.get("joint_names")
+        )
         for loop in robot.loop_joints:
-            report.add("loop-joint", Status.SKIP, f"loop_joint {loop.name!r}", "Drake models kinematic trees only; the tree was checked without this closure")
+            report.add(
+                "loop-joint",
+                Status.SKIP,
+                f"loop_joint {loop.name!r}",
+                "Drake models kinematic trees only; the tree was checked without this closure",
+            )
     elif target == "usd" and "usd" in emitted.files:
         from robodesc.validation.mujoco_usd import validate_usd
 
@@ -336,16 +345,16 @@ def validate_emitted(robot: Robot, target: str, emitted: Emitted, out: str | Non
     else:
         from robodesc.validation.mujoco_urdf import validate_urdf_text
 
-        text = emitted.text
+        urdf_text = emitted.text
         base_dir = os.path.dirname(os.path.abspath(out)) if out and target == "urdf" else os.getcwd()
-        if text is None:  # folder targets: validate the URDF they contain
+        if urdf_text is None:  # folder targets: validate the URDF they contain
             urdf = next((p for p in emitted.files.values() if p.endswith(".urdf")), None)
             if urdf is None:
                 return None
             with open(urdf, encoding="utf-8") as handle:
-                text = handle.read()
+                urdf_text = handle.read()
             base_dir = os.path.dirname(urdf)
-        report = validate_urdf_text(robot, text, base_dir, vopts)
+        report = validate_urdf_text(robot, urdf_text, base_dir, vopts)
     _carried_defects(robot, report)
     return report
 
@@ -357,7 +366,11 @@ def _carried_defects(robot: Robot, report: Any) -> None:
 
     defective = {f.element for f in verify(robot) if f.code in PHYSICAL_CODES or f.code == "massless-link"}
     for check in report.checks:
-        if check.status is Status.FAIL and check.name in ("mujoco-compile", "drake-parse") and check.element in defective:
+        if (
+            check.status is Status.FAIL
+            and check.name in ("mujoco-compile", "drake-parse")
+            and check.element in defective
+        ):
             check.status = Status.WARN
             check.message += " [a defect of the source, carried through unchanged]"
 

@@ -110,7 +110,13 @@ def _initial_position(joint: Joint, settings: IsaacSettings, findings: Findings)
     wanted = lookup(settings.init_joint_pos, joint.name, "init_joint_pos") if settings.init_joint_pos else None
     q = 0.0 if wanted is None else wanted
     lim = joint.limit
-    if lim is not None and lim.lower is not None and lim.upper is not None and lim.lower <= lim.upper and joint.type.needs_limit:
+    if (
+        lim is not None
+        and lim.lower is not None
+        and lim.upper is not None
+        and lim.lower <= lim.upper
+        and joint.type.needs_limit
+    ):
         clamped = min(max(q, lim.lower), lim.upper)
         if clamped != q:
             findings.warn(
@@ -162,7 +168,9 @@ def actuator_groups(robot: Robot, settings: IsaacSettings) -> dict[str, dict[str
     return groups
 
 
-def isaac_lab_module(robot: Robot, settings: IsaacSettings, usd_file: str, findings: Findings, version: str) -> IsaacLabModule:
+def isaac_lab_module(
+    robot: Robot, settings: IsaacSettings, usd_file: str, findings: Findings, version: str
+) -> IsaacLabModule:
     joint_pos = {j.name: _initial_position(j, settings, findings) for j in robot.actuated_joints() if j.type.dof == 1}
     data: dict[str, object] = {
         "name": robot.name,

@@ -33,7 +33,9 @@ class IsaacSettings:
     stiffness: Gains = 100.0
     damping: Gains = 1.0
     self_collision: bool = False
-    collision_approximation: str = "convexHull"  # convexHull | convexDecomposition | boundingCube | boundingSphere | none
+    collision_approximation: str = (
+        "convexHull"  # convexHull | convexDecomposition | boundingCube | boundingSphere | none
+    )
     solver_position_iterations: int | None = None
     solver_velocity_iterations: int | None = None
     contact_offset: float | None = None

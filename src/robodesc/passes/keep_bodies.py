@@ -33,7 +33,7 @@ def keep_bodies(robot: Robot, ctx: PassContext) -> Robot:
         if joint.dont_collapse is False:
             ctx.warn(
                 "collapse-loses-prim",
-                f"dont_collapse=\"false\" kept as given, but {needs[joint.child]} hangs on link {joint.child!r} "
+                f'dont_collapse="false" kept as given, but {needs[joint.child]} hangs on link {joint.child!r} '
                 "and is lost if Isaac merges this joint",
                 element=label,
                 loc=joint.src,
@@ -42,7 +42,7 @@ def keep_bodies(robot: Robot, ctx: PassContext) -> Robot:
             joint.dont_collapse = True
             ctx.info(
                 "dont-collapse",
-                f"dont_collapse=\"true\": {needs[joint.child]} hangs on link {joint.child!r}",
+                f'dont_collapse="true": {needs[joint.child]} hangs on link {joint.child!r}',
                 element=label,
                 loc=joint.src,
             )
