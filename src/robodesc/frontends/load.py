@@ -64,8 +64,9 @@ def load_path(path: str, options: LoadOptions | None = None) -> Loaded:
     findings = Findings()
     if not os.path.exists(path):
         raise ParseError("input file not found", loc=SourceLoc(path))
-    _composition_frontends()
     lower = path.lower()
+    if not lower.endswith((".urdf", ".xml", ".xacro")):
+        _composition_frontends()  # yaml and the .holo parser cost ~40 ms to import: only when needed
     for suffix, frontend in sorted(FRONTENDS.items(), key=lambda kv: -len(kv[0])):
         if lower.endswith(suffix):
             return Loaded(frontend(path, opts, findings), findings)
