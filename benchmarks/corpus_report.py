@@ -4,8 +4,8 @@
     PYTHONPATH=src python benchmarks/corpus_report.py --subset small  # a few robots -> docs/corpus-report-small.md
     PYTHONPATH=src python benchmarks/corpus_report.py --subset small --check   # CI: fail if the file is stale
 
-Targets: URDF (validated in MuJoCo), SDF (validated in Drake) and USD (validated with mujoco-usd
-when installed), each only when its emitter imports. The file is deterministic: robots in corpus
+Targets: URDF (validated in MuJoCo), SDF (validated in Drake) and USD (validated with usd-core's
+UsdPhysics parser, plus mujoco-usd when installed), each only when its emitter imports. The file is deterministic: robots in corpus
 order, errors at machine precision printed as "≤1e-12", no timestamps; timings go to stdout only.
 """
 
@@ -253,7 +253,7 @@ def render(results: list[RobotResult], targets: list[str], subset: str) -> str:
         + ".",
         "",
         "Each robot is read from its source, emitted to every target, and the output is loaded by an",
-        "independent consumer (URDF: MuJoCo, SDF: Drake, USD: mujoco-usd) and compared with the IR:",
+        "independent consumer (URDF: MuJoCo, SDF: Drake, USD: usd-core's UsdPhysics parser) and compared with the IR:",
         "masses, centres of mass, inertia tensors, joint types, axes and limits, and forward kinematics",
         "of every link at random configurations; URDF also gets a 0.5 s simulation. See",
         "[validation.md](validation.md) for the checks and tolerances. Errors at machine precision show",

@@ -274,7 +274,7 @@ def _parser() -> argparse.ArgumentParser:
         "--validate",
         action=argparse.BooleanOptionalAction,
         default=True,
-        help="load the output in an independent consumer (MuJoCo for URDF, Drake for SDF, mujoco-usd for USD when "
+        help="load the output in an independent consumer (MuJoCo for URDF, Drake for SDF, usd-core's UsdPhysics parser for USD, plus mujoco-usd when "
         "installed) and compare masses, inertias, joints, limits and forward kinematics with the IR (default: on)",
     )
     val.add_argument("--report", metavar="FILE.md", help="also write the validation report as Markdown")

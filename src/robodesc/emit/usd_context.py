@@ -96,14 +96,17 @@ def set_display_name(prim: Usd.Prim, display_name: str | None) -> None:
 
 
 def set_pose(xformable: UsdGeom.Xformable, m: Mat, scale: tuple[float, float, float] | None = None) -> None:
-    """translate (double3) + orient (quatf) [+ scale (float3)]; identity parts are still written on
-    bodies by callers that need a complete pose, elsewhere they are skipped."""
+    """translate (double3) + orient (quatd) [+ scale (float3)]; identity parts are still written on
+    bodies by callers that need a complete pose, elsewhere they are skipped.
+
+    The orient is double precision: for a rotation under ~5e-4 rad a quatf's real part rounds to
+    exactly 1, and usd-core (GfRotation takes the angle from acos(w)) then evaluates the identity."""
     t = m[:3, 3]
     if np.any(t):
         xformable.AddTranslateOp().Set(Gf.Vec3d(float(t[0]), float(t[1]), float(t[2])))
     w, x, y, z = matrix_to_quat_wxyz(m[:3, :3])
     if (w, x, y, z) != (1.0, 0.0, 0.0, 0.0):
-        xformable.AddOrientOp().Set(Gf.Quatf(w, x, y, z))
+        xformable.AddOrientOp(UsdGeom.XformOp.PrecisionDouble).Set(Gf.Quatd(w, x, y, z))
     if scale is not None:
         xformable.AddScaleOp().Set(Gf.Vec3f(*scale))
 
@@ -112,7 +115,7 @@ def set_full_pose(xformable: UsdGeom.Xformable, m: Mat) -> None:
     t = m[:3, 3]
     xformable.AddTranslateOp().Set(Gf.Vec3d(float(t[0]), float(t[1]), float(t[2])))
     w, x, y, z = matrix_to_quat_wxyz(m[:3, :3])
-    xformable.AddOrientOp().Set(Gf.Quatf(w, x, y, z))
+    xformable.AddOrientOp(UsdGeom.XformOp.PrecisionDouble).Set(Gf.Quatd(w, x, y, z))
 
 
 def quatf(m: Mat) -> Gf.Quatf:

@@ -362,6 +362,17 @@ def compare_fk(robot: Robot, model: Any, options: ValidateOptions, report: Valid
                 prev[0] / options.position_tol, prev[1] / options.rotation_tol
             ):
                 worst[link.name] = (ep, er, q)
+    report_fk(robot, worst, len(configs), options, report)
+
+
+def report_fk(
+    robot: Robot,
+    worst: dict[str, tuple[float, float, dict[str, float]]],
+    n_configs: int,
+    options: ValidateOptions,
+    report: ValidationReport,
+) -> None:
+    """Turn the worst (position, rotation, configuration) error per link into ``fk`` rows."""
     max_p = max((w[0] for w in worst.values()), default=0.0)
     max_r = max((w[1] for w in worst.values()), default=0.0)
     report.note_error("fk_position", max_p)
@@ -397,7 +408,7 @@ def compare_fk(robot: Robot, model: Any, options: ValidateOptions, report: Valid
         report.add(
             "fk",
             Status.PASS,
-            f"{len(worst)} links × {len(configs)} configurations",
+            f"{len(worst)} links × {n_configs} configurations",
             f"largest error {max_p:.3g} m, {max_r:.3g} rad",
             error=max(max_p, max_r),
             tolerance=max(options.position_tol, options.rotation_tol),

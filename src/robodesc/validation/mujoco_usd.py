@@ -1,7 +1,9 @@
-"""Validate emitted USD with MuJoCo's UsdPhysics importer (the ``mujoco-usd`` package), when present.
+"""Validate emitted USD: usd-core's physics parser always, MuJoCo's UsdPhysics importer (the
+``mujoco-usd`` package) too when present.
 
 ``mujoco-usd`` pins its own ``usd-core``, so robodesc never depends on it: install it in a separate
-environment to run this check. Without it the report carries one clear "skipped" row.
+environment to run its checks. Without it the report carries one "skipped" row for it, and the
+usd-core checks (:mod:`robodesc.validation.usd_physics`) still decide.
 """
 
 from __future__ import annotations
@@ -12,6 +14,9 @@ from robodesc.ir.model import Robot
 from robodesc.validation.compare import compare_fk, compare_inertials, compare_joints, compare_structure
 from robodesc.validation.options import ValidateOptions
 from robodesc.validation.report import Status, ValidationReport
+from robodesc.validation.usd_physics import validate_usd_physics
+
+MUJOCO_USD = "mujoco-usd"
 
 
 def mujoco_usd_available() -> bool:
@@ -19,12 +24,27 @@ def mujoco_usd_available() -> bool:
 
 
 def validate_usd(robot: Robot, usd_path: str, options: ValidateOptions | None = None) -> ValidationReport:
+    """The usd-physics report, plus the mujoco-usd checks (named ``mujoco-usd <check>``) when
+    mujoco-usd imports, or one skip row saying it does not."""
+    opts = options or ValidateOptions()
+    report = validate_usd_physics(robot, usd_path, opts)
+    mj = validate_usd_mujoco(robot, usd_path, opts)
+    if mujoco_usd_available():
+        report.consumer = f"{report.consumer} + {MUJOCO_USD}"
+        for check in mj.checks:
+            if check.name != MUJOCO_USD:
+                check.name = f"{MUJOCO_USD} {check.name}"
+    report.extend(mj)
+    return report
+
+
+def validate_usd_mujoco(robot: Robot, usd_path: str, options: ValidateOptions | None = None) -> ValidationReport:
     """Load ``usd_path`` with ``MjSpec.from_file`` through mujoco-usd and compare it with ``robot``."""
     opts = options or ValidateOptions()
-    report = ValidationReport(robot=robot.name, target="usd", consumer="mujoco-usd")
+    report = ValidationReport(robot=robot.name, target="usd", consumer=MUJOCO_USD)
     if not mujoco_usd_available():
         report.add(
-            "mujoco-usd",
+            MUJOCO_USD,
             Status.SKIP,
             "document",
             "skipped: mujoco-usd not installed (it pins usd-core 25.11; install it in its own environment)",

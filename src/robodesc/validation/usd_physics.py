@@ -1,0 +1,520 @@
+"""Validate emitted USD with usd-core's own physics parser (``UsdPhysics``).
+
+``UsdPhysicsLoadStageFromPrimRange`` (``LoadUsdPhysicsFromRange`` before usd 26) is the reference
+reading of a UsdPhysics stage that simulator importers build on: it resolves rigid bodies, joints
+with their frames, limits and drives, and articulations. What it returns, plus ``UsdPhysics.MassAPI``
+for the mass properties, is compared with the IR the file was emitted from.
+
+USD stores these numbers as float32 (``physics:mass``, ``physics:localPos0``, ``physics:lowerLimit``
+...), so the tolerances cannot be those of the double-precision consumers: every option below
+``FLOAT32_REL_TOL`` / ``FLOAT32_FK_TOL`` is raised to it (see docs/validation.md for the measurements).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import warnings
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from robodesc.ir.model import Joint, JointType, Robot
+from robodesc.ir.transforms import Mat, axis_angle_matrix, forward_kinematics, quat_wxyz_to_matrix, resolve_mimic
+from robodesc.validation.compare import (
+    expected_inertial,
+    joint_label,
+    link_label,
+    report_fk,
+    rotation_angle,
+    sample_configurations,
+)
+from robodesc.validation.options import ValidateOptions
+from robodesc.validation.report import Status, Tally, ValidationReport
+
+CONSUMER = "usd-physics"
+DEG = 180.0 / math.pi
+# float32 carries ~6e-8 relative; 1e-6 leaves a 16x margin and still catches a 1e-5 corruption.
+FLOAT32_REL_TOL = 1e-6
+# Poses composed through a chain of float32 joint frames drift by ~1e-7 per joint on metre-sized
+# robots; 1e-5 m / rad bounds long chains (measured worst over the corpus: see docs/validation.md).
+FLOAT32_FK_TOL = 1e-5
+
+_KIND = {
+    JointType.REVOLUTE: "RevoluteJoint",
+    JointType.CONTINUOUS: "RevoluteJoint",
+    JointType.PRISMATIC: "PrismaticJoint",
+    JointType.FIXED: "FixedJoint",
+    JointType.SPHERICAL: "SphericalJoint",
+    JointType.FLOATING: "D6Joint",
+    JointType.PLANAR: "D6Joint",
+}
+_AXES = {"X": (1.0, 0.0, 0.0), "Y": (0.0, 1.0, 0.0), "Z": (0.0, 0.0, 1.0)}
+
+
+@dataclass
+class UsdJoint:
+    """One joint as the parser resolved it (frames in the two bodies, axis token, limit)."""
+
+    path: str
+    kind: str  # "RevoluteJoint", "FixedJoint" ...
+    desc: Any
+    body0: str | None  # link name, None when attached to the world
+    body1: str | None
+
+
+@dataclass
+class Parsed:
+    stage: Any
+    robot_path: str
+    bodies: dict[str, str] = field(default_factory=dict)  # link name -> body prim path
+    extra_bodies: list[str] = field(default_factory=list)  # rigid bodies matching no link
+    joints: dict[str, UsdJoint] = field(default_factory=dict)  # IR joint name -> joint
+    extra_joints: list[UsdJoint] = field(default_factory=list)
+    articulations: list[Any] = field(default_factory=list)
+    # link name -> (position, rotation) of the body in the stage, as the parser computed it
+    body_poses: dict[str, tuple[Any, Any]] = field(default_factory=dict)
+
+
+def validate_usd_physics(robot: Robot, usd_path: str, options: ValidateOptions | None = None) -> ValidationReport:
+    """Read ``usd_path`` through ``UsdPhysics`` and compare bodies, mass properties, joints,
+    articulation root and forward kinematics with ``robot``."""
+    opts = options or ValidateOptions()
+    report = ValidationReport(robot=robot.name, target="usd", consumer=CONSUMER)
+    report.info["input"] = usd_path
+    os.environ.setdefault("PXR_WORK_THREAD_LIMIT", "1")  # read once, when pxr loads
+    from pxr import Usd
+
+    report.info["usd-physics"] = "usd-core " + ".".join(str(v) for v in Usd.GetVersion())
+    stage = Usd.Stage.Open(usd_path) if os.path.exists(usd_path) else None
+    if stage is None:
+        report.add("usd-open", Status.FAIL, "document", f"usd-core cannot open {usd_path!r}")
+        return report
+    prim = stage.GetDefaultPrim()
+    if not prim or not prim.IsValid():
+        report.add("usd-open", Status.FAIL, "document", "the stage has no default prim (the robot)")
+        return report
+    parsed = parse(stage, str(prim.GetPath()), robot)
+    report.add(
+        "usd-open",
+        Status.PASS,
+        "document",
+        f"parsed: {len(parsed.bodies) + len(parsed.extra_bodies)} rigid bodies, "
+        f"{len(parsed.joints) + len(parsed.extra_joints)} joints",
+    )
+    _compare_bodies(robot, parsed, report)
+    _compare_inertials(robot, parsed, opts, report)
+    _compare_joints(robot, parsed, opts, report)
+    _compare_articulation(robot, parsed, report)
+    _compare_fk(robot, parsed, opts, report)
+    return report
+
+
+# ---- reading -----------------------------------------------------------------------------------
+def load_physics(stage: Any, root: str) -> dict[str, tuple[list[Any], list[Any]]]:
+    """The parser's result keyed by object type name ("RigidBody", "RevoluteJoint" ...)."""
+    from pxr import UsdPhysics
+
+    load = getattr(UsdPhysics, "UsdPhysicsLoadStageFromPrimRange", None)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        if load is None:
+            load = UsdPhysics.LoadUsdPhysicsFromRange
+        raw = load(stage, [root])
+    return {str(kind): (list(paths), list(descs)) for kind, (paths, descs) in raw.items()}
+
+
+def parse(stage: Any, root: str, robot: Robot) -> Parsed:
+    """Match the parser's bodies and joints to IR links and joints: by prim name, else by
+    ``displayName`` (the original name when the IR given is the unsanitized one)."""
+    raw = load_physics(stage, root)
+    parsed = Parsed(stage, root)
+    links = {link.name for link in robot.links}
+    body_names: dict[str, str] = {}  # body prim path -> link name
+    for path, desc in zip(*raw.get("RigidBody", ([], [])), strict=True):
+        name = _match(stage, str(path), links)
+        if name is None or name in parsed.bodies:
+            parsed.extra_bodies.append(str(path))
+        else:
+            parsed.bodies[name] = str(path)
+            parsed.body_poses[name] = (desc.position, desc.rotation)
+            body_names[str(path)] = name
+    joint_names = {joint.name for joint in robot.joints}
+    for kind, (paths, descs) in sorted(raw.items()):
+        if not kind.endswith("Joint"):
+            continue
+        for path, desc in zip(paths, descs, strict=True):
+            uj = UsdJoint(
+                str(path),
+                kind,
+                desc,
+                _body(desc.body0, body_names),
+                _body(desc.body1, body_names),
+            )
+            name = _match(stage, str(path), joint_names)
+            if name is None or name in parsed.joints:
+                parsed.extra_joints.append(uj)
+            else:
+                parsed.joints[name] = uj
+    parsed.articulations = list(raw.get("Articulation", ([], []))[1])
+    return parsed
+
+
+def _match(stage: Any, path: str, names: set[str]) -> str | None:
+    prim = stage.GetPrimAtPath(path)
+    if prim.GetName() in names:
+        return str(prim.GetName())
+    shown = prim.GetDisplayName()
+    return str(shown) if shown in names else None
+
+
+def _body(target: Any, body_names: dict[str, str]) -> str | None:
+    path = str(target)
+    if not path:
+        return None
+    return body_names.get(path, path)  # an unknown body keeps its path so messages can show it
+
+
+def _quat(q: Any) -> Mat:
+    x, y, z = q.GetImaginary()
+    return quat_wxyz_to_matrix((float(q.GetReal()), float(x), float(y), float(z)))
+
+
+def _frame(pos: Any, rot: Any) -> Mat:
+    m = np.eye(4)
+    m[:3, :3] = _quat(rot)
+    m[:3, 3] = [float(pos[0]), float(pos[1]), float(pos[2])]
+    return m
+
+
+def _vec(v: Any) -> str:
+    return "(" + ", ".join(f"{float(x):.9g}" for x in v) + ")"
+
+
+def _rel(got: float, want: float, floor: float) -> float:
+    """Relative error with an absolute floor: below ``floor`` the error is absolute."""
+    return abs(got - want) / max(abs(want), floor)
+
+
+# ---- bodies and mass properties ------------------------------------------------------------------
+def _compare_bodies(robot: Robot, parsed: Parsed, report: ValidationReport) -> None:
+    tally = Tally(report, "bodies", None, "")
+    for link in robot.links:
+        if link.name in parsed.bodies:
+            tally.ok()
+        else:
+            tally.fail(link_label(link.name), "no rigid body for this link in the USD (missing or not a RigidBodyAPI)")
+    for path in parsed.extra_bodies:
+        tally.fail(f"body {path!r}", "the USD has a rigid body that is not a link of the robot")
+    tally.finish("links")
+
+
+def _compare_inertials(robot: Robot, parsed: Parsed, options: ValidateOptions, report: ValidationReport) -> None:
+    from pxr import UsdPhysics
+
+    mass = Tally(report, "mass", max(options.mass_rel_tol, FLOAT32_REL_TOL), "relative")
+    com = Tally(report, "com", max(options.position_tol, FLOAT32_REL_TOL), "m (relative above 1 m)")
+    inertia = Tally(report, "inertia", max(options.inertia_rel_tol, FLOAT32_REL_TOL), "relative")
+    for link in robot.links:
+        path = parsed.bodies.get(link.name)
+        if path is None:
+            continue
+        label = link_label(link.name)
+        api = UsdPhysics.MassAPI(parsed.stage.GetPrimAtPath(path))
+        m_attr = api.GetMassAttr() if api else None
+        m_usd = m_attr.Get() if m_attr is not None and m_attr.HasAuthoredValue() else None
+        m_ir, com_ir, tensor_ir = expected_inertial(link)
+        has_ir = link.inertial is not None and link.inertial.mass is not None
+        if not has_ir:
+            if m_usd:
+                mass.fail(label, f"USD mass {m_usd:.9g} kg, the source gives none")
+            else:
+                mass.ok()
+            continue
+        if m_usd is None:
+            mass.fail(label, f"no physics:mass in the USD; source {m_ir:.9g} kg")
+            continue
+        mass.measure(label, _rel(float(m_usd), m_ir, 1e-12), f"USD mass {float(m_usd):.9g} kg, source {m_ir:.9g} kg")
+        c = api.GetCenterOfMassAttr().Get()
+        c_usd = np.array([float(x) for x in c]) if c is not None else np.zeros(3)
+        com.measure(
+            label,
+            float(np.linalg.norm(c_usd - com_ir)) / max(1.0, float(np.linalg.norm(com_ir))),
+            f"USD centre of mass {_vec(c_usd)}, source {_vec(com_ir)} (link frame, m)",
+        )
+        if tensor_ir is None:
+            inertia.skip(label, "source gives no inertia tensor")
+            continue
+        diag = api.GetDiagonalInertiaAttr().Get()
+        axes = api.GetPrincipalAxesAttr().Get()
+        if diag is None or axes is None:
+            inertia.fail(label, "no physics:diagonalInertia / principalAxes in the USD")
+            continue
+        r = _quat(axes)
+        t_usd: Mat = r @ np.diag([float(x) for x in diag]) @ r.T
+        scale = max(float(np.max(np.abs(np.linalg.eigvalsh(tensor_ir)))), 1e-12)
+        inertia.measure(
+            label,
+            float(np.max(np.abs(t_usd - tensor_ir))) / scale,
+            f"USD tensor {_tensor(t_usd)} vs source {_tensor(tensor_ir)} (link frame, kg·m²)",
+        )
+    mass.finish("links", "mass")
+    com.finish("links", "com")
+    inertia.finish("links", "inertia")
+
+
+def _tensor(t: Mat) -> str:
+    return "[" + ", ".join(f"{float(t[i, j]):.6g}" for i, j in ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))) + "]"
+
+
+# ---- joints --------------------------------------------------------------------------------------
+def _compare_joints(robot: Robot, parsed: Parsed, options: ValidateOptions, report: ValidationReport) -> None:
+    present = Tally(report, "joints", None, "")
+    kinds = Tally(report, "joint-type", None, "")
+    ends = Tally(report, "parents", None, "")
+    axes = Tally(report, "axis", max(options.axis_tol, FLOAT32_REL_TOL), "")
+    limits = Tally(report, "limits", max(options.limit_tol, FLOAT32_REL_TOL), "relative (deg or m)")
+    for joint in robot.joints:
+        label = joint_label(joint.name)
+        uj = parsed.joints.get(joint.name)
+        if uj is None:
+            present.fail(label, f"{joint.type.value} joint is missing from the USD")
+            continue
+        present.ok()
+        want = _KIND[joint.type]
+        if uj.kind != want:
+            kinds.fail(label, f"the USD has a {uj.kind} for a {joint.type.value} joint (expected {want})")
+            continue
+        kinds.ok()
+        if (uj.body0, uj.body1) != (joint.parent, joint.child):
+            ends.fail(
+                label,
+                f"body0/body1 are {uj.body0!r}/{uj.body1!r}, expected parent {joint.parent!r} and child {joint.child!r}",
+            )
+        else:
+            ends.ok()
+        if joint.type.dof != 1:
+            continue
+        a_ir = np.asarray(joint.effective_axis, dtype=float)
+        a_ir = a_ir / np.linalg.norm(a_ir)
+        token = str(uj.desc.axis)
+        a_usd = _quat(uj.desc.localPose1Orientation) @ np.asarray(_AXES.get(token, (math.nan,) * 3))
+        axes.measure(
+            label,
+            float(np.linalg.norm(a_usd - a_ir)),
+            f"USD axis {token} turned by localRot1 is {_vec(a_usd)} in the child frame, source {_vec(a_ir)}",
+        )
+        _compare_limit(joint, uj, limits)
+    for uj in parsed.extra_joints:
+        if uj.desc.excludeFromArticulation:
+            continue  # loop closures (the IR keeps them apart from the tree)
+        if uj.kind == "FixedJoint" and uj.body0 is None:
+            continue  # the base weld of a fixed base; checked with the articulation root
+        present.fail(f"joint {uj.path!r}", f"the USD has a {uj.kind} that the robot does not")
+    present.finish("joints")
+    kinds.finish("joints")
+    ends.finish("joints")
+    axes.finish("joints", "axis")
+    limits.finish("joints", "limit")
+
+
+def _compare_limit(joint: Joint, uj: UsdJoint, tally: Tally) -> None:
+    label = joint_label(joint.name)
+    limit = uj.desc.limit
+    lim = joint.limit
+    has = joint.type is not JointType.CONTINUOUS and lim is not None and lim.lower is not None and lim.upper is not None
+    angular = joint.type.is_angular
+    unit, unit_name = (DEG, "deg") if angular else (1.0, "m")
+    if not has:
+        if limit.enabled:
+            tally.fail(
+                label, f"source has no position limits, the USD limits it to [{limit.lower:.9g}, {limit.upper:.9g}]"
+            )
+        else:
+            tally.ok()
+        return
+    assert lim is not None and lim.lower is not None and lim.upper is not None
+    lo, hi = lim.lower * unit, lim.upper * unit
+    if not limit.enabled:
+        tally.fail(label, f"the USD leaves the joint unlimited; source limits [{lo:.9g}, {hi:.9g}] {unit_name}")
+        return
+    err = max(_rel(float(limit.lower), lo, 1.0), _rel(float(limit.upper), hi, 1.0))
+    tally.measure(
+        label,
+        err,
+        f"USD limits [{float(limit.lower):.9g}, {float(limit.upper):.9g}] {unit_name}, "
+        f"source [{lo:.9g}, {hi:.9g}] {unit_name}"
+        + (f" (= [{lim.lower:.9g}, {lim.upper:.9g}] rad)" if angular else ""),
+    )
+
+
+# ---- articulation root ---------------------------------------------------------------------------
+def _compare_articulation(robot: Robot, parsed: Parsed, report: ValidationReport) -> None:
+    """Fixed base: the root API on the robot prim plus a ``root_joint`` (no body0, body1 = root
+    link). Floating base: the root API on the root link. Exactly one either way."""
+    from pxr import Usd, UsdPhysics
+
+    stage = parsed.stage
+    roots = [
+        str(p.GetPath())
+        for p in Usd.PrimRange(stage.GetPrimAtPath(parsed.robot_path))
+        if p.HasAPI(UsdPhysics.ArticulationRootAPI)
+    ]
+    try:
+        root_link = robot.root.name
+    except ValueError:
+        report.add("articulation", Status.SKIP, "robot", "the robot has no single root link")
+        return
+    if len(roots) != 1:
+        report.add(
+            "articulation",
+            Status.FAIL,
+            "robot",
+            f"{len(roots)} prims carry PhysicsArticulationRootAPI ({', '.join(roots) or 'none'}); expected exactly one",
+        )
+        return
+    welds = [uj for uj in parsed.extra_joints if uj.kind == "FixedJoint" and uj.body0 is None]
+    root_body = parsed.bodies.get(root_link)
+    if roots[0] == parsed.robot_path:
+        layout = "fixed"
+        if [uj.body1 for uj in welds] != [root_link]:
+            report.add(
+                "articulation",
+                Status.FAIL,
+                f"link {root_link!r}",
+                "fixed base, but no single FixedJoint welds the root link to the world "
+                f"(found {[uj.path for uj in welds]})",
+            )
+            return
+    elif root_body is not None and roots[0] == root_body:
+        layout = "floating"
+        if welds:
+            report.add(
+                "articulation",
+                Status.FAIL,
+                f"joint {welds[0].path!r}",
+                "floating base, but a joint welds a body to the world (PhysX then treats the base as fixed)",
+            )
+            return
+    else:
+        report.add(
+            "articulation",
+            Status.FAIL,
+            "robot",
+            f"the articulation root is on {roots[0]!r}: expected the robot prim (fixed base) or link {root_link!r}",
+        )
+        return
+    if robot.fixed_base is not None and robot.fixed_base != (layout == "fixed"):
+        want = "fixed" if robot.fixed_base else "floating"
+        report.add("articulation", Status.FAIL, "robot", f"the source says {want} base, the USD is {layout}-base")
+        return
+    if len(parsed.articulations) != 1:
+        report.add(
+            "articulation",
+            Status.FAIL,
+            "robot",
+            f"usd-core resolves {len(parsed.articulations)} articulations; expected one",
+        )
+        return
+    report.add("articulation", Status.PASS, roots[0], f"one articulation, {layout} base")
+
+
+# ---- forward kinematics --------------------------------------------------------------------------
+def usd_forward_kinematics(robot: Robot, parsed: Parsed, root: str, q: dict[str, float]) -> dict[str, Mat]:
+    """Link poses relative to ``root`` composed through the USD joints only:
+    ``parent · frame0 · motion(axis token, q) · frame1⁻¹``. ``q`` holds IR values (rad, m) by IR joint
+    name, mimic followers included."""
+    edges: dict[str, list[tuple[str, str, UsdJoint]]] = {}  # body -> [(other body, ir joint name, joint)]
+    for name, uj in parsed.joints.items():
+        if uj.body0 is None or uj.body1 is None or uj.desc.excludeFromArticulation:
+            continue
+        edges.setdefault(uj.body0, []).append((uj.body1, name, uj))
+    out = {root: np.eye(4)}
+    stack = [root]
+    while stack:
+        parent = stack.pop()
+        for child, name, uj in edges.get(parent, []):
+            if child in out:
+                continue
+            d = uj.desc
+            motion = np.eye(4)
+            axis = _AXES.get(str(getattr(d, "axis", "")))
+            value = q.get(name, 0.0)
+            if axis is not None and uj.kind == "RevoluteJoint":
+                motion[:3, :3] = axis_angle_matrix(axis, value)
+            elif axis is not None and uj.kind == "PrismaticJoint":
+                motion[:3, 3] = np.asarray(axis) * value
+            f0 = _frame(d.localPose0Position, d.localPose0Orientation)
+            f1 = _frame(d.localPose1Position, d.localPose1Orientation)
+            out[child] = out[parent] @ f0 @ motion @ np.linalg.inv(f1)
+            stack.append(child)
+    return out
+
+
+def _compare_fk(robot: Robot, parsed: Parsed, options: ValidateOptions, report: ValidationReport) -> None:
+    roots = robot.root_links()
+    if len(roots) != 1 or roots[0].name not in parsed.bodies:
+        report.add("fk", Status.SKIP, "robot", "no single root link present in the USD; FK not compared")
+        return
+    root = roots[0].name
+    opts = ValidateOptions(
+        position_tol=max(options.position_tol, FLOAT32_FK_TOL), rotation_tol=max(options.rotation_tol, FLOAT32_FK_TOL)
+    )
+    worst: dict[str, tuple[float, float, dict[str, float]]] = {}
+    unreached: set[str] = set()
+    configs = sample_configurations(robot, options.fk_samples, options.seed)
+    for q in configs:
+        expected = forward_kinematics(robot, q)
+        got = usd_forward_kinematics(robot, parsed, root, resolve_mimic(robot, q))
+        for link in robot.links:
+            if link.name not in parsed.bodies or link.name not in expected:
+                continue
+            if link.name not in got:
+                unreached.add(link.name)
+                continue
+            g, w = got[link.name], expected[link.name]
+            ep = float(np.linalg.norm(g[:3, 3] - w[:3, 3]))
+            er = rotation_angle(w[:3, :3].T @ g[:3, :3])
+            prev = worst.get(link.name)
+            if prev is None or max(ep / opts.position_tol, er / opts.rotation_tol) > max(
+                prev[0] / opts.position_tol, prev[1] / opts.rotation_tol
+            ):
+                worst[link.name] = (ep, er, q)
+    for name in sorted(unreached):
+        report.add("fk", Status.FAIL, link_label(name), f"not reachable from the root link {root!r} through USD joints")
+    report_fk(robot, worst, len(configs), opts, report)
+    _compare_rest_pose(robot, parsed, root, opts, report)
+
+
+def _compare_rest_pose(
+    robot: Robot, parsed: Parsed, root: str, options: ValidateOptions, report: ValidationReport
+) -> None:
+    """Where usd-core puts each body at rest (the parser's body transform, what a simulator spawns)
+    against the IR at q = 0, relative to the root body."""
+    tol = max(options.position_tol, options.rotation_tol)
+    tally = Tally(report, "rest-pose", tol, "m or rad")
+    expected = forward_kinematics(robot)
+    inv_root = np.linalg.inv(_frame(*parsed.body_poses[root]))
+    for link in robot.links:
+        pose = parsed.body_poses.get(link.name)
+        if pose is None or link.name not in expected:
+            continue
+        got = inv_root @ _frame(*pose)
+        want = expected[link.name]
+        ep = float(np.linalg.norm(got[:3, 3] - want[:3, 3]))
+        er = rotation_angle(want[:3, :3].T @ got[:3, :3])
+        message = (
+            f"usd-core places the body {ep:.3g} m and {er:.3g} rad from the source pose at q = 0 (relative to the root)"
+        )
+        orient = parsed.stage.GetPrimAtPath(parsed.bodies[link.name]).GetAttribute("xformOp:orient")
+        value = orient.Get() if orient else None
+        if value is not None and er > tol:
+            authored = rotation_angle(want[:3, :3].T @ inv_root[:3, :3] @ _quat(value))
+            if authored <= FLOAT32_FK_TOL and orient.GetTypeName() == "quatf" and float(value.GetReal()) == 1.0:
+                message += (
+                    f"; the authored xformOp:orient is right to {authored:.1g} rad, but its w rounds to 1 in float32"
+                    " and usd-core's transform evaluation then drops the rotation (an orient written as quatd keeps it)"
+                )
+        tally.measure(link_label(link.name), max(ep, er), message)
+    tally.finish("links")
