@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import shutil
 from pathlib import Path
 
 import pytest
@@ -14,16 +15,24 @@ from robodesc.frontends.options import LoadOptions, MissingMesh
 from tests.conftest import EXAMPLES, GO2_XACRO, SPIRIT_XACRO, Golden
 
 
+def _example_copy(tmp_path: Path) -> Path:
+    """The example package copied beside the output, so relative mesh paths do not depend on where
+    the checkout lives."""
+    shutil.copytree(EXAMPLES / "urdf", tmp_path / "robodesc_examples")
+    return tmp_path / "robodesc_examples" / "gripper_arm.urdf"
+
+
 def test_gripper_arm(golden: Golden, tmp_path: Path) -> None:
     out = tmp_path / "out" / "gripper_arm.urdf"
-    result = robodesc.compile_to_urdf(EXAMPLES / "urdf" / "gripper_arm.urdf", out)
+    result = robodesc.compile_to_urdf(_example_copy(tmp_path), out)
     golden.check("gripper_arm.urdf", out.read_text())
     assert result.text == out.read_text()
 
 
-def test_gripper_arm_package_paths(golden: Golden) -> None:
-    robot = load_path(str(EXAMPLES / "urdf" / "gripper_arm.urdf")).robot
-    golden.check("gripper_arm.package.urdf", emit_urdf(robot, UrdfOptions(path_mode=PathMode.PACKAGE)))
+def test_gripper_arm_package_paths(golden: Golden, tmp_path: Path) -> None:
+    robot = load_path(str(_example_copy(tmp_path))).robot
+    text = emit_urdf(robot, UrdfOptions(path_mode=PathMode.PACKAGE, out_dir=str(tmp_path / "out")))
+    golden.check("gripper_arm.package.urdf", text)
 
 
 @pytest.mark.parametrize("xacro", [SPIRIT_XACRO, GO2_XACRO], ids=["spirit", "go2"])
