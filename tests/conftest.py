@@ -53,16 +53,6 @@ def golden(request: pytest.FixtureRequest) -> Golden:
     return Golden(directory, bool(request.config.getoption("--update-golden")))
 
 
-def example_robot_data_dir() -> Path | None:
-    """The share folder of the PyPI example-robot-data corpus, when installed."""
-    try:
-        import example_robot_data  # type: ignore[import-not-found]
-    except ImportError:
-        return None
-    path = Path(example_robot_data.getModelPath("ur5_description/urdf/ur5_robot.urdf" if False else ""))
-    return path if path.exists() else None
-
-
 @pytest.fixture(autouse=True)
 def _single_thread_usd(monkeypatch: pytest.MonkeyPatch) -> None:
     # usd-core's physics parser has crashed with many colliders on one body when threaded.

@@ -19,7 +19,15 @@ from typing import Any
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
 from robodesc.options import build_options
-from robodesc.pipeline import CompileResult, Progress, Source, compile_robot, load_source, verify_source
+from robodesc.pipeline import (
+    CompileResult,
+    Progress,
+    Source,
+    compile_robot,
+    load_source,
+    target_options_class,
+    verify_source,
+)
 
 __all__ = [
     "CompileResult",
@@ -165,21 +173,6 @@ def validate(source: Source, target: str = "urdf", **options: Any) -> Any:
     with tempfile.TemporaryDirectory(prefix="robodesc-validate-") as tmp:
         suffix = {"usd": "usda", "isaac": ""}.get(target, target)
         out = os.path.join(tmp, f"robot.{suffix}" if suffix else "robot")
-        result = _compile(target, source, out, None, {**options, "validate": True}, *_target_classes(target))
+        cls = target_options_class(target)
+        result = _compile(target, source, out, None, {**options, "validate": True}, *((cls,) if cls else ()))
     return result.validation
-
-
-def _target_classes(target: str) -> tuple[type[Any], ...]:
-    if target == "sdf":
-        from robodesc.emit.sdf_options import SdfOptions
-
-        return (SdfOptions,)
-    if target == "usd":
-        from robodesc.emit.usd_options import UsdOptions
-
-        return (UsdOptions,)
-    if target == "isaac":
-        from robodesc.emit.isaac_settings import IsaacSettings
-
-        return (IsaacSettings,)
-    return ()

@@ -17,7 +17,7 @@ from robodesc.emit.paths import PathMode
 from robodesc.frontends.options import MissingMesh
 from robodesc.ir.diagnostics import ConfigError, Finding, RobodescError, Severity, VerificationError
 from robodesc.options import InvalidInertia, build_options
-from robodesc.pipeline import compile_robot
+from robodesc.pipeline import compile_robot, target_options_class
 
 EPILOG = """\
 examples:
@@ -422,12 +422,7 @@ def _pass_options(args: argparse.Namespace) -> dict[str, Any]:
 def _accepted(target: str) -> set[str]:
     import dataclasses
 
-    from robodesc.emit.isaac_settings import IsaacSettings
-    from robodesc.emit.ros2_options import Ros2Options
-    from robodesc.emit.sdf_options import SdfOptions
-    from robodesc.emit.usd_options import UsdOptions
-
-    cls = {"sdf": SdfOptions, "usd": UsdOptions, "isaac": IsaacSettings, "ros2": Ros2Options}.get(target)
+    cls = target_options_class(target)
     return {f.name for f in dataclasses.fields(cls)} if cls is not None else set()
 
 

@@ -15,12 +15,9 @@ One :class:`IsaacSettings` feeds all of them, so they cannot disagree.
 from __future__ import annotations
 
 import os
-import shutil
-import tempfile
-from typing import Any
 
 from robodesc import __version__
-from robodesc.emit.files import replace_dir_atomic
+from robodesc.emit.files import staged_folder, write_files
 from robodesc.emit.isaac_lab import isaac_lab_module
 from robodesc.emit.isaac_settings import IsaacSettings, importer_settings_json
 from robodesc.emit.paths import PathMode
@@ -64,35 +61,26 @@ def write_isaac_folder(
     settings: IsaacSettings,
     findings: Findings,
     path_mode: PathMode,
-    extra_files: dict[str, str] | None = None,
 ) -> dict[str, str]:
     """Write the folder atomically (staged beside ``out_dir``, then moved in place)."""
     names = isaac_file_names(robot)
-    parent = os.path.dirname(os.path.abspath(out_dir))
-    os.makedirs(parent, exist_ok=True)
-    staging = tempfile.mkdtemp(prefix=".robodesc-isaac-", dir=parent)
-    try:
+    with staged_folder(out_dir) as staging:
         findings.extend(emit_usd(robot, os.path.join(staging, names["usd"]), usd_options(settings)))
         # Relative mesh paths are computed against the final folder (a sibling of the staging one).
         urdf = emit_urdf(robot, UrdfOptions(path_mode=path_mode, out_dir=os.path.abspath(out_dir)))
-        files: dict[str, str | bytes] = {
-            names["urdf"]: urdf,
-            names["importer_settings"]: importer_settings_json(robot, settings),
-            names["isaaclab"]: isaac_lab_module(robot, settings, names["usd"], findings, __version__).text,
+        write_files(
+            staging,
+            {
+                names["urdf"]: urdf,
+                names["importer_settings"]: importer_settings_json(robot, settings),
+                names["isaaclab"]: isaac_lab_module(robot, settings, names["usd"], findings, __version__).text,
+            },
+        )
+        # A layered USD adds its payload folder: report every top-level entry.
+        extra = {
+            name: os.path.join(out_dir, name) for name in sorted(os.listdir(staging)) if name not in names.values()
         }
-        files.update(extra_files or {})
-        for name, data in files.items():
-            with open(os.path.join(staging, name), "wb") as handle:
-                handle.write(data.encode("utf-8") if isinstance(data, str) else data)
-        written = {role: os.path.join(out_dir, name) for role, name in names.items()}
-        for name in sorted(os.listdir(staging)):
-            if name not in names.values():
-                written.setdefault(name, os.path.join(out_dir, name))
-        replace_dir_atomic(staging, out_dir)
-    except BaseException:
-        shutil.rmtree(staging, ignore_errors=True)
-        raise
-    return written
+    return {**{role: os.path.join(out_dir, name) for role, name in names.items()}, **extra}
 
 
 def findings_markdown(robot: Robot, findings: list[Finding]) -> str:
@@ -104,14 +92,3 @@ def findings_markdown(robot: Robot, findings: list[Finding]) -> str:
             message = f.message.replace("|", "\\|")
             lines.append(f"| {f.severity.value} | {f.stage} | {f.element} | {where} | {message} |")
     return "\n".join(lines) + "\n"
-
-
-def settings_names() -> set[str]:
-    import dataclasses
-
-    return {f.name for f in dataclasses.fields(IsaacSettings)}
-
-
-def settings_kwargs(values: dict[str, Any]) -> dict[str, Any]:
-    names = settings_names()
-    return {k: v for k, v in values.items() if k in names}

@@ -8,13 +8,11 @@ from __future__ import annotations
 import copy
 import dataclasses
 import os
-import shutil
-import tempfile
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
-from robodesc.emit.files import replace_dir_atomic, write_atomic
+from robodesc.emit.files import staged_folder, write_atomic, write_files
 from robodesc.emit.urdf import UrdfOptions, emit_urdf
 from robodesc.frontends.load import load_path, load_string
 from robodesc.ir.diagnostics import (
@@ -128,11 +126,6 @@ def verify_source(robot: Robot, options: CompileOptions, findings: Findings, rep
         )
 
 
-def run_passes(robot: Robot, resolved: PassOptions, preset: str | None, findings: Findings) -> Robot:
-    findings.extend(passes_pipeline.run_passes(robot, options=resolved))
-    return robot
-
-
 # ---- targets ---------------------------------------------------------------------------------
 def _emit_urdf(robot: Robot, out: str | None, options: CompileOptions, findings: Findings) -> Emitted:
     with_armature = [j.name for j in robot.joints if j.armature is not None]
@@ -217,6 +210,27 @@ def _emit_isaac(robot: Robot, out: str | None, options: CompileOptions, findings
     return Emitted(files=files, extra={"settings": settings})
 
 
+def target_options_class(target: str) -> type[Any] | None:
+    """The options dataclass a target takes (imported lazily: each pulls its emitter's module)."""
+    if target == "sdf":
+        from robodesc.emit.sdf_options import SdfOptions
+
+        return SdfOptions
+    if target == "usd":
+        from robodesc.emit.usd_options import UsdOptions
+
+        return UsdOptions
+    if target == "isaac":
+        from robodesc.emit.isaac_settings import IsaacSettings
+
+        return IsaacSettings
+    if target == "ros2":
+        from robodesc.emit.ros2_options import Ros2Options
+
+        return Ros2Options
+    return None
+
+
 def target_options(cls: type[Any], options: CompileOptions) -> dict[str, Any]:
     """The target options that belong to the options class ``cls``."""
     names = {f.name for f in dataclasses.fields(cls)}
@@ -224,23 +238,10 @@ def target_options(cls: type[Any], options: CompileOptions) -> dict[str, Any]:
 
 
 def write_folder(out: str, files: Mapping[str, str | bytes]) -> dict[str, str]:
-    """Write ``files`` into folder ``out`` as one unit: staged beside it, then moved in place."""
-    parent = os.path.dirname(os.path.abspath(out))
-    os.makedirs(parent, exist_ok=True)
-    staging = tempfile.mkdtemp(prefix=".robodesc-", dir=parent)
-    try:
-        written: dict[str, str] = {}
-        for name, data in sorted(files.items()):
-            path = os.path.join(staging, name)
-            os.makedirs(os.path.dirname(path), exist_ok=True)
-            with open(path, "wb") as handle:
-                handle.write(data.encode("utf-8") if isinstance(data, str) else data)
-            written[name] = os.path.join(out, name)
-        replace_dir_atomic(staging, out)
-    except BaseException:
-        shutil.rmtree(staging, ignore_errors=True)
-        raise
-    return written
+    """Write ``files`` into folder ``out`` as one unit."""
+    with staged_folder(out) as staging:
+        write_files(staging, files)
+    return {name: os.path.join(out, name) for name in sorted(files)}
 
 
 Target = Callable[[Robot, str | None, CompileOptions, Findings], Emitted]
@@ -279,8 +280,9 @@ def compile_robot(
     progress("verifying")
     verify_source(robot, options, findings, repairing=resolved.repair_inertia is not None)
     progress("running passes: " + ", ".join(passes_pipeline.enabled_passes(resolved)))
-    run_passes(robot, resolved, options.preset, findings)
-    errors = verify(robot).errors
+    findings.extend(passes_pipeline.run_passes(robot, options=resolved))
+    after = verify(robot)
+    errors = after.errors
     if options.invalid_inertia is InvalidInertia.WARN:
         errors = [f for f in errors if f.code not in PHYSICAL_CODES]
     if errors:
@@ -300,7 +302,7 @@ def compile_robot(
     )
     if options.validate:
         progress("validating")
-        result.validation = validate_emitted(robot, target, emitted, out, options)
+        result.validation = validate_emitted(robot, target, emitted, out, options, after)
     if target == "isaac" and out:
         from robodesc.isaac import findings_markdown
 
@@ -314,7 +316,9 @@ def compile_robot(
     return result
 
 
-def validate_emitted(robot: Robot, target: str, emitted: Emitted, out: str | None, options: CompileOptions) -> Any:
+def validate_emitted(
+    robot: Robot, target: str, emitted: Emitted, out: str | None, options: CompileOptions, verified: Findings
+) -> Any:
     """Load what was emitted in an independent consumer and compare it with the IR."""
     from robodesc.validation.options import ValidateOptions
 
@@ -355,16 +359,16 @@ def validate_emitted(robot: Robot, target: str, emitted: Emitted, out: str | Non
                 urdf_text = handle.read()
             base_dir = os.path.dirname(urdf)
         report = validate_urdf_text(robot, urdf_text, base_dir, vopts)
-    _carried_defects(robot, report)
+    _carried_defects(verified, report)
     return report
 
 
-def _carried_defects(robot: Robot, report: Any) -> None:
+def _carried_defects(verified: Findings, report: Any) -> None:
     """A consumer refusing an element the SOURCE already had wrong is the source's defect faithfully
     carried through, not a compile failure: keep it visible as a warning."""
     from robodesc.validation.report import Status
 
-    defective = {f.element for f in verify(robot) if f.code in PHYSICAL_CODES or f.code == "massless-link"}
+    defective = {f.element for f in verified if f.code in PHYSICAL_CODES or f.code == "massless-link"}
     for check in report.checks:
         if (
             check.status is Status.FAIL

@@ -6,6 +6,8 @@ from __future__ import annotations
 import os
 import shutil
 import tempfile
+from collections.abc import Iterator, Mapping
+from contextlib import contextmanager
 
 
 def write_atomic(path: str, data: str | bytes) -> None:
@@ -34,3 +36,27 @@ def replace_dir_atomic(staging: str, target: str) -> None:
         shutil.rmtree(backup, ignore_errors=True)
     else:
         os.replace(staging, target)
+
+
+@contextmanager
+def staged_folder(target: str) -> Iterator[str]:
+    """A folder to fill beside ``target``; when the block ends without error it replaces ``target``
+    as one unit, otherwise it is removed and ``target`` stays as it was."""
+    parent = os.path.dirname(os.path.abspath(target))
+    os.makedirs(parent, exist_ok=True)
+    staging = tempfile.mkdtemp(prefix=".robodesc-", dir=parent)
+    try:
+        yield staging
+        replace_dir_atomic(staging, target)
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
+
+
+def write_files(directory: str, files: Mapping[str, str | bytes]) -> None:
+    """Write ``{relative name: text or bytes}`` under ``directory``."""
+    for name, data in sorted(files.items()):
+        path = os.path.join(directory, name)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "wb") as handle:
+            handle.write(data.encode("utf-8") if isinstance(data, str) else data)

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
 
 from robodesc.ir.model import Joint, Robot
@@ -141,8 +140,3 @@ def _uniform(values: list[float]) -> float | None:
     if not values:
         return 0.0
     return values[0] if all(v == values[0] for v in values) else None
-
-
-def settings_from_mapping(values: Mapping[str, object]) -> IsaacSettings:
-    """Build settings from option names, rejecting unknown ones (the API reports the closest)."""
-    return IsaacSettings(**values)  # type: ignore[arg-type]

@@ -22,9 +22,9 @@ from robodesc.emit.usd_context import (
     set_display_name,
 )
 from robodesc.emit.usd_math import DEG, PER_DEGREE, AxisFrame, axis_frame
-from robodesc.emit.usd_options import gain_for
 from robodesc.ir.diagnostics import UnsupportedError
 from robodesc.ir.model import Joint, JointType, LoopJoint
+from robodesc.ir.rules import lookup
 from robodesc.ir.transforms import Mat, pose_matrix
 
 F = Sdf.ValueTypeNames.Float
@@ -153,7 +153,7 @@ def _drive(ctx: UsdContext, joint: Joint, prim: Usd.Prim, kind: str, start: floa
 
 
 def _gain(ctx: UsdContext, gain: object, joint: Joint, what: str) -> float:
-    value = gain_for(gain, joint.name)  # type: ignore[arg-type]
+    value = lookup(gain, joint.name, what)  # type: ignore[arg-type]
     if value is None:
         ctx.warn(
             "usd-no-gain",

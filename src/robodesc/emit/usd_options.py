@@ -58,16 +58,6 @@ class UsdOptions:
                 raise ConfigError(f"{name} must be an integer in 1..255, got {value!r}")
 
 
-def gain_for(gain: Gain, joint: str) -> float | None:
-    """The gain of ``joint``; None when a table has no matching pattern."""
-    if not isinstance(gain, Mapping):
-        return float(gain)
-    for pattern, value in gain.items():
-        if re.fullmatch(pattern, joint):
-            return float(value)
-    return None
-
-
 def _one_of(name: str, value: str, allowed: tuple[str, ...]) -> None:
     if value not in allowed:
         raise ConfigError(f"{name} must be one of {', '.join(allowed)}; got {value!r}")
