@@ -24,7 +24,9 @@ class CorpusRobot:
 
 
 def _prefixes() -> list[str]:
-    out = [sys.prefix]
+    # A venv over the system's packages has its own sys.prefix; the share/ data of packages
+    # installed outside it (icub-models) lives under sys.base_prefix.
+    out = [sys.prefix, sys.base_prefix]
     for sp in site.getsitepackages():
         out.append(os.path.join(sp, "cmeel.prefix"))
     return [p for p in dict.fromkeys(out) if os.path.isdir(p)]
