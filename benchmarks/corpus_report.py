@@ -125,7 +125,7 @@ def run_usd(robot: Robot, options: ValidateOptions, workdir: str) -> TargetResul
     # USD needs valid prim names; the pipeline sanitizes them before emitting, so do the same.
     robot = copy.deepcopy(robot)
     run_passes(robot, options=PassOptions(sanitize_names=True))
-    path = os.path.join(workdir, f"{_slug(robot.name)}.usda")
+    path = os.path.join(workdir, f"{_slug(robot.name)}.usdc")  # binary: mesh arrays as text would dominate
     try:
         emit_usd(robot, path)
     except RobodescError as exc:

@@ -1,5 +1,3 @@
-import sys
+from robodesc.cli import run
 
-from robodesc.cli import main
-
-sys.exit(main())
+run()

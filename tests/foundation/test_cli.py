@@ -65,6 +65,25 @@ def test_console_script_runs_as_module() -> None:
         assert option in proc.stdout
 
 
+def test_console_script_flushes_and_keeps_the_exit_code(tmp_path: Path) -> None:
+    # The script leaves with os._exit (no interpreter teardown): buffered output must still arrive.
+    gripper = Path(__file__).resolve().parents[1] / "usd" / "data" / "gripper.urdf"
+    ok = subprocess.run(
+        [sys.executable, "-m", "robodesc", "compile", str(gripper), "--no-validate"],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert ok.returncode == 0 and ok.stdout.rstrip().endswith("</robot>")
+    bad = tmp_path / "bad.urdf"
+    bad.write_text("<robot name='r'><link name='a'/>")
+    failed = subprocess.run(
+        [sys.executable, "-m", "robodesc", "compile", str(bad)], capture_output=True, text=True, check=False
+    )
+    errors = [line for line in failed.stderr.splitlines() if line.startswith("error:")]
+    assert failed.returncode == 2 and len(errors) == 1 and "bad.urdf:1:" in errors[0]
+
+
 def test_xacro_args_are_passed(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "s.urdf"
     assert (

@@ -57,7 +57,7 @@ def test_corpus_converts(tmp_path: Path) -> None:
                 continue
             run_passes(robot, preset="isaac_sim")
             stage = "emit"
-            out = tmp_path / f"{entry.corpus}_{entry.name.replace('/', '_')}.usda"
+            out = tmp_path / f"{entry.corpus}_{entry.name.replace('/', '_')}.usdc"
             floating = any(j.type.dof == 6 for j in robot.joints)
             options = UsdOptions(fix_base=not floating)
             emit_start = time.perf_counter()

@@ -20,8 +20,6 @@ from __future__ import annotations
 
 import os
 
-from pxr import Sdf, Usd, UsdGeom, UsdPhysics
-
 from robodesc.emit.usd_bodies import emit_articulation, emit_body, emit_physics_scene
 from robodesc.emit.usd_context import (
     JOINTS_SCOPE,
@@ -31,16 +29,15 @@ from robodesc.emit.usd_context import (
     RESERVED_ROBOT_CHILDREN,
     UsdContext,
     check_identifier,
-    set_display_name,
 )
 from robodesc.emit.usd_geometry import emit_link_geometry
 from robodesc.emit.usd_joints import emit_joint, emit_loop_joint, loop_scope_paths
-from robodesc.emit.usd_layers import LayerSet, write_layers
+from robodesc.emit.usd_layers import PAYLOAD_DIR, LayerSet, robot_prim, stage_metadata, write_layers
 from robodesc.emit.usd_materials import MaterialLibrary
 from robodesc.emit.usd_options import FORMATS, UsdOptions
 from robodesc.emit.usd_sensors import emit_fixed_frame, emit_sensor
 from robodesc.ir.diagnostics import BrokenReferenceError, ConfigError, Findings, UnsupportedError
-from robodesc.ir.model import Robot
+from robodesc.ir.model import FixedFrame, Robot, Sensor
 from robodesc.ir.transforms import forward_kinematics
 
 __all__ = ["UsdOptions", "emit_usd"]
@@ -59,26 +56,17 @@ def emit_usd(robot: Robot, path: str, options: UsdOptions | None = None) -> Find
     ctx = UsdContext(
         robot=robot,
         options=opts,
-        stage=layers.stage,
         findings=findings,
-        layer_dir=layers.payload_dir if opts.layered else out_dir,
+        layer_dir=os.path.join(out_dir, PAYLOAD_DIR) if opts.layered else out_dir,
         layers=layers.roles,
     )
-    try:
-        build_stage(ctx)
-        if opts.physics_scene:
-            layers.add_physics_scene(lambda stage: emit_physics_scene(_scene_ctx(ctx, stage)))
-        write_layers(layers, robot, path)
-    finally:
-        layers.discard()
+    build_layers(ctx, layers)
+    write_layers(layers, path, ctx.robot_path[1:])
     return findings
 
 
-def _scene_ctx(ctx: UsdContext, stage: Usd.Stage) -> UsdContext:
-    return UsdContext(robot=ctx.robot, options=ctx.options, stage=stage, findings=ctx.findings, layer_dir=ctx.layer_dir)
-
-
-def build_stage(ctx: UsdContext) -> None:
+def build_layers(ctx: UsdContext, layers: LayerSet) -> None:
+    """Author the whole asset into ``layers`` (nothing is written to disk)."""
     robot = ctx.robot
     _plan_paths(ctx)
     try:
@@ -86,51 +74,47 @@ def build_stage(ctx: UsdContext) -> None:
     except ValueError as exc:
         raise UnsupportedError(f"{exc}: USD needs one tree", element=f"robot {robot.name!r}", loc=robot.src) from None
     ctx.link_poses = forward_kinematics(robot)
-    stage = ctx.stage
-    with Sdf.ChangeBlock():
-        UsdGeom.SetStageMetersPerUnit(stage, 1.0)
-        UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.z)
-        UsdPhysics.SetStageKilogramsPerUnit(stage, 1.0)
-    robot_prim = UsdGeom.Xform.Define(stage, ctx.robot_path).GetPrim()
-    stage.SetDefaultPrim(robot_prim)
-    Usd.ModelAPI(robot_prim).SetKind("component")
-    Usd.ModelAPI(robot_prim).SetAssetName(robot.name)
-    set_display_name(robot_prim, robot.display_name)
+    name = ctx.robot_path[1:]
+    stage_metadata(layers.main, name)
+    robot_prim(layers.main, name, robot.display_name)
+    if layers.interface is not None:
+        robot_prim(layers.interface, name, robot.display_name)
 
     looks = MaterialLibrary(ctx)
-    frames_by_link: dict[str, list[tuple[str, object]]] = {}
+    attached: dict[str, list[FixedFrame | Sensor]] = {}
     for frame in robot.fixed_frames:
-        frames_by_link.setdefault(frame.parent, []).append(("frame", frame))
+        attached.setdefault(frame.parent, []).append(frame)
     for sensor in robot.sensors:
-        frames_by_link.setdefault(sensor.parent, []).append(("sensor", sensor))
+        attached.setdefault(sensor.parent, []).append(sensor)
     for link in robot.links:
         emit_body(ctx, link)
         emit_link_geometry(ctx, link, looks)
-        for kind, node in frames_by_link.get(link.name, []):
-            path = ctx.link_paths[link.name].AppendChild(node.name)  # type: ignore[attr-defined]
-            if kind == "frame":
-                emit_fixed_frame(ctx, node, path)  # type: ignore[arg-type]
+        for node in attached.get(link.name, []):
+            path = f"{ctx.link_paths[link.name]}/{node.name}"
+            if isinstance(node, FixedFrame):
+                emit_fixed_frame(ctx, node, path)
             else:
-                emit_sensor(ctx, node, path)  # type: ignore[arg-type]
+                emit_sensor(ctx, node, path)
 
-    with ctx.layer(PHYSICS):
-        stage.DefinePrim(ctx.robot_path.AppendChild(JOINTS_SCOPE), "Scope")
+    ctx.define(PHYSICS, f"{ctx.robot_path}/{JOINTS_SCOPE}", "Scope")
     for joint in robot.joints:
         emit_joint(ctx, joint)
     emit_articulation(ctx, root)
     loops = loop_scope_paths(ctx)
     if loops:
-        with ctx.layer(PHYSICS):
-            stage.DefinePrim(ctx.robot_path.AppendChild(LOOPS_SCOPE), "Scope")
+        ctx.define(PHYSICS, f"{ctx.robot_path}/{LOOPS_SCOPE}", "Scope")
         for loop in robot.loop_joints:
             emit_loop_joint(ctx, loop, loops[loop.name])
+    if ctx.options.physics_scene:
+        # Outside the default prim: in the interface layer when the asset is layered.
+        emit_physics_scene(layers.interface if layers.interface is not None else layers.main)
 
 
 def _plan_paths(ctx: UsdContext) -> None:
     """Check every name the layout needs before authoring anything."""
     robot = ctx.robot
     name = check_identifier(robot.name, f"robot {robot.name!r}", robot.src)
-    ctx.robot_path = Sdf.Path.absoluteRootPath.AppendChild(name)
+    ctx.robot_path = f"/{name}"
     for link in robot.links:
         label = f"link {link.name!r}"
         check_identifier(link.name, label, link.src)
@@ -142,8 +126,8 @@ def _plan_paths(ctx: UsdContext) -> None:
             )
         if link.name in ctx.link_paths:
             raise UnsupportedError("two links share this name", element=label, loc=link.src)
-        ctx.link_paths[link.name] = ctx.robot_path.AppendChild(link.name)
-    scope = ctx.robot_path.AppendChild(JOINTS_SCOPE)
+        ctx.link_paths[link.name] = f"{ctx.robot_path}/{link.name}"
+    scope = f"{ctx.robot_path}/{JOINTS_SCOPE}"
     for joint in robot.joints:
         label = f"joint {joint.name!r}"
         check_identifier(joint.name, label, joint.src)
@@ -152,7 +136,7 @@ def _plan_paths(ctx: UsdContext) -> None:
         for end in (joint.parent, joint.child):
             if end not in ctx.link_paths:
                 raise BrokenReferenceError(f"refers to unknown link {end!r}", element=label, loc=joint.src)
-        ctx.joint_paths[joint.name] = scope.AppendChild(joint.name)
+        ctx.joint_paths[joint.name] = f"{scope}/{joint.name}"
     for joint in robot.joints:
         if joint.mimic is not None and joint.mimic.joint not in ctx.joint_paths:
             raise BrokenReferenceError(

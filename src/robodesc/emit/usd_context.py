@@ -1,20 +1,23 @@
-"""State threaded through the USD emitter's stages: the stage, which layer each kind of opinion goes
-to, prim paths of links and joints, the mesh cache and the findings."""
+"""State threaded through the USD emitter's stages: the layer each kind of opinion goes to, prim
+paths of links and joints, the mesh cache and the findings.
+
+Opinions are authored into :mod:`robodesc.usdfile` layers, not through usd-core: the CLI must not
+pay ``pxr``'s import (see that package's docstring)."""
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-from contextlib import contextmanager
+import re
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
-import numpy as np
-from pxr import Gf, Sdf, Usd, UsdGeom
-
-from robodesc.emit.usd_meshio import MeshCache
 from robodesc.emit.usd_options import UsdOptions
 from robodesc.ir.diagnostics import Findings, SourceLoc, UnsupportedError
 from robodesc.ir.model import Robot
 from robodesc.ir.transforms import Mat, matrix_to_quat_wxyz
+from robodesc.usdfile.spec import Layer, Prim
+
+if TYPE_CHECKING:
+    from robodesc.emit.usd_meshio import MeshCache
 
 STAGE = "emit:usd"
 
@@ -29,43 +32,59 @@ RESERVED_LINK_CHILDREN = ("visuals", "collisions")
 GEOMETRY = "geometry"
 MATERIALS = "materials"
 PHYSICS = "physics"
+ROLES = (GEOMETRY, MATERIALS, PHYSICS)
+
+# Sdf's identifier rule for prim names, in its ASCII form (robodesc's sanitizer produces ASCII).
+_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+
+
+def is_identifier(name: str) -> bool:
+    return _IDENTIFIER.match(name) is not None
 
 
 @dataclass
 class UsdContext:
     robot: Robot
     options: UsdOptions
-    stage: Usd.Stage
     findings: Findings
     # Folder of the layer(s) being written, for relative texture paths.
     layer_dir: str
-    layers: dict[str, Sdf.Layer] = field(default_factory=dict)
-    meshes: MeshCache = field(default_factory=MeshCache)
-    robot_path: Sdf.Path = field(default_factory=lambda: Sdf.Path.emptyPath)
-    link_paths: dict[str, Sdf.Path] = field(default_factory=dict)
-    joint_paths: dict[str, Sdf.Path] = field(default_factory=dict)
+    # Role -> layer; single-file output maps every role to the same layer.
+    layers: dict[str, Layer] = field(default_factory=dict)
+    _meshes: MeshCache | None = None
+    robot_path: str = ""
+    link_paths: dict[str, str] = field(default_factory=dict)
+    joint_paths: dict[str, str] = field(default_factory=dict)
     # World (robot-frame) pose of every link at q = 0.
     link_poses: dict[str, Mat] = field(default_factory=dict)
 
-    @contextmanager
-    def layer(self, role: str) -> Iterator[None]:
-        target = self.layers.get(role)
-        if target is None:
-            yield
-            return
-        previous = self.stage.GetEditTarget()
-        self.stage.SetEditTarget(Usd.EditTarget(target))
-        try:
-            yield
-        finally:
-            self.stage.SetEditTarget(previous)
+    @property
+    def meshes(self) -> MeshCache:
+        # Imported on first use: mesh reading needs numpy, a robot of primitives does not.
+        if self._meshes is None:
+            from robodesc.emit.usd_meshio import MeshCache
+
+            self._meshes = MeshCache()
+        return self._meshes
+
+    def define(self, role: str, path: str, type_name: str = "") -> Prim:
+        """``def`` the prim at ``path`` in the role's layer (with this type when one is given)."""
+        prim = self.layers[role].prim(path, type_name)
+        prim.specifier = "def"
+        if type_name:
+            prim.type_name = type_name
+        return prim
+
+    def over(self, role: str, path: str) -> Prim:
+        """The prim's spec in the role's layer: the existing one, else a new ``over``."""
+        return self.layers[role].prim(path, specifier="over")
 
     def warn(self, code: str, message: str, element: str = "", loc: SourceLoc | None = None) -> None:
         self.findings.warn(code, message, element=element, loc=loc, stage=STAGE)
 
 
 def check_identifier(name: str, element: str, loc: SourceLoc | None) -> str:
-    if not Sdf.Path.IsValidIdentifier(name):
+    if not is_identifier(name):
         raise UnsupportedError(
             f"{name!r} is not a valid USD prim name (letters, digits and '_', not starting with a digit); "
             "run the sanitize_names pass before emitting USD (the robodesc pipeline does)",
@@ -78,7 +97,7 @@ def check_identifier(name: str, element: str, loc: SourceLoc | None) -> str:
 def unique_name(base: str, used: set[str], fallback: str) -> str:
     """A valid identifier for an optional IR name (visual, collision, material): ``base`` when it is
     one and still free, else ``fallback`` with a counter."""
-    if base and Sdf.Path.IsValidIdentifier(base) and base not in used:
+    if base and is_identifier(base) and base not in used:
         used.add(base)
         return base
     stem = fallback
@@ -90,43 +109,38 @@ def unique_name(base: str, used: set[str], fallback: str) -> str:
     return name
 
 
-def set_display_name(prim: Usd.Prim, display_name: str | None) -> None:
+def set_display_name(prim: Prim, display_name: str | None) -> None:
     if display_name:
-        prim.SetDisplayName(display_name)
+        prim.display_name = display_name
 
 
-def set_pose(xformable: UsdGeom.Xformable, m: Mat, scale: tuple[float, float, float] | None = None) -> None:
-    """translate (double3) + orient (quatd) [+ scale (float3)]; identity parts are still written on
-    bodies by callers that need a complete pose, elsewhere they are skipped.
+def set_pose(prim: Prim, m: Mat, scale: tuple[float, float, float] | None = None) -> None:
+    """translate (double3) + orient (quatd) [+ scale (float3)]; identity parts are skipped.
 
     The orient is double precision: for a rotation under ~5e-4 rad a quatf's real part rounds to
     exactly 1, and usd-core (GfRotation takes the angle from acos(w)) then evaluates the identity."""
+    order = []
     t = m[:3, 3]
-    if np.any(t):
-        xformable.AddTranslateOp().Set(Gf.Vec3d(float(t[0]), float(t[1]), float(t[2])))
-    w, x, y, z = matrix_to_quat_wxyz(m[:3, :3])
-    if (w, x, y, z) != (1.0, 0.0, 0.0, 0.0):
-        xformable.AddOrientOp(UsdGeom.XformOp.PrecisionDouble).Set(Gf.Quatd(w, x, y, z))
+    if t[0] or t[1] or t[2]:
+        prim.attr("xformOp:translate", "double3", (float(t[0]), float(t[1]), float(t[2])))
+        order.append("xformOp:translate")
+    q = matrix_to_quat_wxyz(m[:3, :3])
+    if q != (1.0, 0.0, 0.0, 0.0):
+        prim.attr("xformOp:orient", "quatd", q)
+        order.append("xformOp:orient")
     if scale is not None:
-        xformable.AddScaleOp().Set(Gf.Vec3f(*scale))
+        prim.attr("xformOp:scale", "float3", scale)
+        order.append("xformOp:scale")
+    if order:
+        prim.attr("xformOpOrder", "token[]", order, uniform=True)
 
 
-def set_full_pose(xformable: UsdGeom.Xformable, m: Mat) -> None:
+def set_full_pose(prim: Prim, m: Mat) -> None:
     t = m[:3, 3]
-    xformable.AddTranslateOp().Set(Gf.Vec3d(float(t[0]), float(t[1]), float(t[2])))
-    w, x, y, z = matrix_to_quat_wxyz(m[:3, :3])
-    xformable.AddOrientOp(UsdGeom.XformOp.PrecisionDouble).Set(Gf.Quatd(w, x, y, z))
+    prim.attr("xformOp:translate", "double3", (float(t[0]), float(t[1]), float(t[2])))
+    prim.attr("xformOp:orient", "quatd", matrix_to_quat_wxyz(m[:3, :3]))
+    prim.attr("xformOpOrder", "token[]", ["xformOp:translate", "xformOp:orient"], uniform=True)
 
 
-def quatf(m: Mat) -> Gf.Quatf:
-    w, x, y, z = matrix_to_quat_wxyz(m[:3, :3])
-    return Gf.Quatf(w, x, y, z)
-
-
-def apply_schema(prim: Usd.Prim, schema: str) -> None:
-    """Apply an API schema by name: PhysX and Newton schemas are not registered in plain usd-core."""
-    prim.AddAppliedSchema(schema)
-
-
-def schema_attr(prim: Usd.Prim, name: str, type_name: Sdf.ValueTypeName, value: object) -> None:
-    prim.CreateAttribute(name, type_name, custom=False).Set(value)
+def quat(m: Mat) -> tuple[float, float, float, float]:
+    return matrix_to_quat_wxyz(m[:3, :3])

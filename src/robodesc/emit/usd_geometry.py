@@ -7,23 +7,17 @@ into the points and face-varying normals.
 
 from __future__ import annotations
 
-from pxr import Gf, Sdf, UsdGeom, UsdPhysics, UsdShade, Vt
+from typing import TYPE_CHECKING
 
-from robodesc.emit.usd_context import (
-    GEOMETRY,
-    MATERIALS,
-    PHYSICS,
-    UsdContext,
-    apply_schema,
-    schema_attr,
-    set_pose,
-    unique_name,
-)
+from robodesc.emit.usd_context import GEOMETRY, MATERIALS, PHYSICS, UsdContext, set_pose, unique_name
 from robodesc.emit.usd_materials import MaterialLibrary
-from robodesc.emit.usd_meshio import MeshData, MeshReadError
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Mesh, Sphere
 from robodesc.ir.model import Collision, Link, Visual
 from robodesc.ir.transforms import pose_matrix
+from robodesc.usdfile.spec import Prim
+
+if TYPE_CHECKING:
+    from robodesc.emit.usd_meshio import MeshData
 
 
 def emit_link_geometry(ctx: UsdContext, link: Link, looks: MaterialLibrary) -> None:
@@ -31,77 +25,69 @@ def emit_link_geometry(ctx: UsdContext, link: Link, looks: MaterialLibrary) -> N
     label = f"link {link.name!r}"
     if link.visuals:
         used: set[str] = set()
-        scope = link_path.AppendChild("visuals")
-        with ctx.layer(GEOMETRY):
-            ctx.stage.DefinePrim(scope, "Xform")
+        scope = f"{link_path}/visuals"
+        ctx.define(GEOMETRY, scope, "Xform")
         for index, visual in enumerate(link.visuals):
-            name = unique_name(visual.name or "", used, "visual")
-            path = scope.AppendChild(name)
+            path = f"{scope}/{unique_name(visual.name or '', used, 'visual')}"
             if _shape(ctx, path, visual, f"{label} visual {index}"):
                 look = looks.path_for(visual.material)
                 if look is not None:
-                    with ctx.layer(MATERIALS):
-                        prim = ctx.stage.GetPrimAtPath(path)
-                        UsdShade.MaterialBindingAPI.Apply(prim).Bind(UsdShade.Material(ctx.stage.GetPrimAtPath(look)))
+                    prim = ctx.over(MATERIALS, path)
+                    prim.apply("MaterialBindingAPI")
+                    prim.rel("material:binding", [look])
     if link.collisions:
         used = set()
-        scope = link_path.AppendChild("collisions")
-        with ctx.layer(GEOMETRY):
-            ctx.stage.DefinePrim(scope, "Xform")
+        scope = f"{link_path}/collisions"
+        ctx.define(GEOMETRY, scope, "Xform")
         for index, collision in enumerate(link.collisions):
-            name = unique_name(collision.name or "", used, "collision")
-            path = scope.AppendChild(name)
+            path = f"{scope}/{unique_name(collision.name or '', used, 'collision')}"
             if _shape(ctx, path, collision, f"{label} collision {index}"):
                 _collider(ctx, path, collision)
 
 
-def _shape(ctx: UsdContext, path: Sdf.Path, item: Visual | Collision, label: str) -> bool:
+def _shape(ctx: UsdContext, path: str, item: Visual | Collision, label: str) -> bool:
     geometry: Geometry = item.geometry
     origin = pose_matrix(item.origin)
-    stage = ctx.stage
-    with ctx.layer(GEOMETRY):
-        if isinstance(geometry, Box):
-            cube = UsdGeom.Cube.Define(stage, path)
-            cube.CreateSizeAttr(1.0)
-            cube.CreateExtentAttr(Vt.Vec3fArray([Gf.Vec3f(-0.5, -0.5, -0.5), Gf.Vec3f(0.5, 0.5, 0.5)]))
-            sx, sy, sz = (float(v) for v in geometry.size)
-            set_pose(cube, origin, (sx, sy, sz))
-            gprim: UsdGeom.Gprim = cube
-        elif isinstance(geometry, Sphere):
-            sphere = UsdGeom.Sphere.Define(stage, path)
-            r = float(geometry.radius)
-            sphere.CreateRadiusAttr(r)
-            sphere.CreateExtentAttr(Vt.Vec3fArray([Gf.Vec3f(-r, -r, -r), Gf.Vec3f(r, r, r)]))
-            set_pose(sphere, origin)
-            gprim = sphere
-        elif isinstance(geometry, Cylinder | Capsule):
-            r, h = float(geometry.radius), float(geometry.length)
-            if isinstance(geometry, Cylinder):
-                shape: UsdGeom.Cylinder | UsdGeom.Capsule = UsdGeom.Cylinder.Define(stage, path)
-                half = h / 2
-            else:
-                shape = UsdGeom.Capsule.Define(stage, path)
-                half = h / 2 + r
-            shape.CreateRadiusAttr(r)
-            shape.CreateHeightAttr(h)
-            shape.CreateAxisAttr(UsdGeom.Tokens.z)
-            shape.CreateExtentAttr(Vt.Vec3fArray([Gf.Vec3f(-r, -r, -half), Gf.Vec3f(r, r, half)]))
-            set_pose(shape, origin)
-            gprim = shape
+    if isinstance(geometry, Box):
+        prim = ctx.define(GEOMETRY, path, "Cube")
+        prim.attr("size", "double", 1.0)
+        prim.attr("extent", "float3[]", [(-0.5, -0.5, -0.5), (0.5, 0.5, 0.5)])
+        sx, sy, sz = (float(v) for v in geometry.size)
+        set_pose(prim, origin, (sx, sy, sz))
+    elif isinstance(geometry, Sphere):
+        prim = ctx.define(GEOMETRY, path, "Sphere")
+        r = float(geometry.radius)
+        prim.attr("radius", "double", r)
+        prim.attr("extent", "float3[]", [(-r, -r, -r), (r, r, r)])
+        set_pose(prim, origin)
+    elif isinstance(geometry, Cylinder | Capsule):
+        r, h = float(geometry.radius), float(geometry.length)
+        if isinstance(geometry, Cylinder):
+            prim = ctx.define(GEOMETRY, path, "Cylinder")
+            half = h / 2
         else:
-            data = _mesh_data(ctx, geometry, label)
-            if data is None:
-                return False
-            mesh = UsdGeom.Mesh.Define(stage, path)
-            _author_mesh(mesh, data)
-            set_pose(mesh, origin)
-            gprim = mesh
-        if isinstance(item, Collision):
-            gprim.CreatePurposeAttr(UsdGeom.Tokens.guide)
+            prim = ctx.define(GEOMETRY, path, "Capsule")
+            half = h / 2 + r
+        prim.attr("radius", "double", r)
+        prim.attr("height", "double", h)
+        prim.attr("axis", "token", "Z", uniform=True)
+        prim.attr("extent", "float3[]", [(-r, -r, -half), (r, r, half)])
+        set_pose(prim, origin)
+    else:
+        data = _mesh_data(ctx, geometry, label)
+        if data is None:
+            return False
+        prim = ctx.define(GEOMETRY, path, "Mesh")
+        _author_mesh(prim, data)
+        set_pose(prim, origin)
+    if isinstance(item, Collision):
+        prim.attr("purpose", "token", "guide", uniform=True)
     return True
 
 
 def _mesh_data(ctx: UsdContext, mesh: Mesh, label: str) -> MeshData | None:
+    from robodesc.emit.usd_meshio import MeshReadError
+
     if mesh.path is None:
         ctx.warn("usd-missing-mesh", f"mesh {mesh.uri!r} was not found; this geometry is left out", label, mesh.src)
         return None
@@ -114,30 +100,27 @@ def _mesh_data(ctx: UsdContext, mesh: Mesh, label: str) -> MeshData | None:
         return None
 
 
-def _author_mesh(mesh: UsdGeom.Mesh, data: MeshData) -> None:
-    mesh.CreatePointsAttr(Vt.Vec3fArray.FromNumpy(data.points))
-    mesh.CreateFaceVertexCountsAttr(Vt.IntArray.FromNumpy(data.face_vertex_counts))
-    mesh.CreateFaceVertexIndicesAttr(Vt.IntArray.FromNumpy(data.face_vertex_indices))
-    mesh.CreateNormalsAttr(Vt.Vec3fArray.FromNumpy(data.normals))
-    mesh.SetNormalsInterpolation(UsdGeom.Tokens.faceVarying)
-    mesh.CreateSubdivisionSchemeAttr(UsdGeom.Tokens.none)
-    mesh.CreateExtentAttr(Vt.Vec3fArray.FromNumpy(data.extent))
+def _author_mesh(prim: Prim, data: MeshData) -> None:
+    prim.attr("points", "point3f[]", data.points)
+    prim.attr("faceVertexCounts", "int[]", data.face_vertex_counts)
+    prim.attr("faceVertexIndices", "int[]", data.face_vertex_indices)
+    prim.attr("normals", "normal3f[]", data.normals, interpolation="faceVarying")
+    prim.attr("subdivisionScheme", "token", "none", uniform=True)
+    prim.attr("extent", "float3[]", data.extent)
     if data.uv is not None:
-        st = UsdGeom.PrimvarsAPI(mesh).CreatePrimvar("st", Sdf.ValueTypeNames.TexCoord2fArray, UsdGeom.Tokens.vertex)
-        st.Set(Vt.Vec2fArray.FromNumpy(data.uv))
+        prim.attr("primvars:st", "texCoord2f[]", data.uv, interpolation="vertex")
 
 
-def _collider(ctx: UsdContext, path: Sdf.Path, collision: Collision) -> None:
+def _collider(ctx: UsdContext, path: str, collision: Collision) -> None:
     options = ctx.options
-    with ctx.layer(PHYSICS):
-        prim = ctx.stage.OverridePrim(path)
-        UsdPhysics.CollisionAPI.Apply(prim)
-        if isinstance(collision.geometry, Mesh):
-            api = UsdPhysics.MeshCollisionAPI.Apply(prim)
-            api.CreateApproximationAttr(options.collision_approximation)
-        if options.contact_offset is not None or options.rest_offset is not None:
-            apply_schema(prim, "PhysxCollisionAPI")
-            if options.contact_offset is not None:
-                schema_attr(prim, "physxCollision:contactOffset", Sdf.ValueTypeNames.Float, options.contact_offset)
-            if options.rest_offset is not None:
-                schema_attr(prim, "physxCollision:restOffset", Sdf.ValueTypeNames.Float, options.rest_offset)
+    prim = ctx.over(PHYSICS, path)
+    prim.apply("PhysicsCollisionAPI")
+    if isinstance(collision.geometry, Mesh):
+        prim.apply("PhysicsMeshCollisionAPI")
+        prim.attr("physics:approximation", "token", options.collision_approximation, uniform=True)
+    if options.contact_offset is not None or options.rest_offset is not None:
+        prim.apply("PhysxCollisionAPI")
+        if options.contact_offset is not None:
+            prim.attr("physxCollision:contactOffset", "float", options.contact_offset)
+        if options.rest_offset is not None:
+            prim.attr("physxCollision:restOffset", "float", options.rest_offset)

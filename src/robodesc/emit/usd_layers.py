@@ -1,7 +1,7 @@
 """Where the USD emitter's opinions go, and writing them atomically.
 
-Single file: one anonymous layer, exported at the end (text through ``write_atomic``, crate files
-through a temporary file in the target folder and ``os.replace``).
+Single file: one layer, written through ``write_atomic`` as text (``.usda``) or as a crate file
+(``.usdc``, and ``.usd``, whose default encoding is the crate).
 
 Layered (NVIDIA's converter layout)::
 
@@ -18,16 +18,12 @@ folder first, the interface file last, so a reader never sees an interface witho
 from __future__ import annotations
 
 import os
-import shutil
-import tempfile
-from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from pxr import Sdf, Usd, UsdGeom, UsdPhysics
-
-from robodesc.emit.files import replace_dir_atomic, write_atomic
-from robodesc.emit.usd_context import GEOMETRY, MATERIALS, PHYSICS, check_identifier
-from robodesc.ir.model import Robot
+from robodesc.emit.files import staged_folder, write_atomic, write_files
+from robodesc.emit.usd_context import GEOMETRY, MATERIALS, PHYSICS, ROLES
+from robodesc.usdfile.spec import Layer, Payload, Prim
+from robodesc.usdfile.usda import usda_text
 
 PAYLOAD_DIR = "Payload"
 CONTENTS = "Contents"
@@ -37,109 +33,73 @@ SUBLAYERS = (("Physics", PHYSICS), ("Materials", MATERIALS), ("Geometry", GEOMET
 
 @dataclass
 class LayerSet:
-    stage: Usd.Stage
-    root: Sdf.Layer
+    """The layers of one asset: ``roles`` maps each kind of opinion to the layer it goes to."""
+
     ext: str
     layered: bool
-    roles: dict[str, Sdf.Layer] = field(default_factory=dict)
-    staging: str | None = None
-    payload_dir: str = ""
-    scene_author: Callable[[Usd.Stage], None] | None = None
+    main: Layer  # the single file, or the payload's Contents layer
+    roles: dict[str, Layer] = field(default_factory=dict)
+    interface: Layer | None = None
 
     @staticmethod
     def create(path: str, layered: bool) -> LayerSet:
         ext = os.path.splitext(path)[1].lower()
+        main = Layer()
         if not layered:
-            root = Sdf.Layer.CreateAnonymous("robot" + ext)
-            return LayerSet(Usd.Stage.Open(root), root, ext, False)
-        out_dir = os.path.dirname(os.path.abspath(path))
-        os.makedirs(out_dir, exist_ok=True)
-        staging = tempfile.mkdtemp(prefix=".robodesc-usd-", dir=out_dir)
-        sub_ext = ".usda" if ext == ".usda" else ".usdc"
-        payload = os.path.join(staging, PAYLOAD_DIR)
-        os.makedirs(payload)
-        contents = Sdf.Layer.CreateNew(os.path.join(payload, CONTENTS + sub_ext))
-        roles: dict[str, Sdf.Layer] = {}
-        names = []
-        for stem, role in SUBLAYERS:
-            # Mesh arrays are the bulk of an asset: always binary (as NVIDIA's converter does).
-            name = stem + (".usdc" if role == GEOMETRY else sub_ext)
-            roles[role] = Sdf.Layer.CreateNew(os.path.join(payload, name))
-            names.append(f"./{name}")
-        contents.subLayerPaths = names
-        stage = Usd.Stage.Open(contents)
-        return LayerSet(
-            stage,
-            contents,
-            ext,
-            True,
-            roles,
-            staging,
-            os.path.join(out_dir, PAYLOAD_DIR),
-        )
+            return LayerSet(ext, False, main, dict.fromkeys(ROLES, main))
+        return LayerSet(ext, True, main, {role: Layer() for _, role in SUBLAYERS}, Layer())
 
-    def add_physics_scene(self, author: Callable[[Usd.Stage], None]) -> None:
-        if not self.layered:
-            author(self.stage)
-        else:
-            self.scene_author = author
-
-    def discard(self) -> None:
-        if self.staging is not None and os.path.isdir(self.staging):
-            shutil.rmtree(self.staging, ignore_errors=True)
+    def sub_ext(self, role: str | None) -> str:
+        # Mesh arrays are the bulk of an asset: always binary (as NVIDIA's converter does).
+        if role == GEOMETRY or self.ext != ".usda":
+            return ".usdc"
+        return ".usda"
 
 
-def write_layers(layers: LayerSet, robot: Robot, path: str) -> None:
-    if not layers.layered:
-        _export(layers.root, path)
-        return
-    assert layers.staging is not None
-    for layer in layers.roles.values():
-        layer.Save()
-    layers.root.Save()
-    staged_interface = os.path.join(layers.staging, os.path.basename(path))
-    interface = Sdf.Layer.CreateNew(staged_interface)
-    _interface(interface, layers, robot)
-    interface.Save()
-    out_dir = os.path.dirname(os.path.abspath(path))
-    replace_dir_atomic(os.path.join(layers.staging, PAYLOAD_DIR), os.path.join(out_dir, PAYLOAD_DIR))
-    os.replace(staged_interface, path)
+def stage_metadata(layer: Layer, default_prim: str) -> None:
+    layer.default_prim = default_prim
+    layer.meters_per_unit = 1.0
+    layer.kilograms_per_unit = 1.0
+    layer.up_axis = "Z"
 
 
-def _interface(layer: Sdf.Layer, layers: LayerSet, robot: Robot) -> None:
-    stage = Usd.Stage.Open(layer, load=Usd.Stage.LoadNone)
-    UsdGeom.SetStageMetersPerUnit(stage, 1.0)
-    UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.z)
-    UsdPhysics.SetStageKilogramsPerUnit(stage, 1.0)
-    name = check_identifier(robot.name, f"robot {robot.name!r}", robot.src)
-    robot_path = Sdf.Path.absoluteRootPath.AppendChild(name)
-    prim = UsdGeom.Xform.Define(stage, robot_path).GetPrim()
-    stage.SetDefaultPrim(prim)
-    Usd.ModelAPI(prim).SetKind("component")
-    Usd.ModelAPI(prim).SetAssetName(robot.name)
-    if robot.display_name:
-        prim.SetDisplayName(robot.display_name)
-    contents = os.path.basename(layers.root.realPath)
-    prim.GetPayloads().AddPayload(Sdf.Payload(f"./{PAYLOAD_DIR}/{contents}", robot_path))
-    if layers.scene_author is not None:
-        layers.scene_author(stage)
+def robot_prim(layer: Layer, name: str, display_name: str | None) -> Prim:
+    """The default prim: an Xform of kind component, named as the asset."""
+    prim = layer.prim(f"/{name}", "Xform")
+    prim.kind = "component"
+    prim.asset_name = name
+    if display_name:
+        prim.display_name = display_name
+    return prim
 
 
-def _export(layer: Sdf.Layer, path: str) -> None:
-    ext = os.path.splitext(path)[1].lower()
+def encode(layer: Layer, ext: str) -> str | bytes:
     if ext == ".usda":
-        write_atomic(path, layer.ExportToString())
+        return usda_text(layer)
+    from robodesc.usdfile.usdc import usdc_bytes
+
+    return usdc_bytes(layer)
+
+
+def write_layers(layers: LayerSet, path: str, robot_name: str) -> None:
+    """Write the asset; ``layers.main`` (and the interface) must already hold the robot prim."""
+    if not layers.layered:
+        write_atomic(path, encode(layers.main, layers.ext))
         return
-    directory = os.path.dirname(os.path.abspath(path))
-    os.makedirs(directory, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=".robodesc-", suffix=ext, dir=directory)
-    os.close(fd)
-    try:
-        if not layer.Export(tmp):
-            raise OSError(f"usd could not write {tmp}")
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    assert layers.interface is not None
+    contents = CONTENTS + layers.sub_ext(None)
+    files: dict[str, str | bytes] = {}
+    for stem, role in SUBLAYERS:
+        name = stem + layers.sub_ext(role)
+        layers.main.sublayers.append(f"./{name}")
+        files[name] = encode(layers.roles[role], layers.sub_ext(role))
+    files[contents] = encode(layers.main, layers.sub_ext(None))
+    interface = layers.interface
+    stage_metadata(interface, robot_name)
+    prim = interface.root.children[robot_name]
+    prim.payloads.append(Payload(f"./{PAYLOAD_DIR}/{contents}", f"/{robot_name}"))
+    out_dir = os.path.dirname(os.path.abspath(path))
+    # The payload folder first, the interface last: a reader never sees an interface without its payload.
+    with staged_folder(os.path.join(out_dir, PAYLOAD_DIR)) as staging:
+        write_files(staging, files)
+    write_atomic(path, encode(interface, layers.ext))

@@ -10,10 +10,9 @@ from __future__ import annotations
 
 import os
 
-from pxr import Gf, Sdf, UsdShade
-
 from robodesc.emit.usd_context import LOOKS_SCOPE, MATERIALS, UsdContext, unique_name
 from robodesc.ir.geometry import RGBA, Material
+from robodesc.usdfile.spec import AssetPath
 
 LookKey = tuple[RGBA | None, str | None]
 
@@ -22,9 +21,9 @@ class MaterialLibrary:
     def __init__(self, ctx: UsdContext) -> None:
         self.ctx = ctx
         self.by_name = {m.name: m for m in ctx.robot.materials}
-        self.by_key: dict[LookKey, Sdf.Path] = {}
+        self.by_key: dict[LookKey, str] = {}
         self.used: set[str] = set()
-        self.scope = ctx.robot_path.AppendChild(LOOKS_SCOPE)
+        self.scope = f"{ctx.robot_path}/{LOOKS_SCOPE}"
 
     def resolve(self, material: Material | None) -> Material | None:
         if material is None:
@@ -36,7 +35,7 @@ class MaterialLibrary:
             return defined
         return material
 
-    def path_for(self, material: Material | None) -> Sdf.Path | None:
+    def path_for(self, material: Material | None) -> str | None:
         look = self.resolve(material)
         if look is None:
             return None
@@ -48,44 +47,43 @@ class MaterialLibrary:
             self.by_key[key] = path
         return path
 
-    def _define(self, look: Material, key: LookKey) -> Sdf.Path:
+    def _define(self, look: Material, key: LookKey) -> str:
         ctx = self.ctx
         name = unique_name(look.name, self.used, "material")
-        with ctx.layer(MATERIALS):
-            if len(self.by_key) == 0:
-                ctx.stage.DefinePrim(self.scope, "Scope")
-            path = self.scope.AppendChild(name)
-            material = UsdShade.Material.Define(ctx.stage, path)
-            if look.display_name or name != look.name:
-                material.GetPrim().SetDisplayName(look.display_name or look.name)
-            shader = UsdShade.Shader.Define(ctx.stage, path.AppendChild("PreviewSurface"))
-            shader.CreateIdAttr("UsdPreviewSurface")
-            color, texture = key
-            rgba = color if color is not None else (1.0, 1.0, 1.0, 1.0)
-            diffuse = shader.CreateInput("diffuseColor", Sdf.ValueTypeNames.Color3f)
-            diffuse.Set(Gf.Vec3f(float(rgba[0]), float(rgba[1]), float(rgba[2])))
-            shader.CreateInput("opacity", Sdf.ValueTypeNames.Float).Set(float(rgba[3]))
-            shader.CreateInput("roughness", Sdf.ValueTypeNames.Float).Set(0.5)
-            surface = shader.CreateOutput("surface", Sdf.ValueTypeNames.Token)
-            material.CreateSurfaceOutput().ConnectToSource(surface)
-            if texture is not None:
-                self._texture(path, diffuse, texture)
+        if len(self.by_key) == 0:
+            ctx.define(MATERIALS, self.scope, "Scope")
+        path = f"{self.scope}/{name}"
+        material = ctx.define(MATERIALS, path, "Material")
+        if look.display_name or name != look.name:
+            material.display_name = look.display_name or look.name
+        shader = ctx.define(MATERIALS, f"{path}/PreviewSurface", "Shader")
+        shader.attr("info:id", "token", "UsdPreviewSurface", uniform=True)
+        color, texture = key
+        rgba = color if color is not None else (1.0, 1.0, 1.0, 1.0)
+        diffuse = shader.attr("inputs:diffuseColor", "color3f", (float(rgba[0]), float(rgba[1]), float(rgba[2])))
+        shader.attr("inputs:opacity", "float", float(rgba[3]))
+        shader.attr("inputs:roughness", "float", 0.5)
+        shader.attr("outputs:surface", "token", None)
+        material.connect("outputs:surface", "token", f"{path}/PreviewSurface.outputs:surface")
+        if texture is not None:
+            diffuse.connections = [self._texture(path, texture)]
         return path
 
-    def _texture(self, path: Sdf.Path, diffuse: UsdShade.Input, texture: str) -> None:
+    def _texture(self, path: str, texture: str) -> str:
+        """The texture reader shaders; returns the output the diffuse colour connects to."""
         ctx = self.ctx
-        reader = UsdShade.Shader.Define(ctx.stage, path.AppendChild("stReader"))
-        reader.CreateIdAttr("UsdPrimvarReader_float2")
-        reader.CreateInput("varname", Sdf.ValueTypeNames.Token).Set("st")
-        st = reader.CreateOutput("result", Sdf.ValueTypeNames.Float2)
-        image = UsdShade.Shader.Define(ctx.stage, path.AppendChild("DiffuseTexture"))
-        image.CreateIdAttr("UsdUVTexture")
+        reader = ctx.define(MATERIALS, f"{path}/stReader", "Shader")
+        reader.attr("info:id", "token", "UsdPrimvarReader_float2", uniform=True)
+        reader.attr("inputs:varname", "token", "st")
+        reader.attr("outputs:result", "float2", None)
+        image = ctx.define(MATERIALS, f"{path}/DiffuseTexture", "Shader")
+        image.attr("info:id", "token", "UsdUVTexture", uniform=True)
         asset = texture
         if os.path.isabs(texture):
             asset = os.path.relpath(texture, ctx.layer_dir).replace(os.sep, "/")
             if not asset.startswith("."):
                 asset = "./" + asset
-        image.CreateInput("file", Sdf.ValueTypeNames.Asset).Set(Sdf.AssetPath(asset))
-        image.CreateInput("st", Sdf.ValueTypeNames.Float2).ConnectToSource(st)
-        rgb = image.CreateOutput("rgb", Sdf.ValueTypeNames.Float3)
-        diffuse.ConnectToSource(rgb)
+        image.attr("inputs:file", "asset", AssetPath(asset))
+        image.connect("inputs:st", "float2", f"{path}/stReader.outputs:result")
+        image.attr("outputs:rgb", "float3", None)
+        return f"{path}/DiffuseTexture.outputs:rgb"
