@@ -25,6 +25,7 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from lxml import etree
@@ -486,27 +487,26 @@ def fan_triangulate(corners: I64, counts: I64) -> I64:
 
 
 def _floats(text: str | None, what: str) -> F64:
-    # np.fromstring with sep is the fastest parser numpy has (a third faster than str.split); it
-    # signals trailing junk with a warning on numpy 1.x and a ValueError on 2.x, caught as one.
-    if not text or text.isspace():  # fromstring reads an all-blank string as [-1.]
-        return np.zeros(0, dtype=np.float64)
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("error", DeprecationWarning)
-            return np.fromstring(text, dtype=np.float64, sep=" ")
-    except (ValueError, DeprecationWarning):
-        raise MeshReadError(f"bad number in {what}: {_first_bad(text, float)!r}") from None
+    out: F64 = _numbers(text, f"bad number in {what}", np.float64, float)
+    return out
 
 
 def _ints(text: str | None, what: str) -> I64:
-    if not text or text.isspace():
-        return np.zeros(0, dtype=np.int64)
+    out: I64 = _numbers(text, f"bad integer in {what}", np.int64, int)
+    return out
+
+
+def _numbers(text: str | None, error: str, dtype: Any, kind: type[float] | type[int]) -> Any:
+    # np.fromstring with sep is the fastest parser numpy has (a third faster than str.split); it
+    # signals trailing junk with a warning on numpy 1.x and a ValueError on 2.x, caught as one.
+    if not text or text.isspace():  # fromstring reads an all-blank string as [-1.]
+        return np.zeros(0, dtype=dtype)
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("error", DeprecationWarning)
-            return np.fromstring(text, dtype=np.int64, sep=" ")
+            return np.fromstring(text, dtype=dtype, sep=" ")
     except (ValueError, DeprecationWarning):
-        raise MeshReadError(f"bad integer in {what}: {_first_bad(text, int)!r}") from None
+        raise MeshReadError(f"{error}: {_first_bad(text, kind)!r}") from None
 
 
 def _first_bad(text: str, kind: type[float] | type[int]) -> str:

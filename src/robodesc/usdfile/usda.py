@@ -92,16 +92,13 @@ def _prim_metadata(prim: Prim, depth: int) -> list[str]:
         lines.append(f"{pad}kind = {quote(prim.kind)}\n")
     if prim.payloads:
         items = [f"@{p.asset_path}@" + (f"<{p.prim_path}>" if p.prim_path else "") for p in prim.payloads]
-        value = items[0] if len(items) == 1 else "[" + ", ".join(items) + "]"
-        lines.append(f"{pad}prepend payload = {value}\n")
+        lines.append(f"{pad}prepend payload = {_one_or_list(items)}\n")
     return lines
 
 
 def _relationship(rel: Relationship, pad: str) -> str:
     custom = "custom " if rel.custom else ""
-    targets = [f"<{t}>" for t in rel.targets]
-    value = targets[0] if len(targets) == 1 else "[" + ", ".join(targets) + "]"
-    return f"{pad}{custom}rel {rel.name} = {value}\n"
+    return f"{pad}{custom}rel {rel.name} = {_one_or_list([f'<{t}>' for t in rel.targets])}\n"
 
 
 def _attribute(attr: Attribute, pad: str) -> str:
@@ -114,10 +111,13 @@ def _attribute(attr: Attribute, pad: str) -> str:
             text += f" (\n{pad}{INDENT}interpolation = {quote(attr.interpolation)}\n{pad})"
         lines.append(text + "\n")
     if attr.connections:
-        targets = [f"<{t}>" for t in attr.connections]
-        value = targets[0] if len(targets) == 1 else "[" + ", ".join(targets) + "]"
-        lines.append(f"{decl}.connect = {value}\n")
+        lines.append(f"{decl}.connect = {_one_or_list([f'<{t}>' for t in attr.connections])}\n")
     return "".join(lines)
+
+
+def _one_or_list(items: list[str]) -> str:
+    """A list-op value as Sdf spells it: a single item bare, otherwise bracketed."""
+    return items[0] if len(items) == 1 else "[" + ", ".join(items) + "]"
 
 
 def format_value(type_name: str, value: Any) -> str:
