@@ -12,8 +12,7 @@ of each counts: the machine's noise only ever adds time.
 
 Per robot, one subprocess each (process start included, as a user runs them):
 - peer: ``urdf_usd_converter IN OUT_DIR --package name=path`` (its default: layered asset + physics scene);
-- robodesc: ``robodesc compile IN -t usd -o OUT.usda`` when the CLI has the USD target, else this
-  script's own ``--convert-one`` mode (load → isaac_sim passes → layered USD + physics scene: the
+- robodesc: ``robodesc compile IN -t usd -o OUT.usda --layered --physics-scene --no-validate`` (the
   same shape of output as the peer).
 Then robodesc in-process over the batch (imports paid once). Writes benchmarks/results/usd_vs_peer.md.
 """
@@ -48,47 +47,11 @@ def _prepare(robot: object, passes: str) -> None:
         run_passes(robot, preset=passes)  # type: ignore[arg-type]
 
 
-def convert_one(path: str, out: str, packages: dict[str, str], passes: str) -> int:
-    """robodesc's stand-in CLI: what ``robodesc compile -t usd`` will do."""
-    sys.path.insert(0, SRC)
-    from robodesc.emit.usd import UsdOptions, emit_usd
-    from robodesc.frontends.load import load_path
-    from robodesc.frontends.options import LoadOptions, MissingMesh
-    from robodesc.ir.diagnostics import RobodescError
-
-    try:
-        robot = load_path(path, LoadOptions(package_paths=packages, missing_mesh=MissingMesh.WARN)).robot
-        _prepare(robot, passes)
-        floating = any(j.type.dof == 6 for j in robot.joints)
-        emit_usd(robot, out, UsdOptions(fix_base=not floating, layered=True, physics_scene=True))
-    except RobodescError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
-    return 0
-
-
 def _robodesc_exe() -> str | None:
     """The console script itself: a version manager's shim (pyenv) adds ~0.1 s per call that is
     not robodesc's (the peer is called through its own venv's script too)."""
     beside = os.path.join(os.path.dirname(sys.executable), "robodesc")
     return beside if os.path.isfile(beside) else shutil.which("robodesc")
-
-
-def _robodesc_cli_has_usd() -> bool:
-    exe = _robodesc_exe()
-    if exe is None:
-        return False
-    probe = os.path.join(ROOT, "tests", "usd", "data", "gripper.urdf")
-    with tempfile.TemporaryDirectory() as tmp:
-        try:
-            done = subprocess.run(
-                [exe, "compile", probe, "-t", "usd", "-o", os.path.join(tmp, "g.usda"), "--no-validate", "-q"],
-                capture_output=True,
-                timeout=120,
-            )
-        except (OSError, subprocess.TimeoutExpired):
-            return False
-        return done.returncode == 0 and os.path.exists(os.path.join(tmp, "g.usda"))
 
 
 @dataclass
@@ -103,16 +66,16 @@ class Row:
     inproc_s: float | None = None
 
 
-def _best(cmd: list[str], repeat: int, env: dict[str, str] | None = None) -> tuple[bool, float, str]:
-    runs = [_run(cmd, env) for _ in range(repeat)]
+def _best(cmd: list[str], repeat: int) -> tuple[bool, float, str]:
+    runs = [_run(cmd) for _ in range(repeat)]
     ok = all(r[0] for r in runs)
     return ok, min(r[1] for r in runs), next((r[2] for r in runs if not r[0]), "")
 
 
-def _run(cmd: list[str], env: dict[str, str] | None = None) -> tuple[bool, float, str]:
+def _run(cmd: list[str]) -> tuple[bool, float, str]:
     start = time.perf_counter()
     try:
-        done = subprocess.run(cmd, capture_output=True, text=True, timeout=600, env=env)
+        done = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     except subprocess.TimeoutExpired:
         return False, time.perf_counter() - start, "timeout"
     seconds = time.perf_counter() - start
@@ -128,16 +91,12 @@ def main() -> int:
     parser.add_argument("--robodesc", help="robodesc console script (default: the one beside this Python)")
     parser.add_argument("--repeat", type=int, default=3, help="runs per robot and tool; the fastest counts")
     parser.add_argument("--out", default=os.path.join(HERE, "results", "usd_vs_peer.md"))
-    parser.add_argument("--convert-one", nargs=2, metavar=("IN", "OUT"))
-    parser.add_argument("--package", action="append", default=[], help="name=path (with --convert-one)")
-    parser.add_argument("--no-cli", action="store_true", help="use --convert-one even when robodesc has a USD target")
     parser.add_argument(
-        "--passes", default="isaac_sim", help="pass preset before emitting, or 'sanitize' (names/materials only)"
+        "--passes",
+        default="isaac_sim",
+        help="pass preset of the in-process batch, or 'sanitize' (names/materials only)",
     )
     args = parser.parse_args()
-    if args.convert_one:
-        packages = dict(p.split("=", 1) for p in args.package)
-        return convert_one(args.convert_one[0], args.convert_one[1], packages, args.passes)
 
     sys.path.insert(0, SRC)
     from robodesc.validation.corpora import all_robots
@@ -149,8 +108,10 @@ def main() -> int:
     if not os.path.exists(args.peer):
         print(f"peer not installed at {args.peer} (see the module docstring)", file=sys.stderr)
         return 2
-    use_cli = not args.no_cli and _robodesc_cli_has_usd()
-    env = dict(os.environ, PYTHONPATH=SRC + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    exe = args.robodesc or _robodesc_exe()
+    if exe is None:
+        print("no robodesc console script found: pass --robodesc (see the module docstring)", file=sys.stderr)
+        return 2
     work = tempfile.mkdtemp(prefix="usd-bench-")
     rows: list[Row] = []
     try:
@@ -161,17 +122,13 @@ def main() -> int:
             ours_dir = os.path.join(work, f"ours{index}")
             os.makedirs(ours_dir)
             out = os.path.join(ours_dir, "robot.usda")
-            if use_cli:
-                # The peer's output shape (layered asset + physics scene), no repairs, no validation:
-                # sanitize_names and unique_materials run anyway (USD needs them).
-                cmd = [
-                    args.robodesc or _robodesc_exe() or "robodesc", "compile", entry.path, "-t", "usd", "-o", out, "--layered", "--physics-scene",
-                    "--no-validate", "--missing-mesh", "warn", "--invalid-inertia", "warn", "-q", *pkg_args,
-                ]
-            else:
-                cmd = [sys.executable, os.path.abspath(__file__), "--convert-one", entry.path, out, *pkg_args]
-                cmd += ["--passes", args.passes]
-            ours_ok, ours_s, ours_err = _best(cmd, args.repeat, None if use_cli else env)
+            # The peer's output shape (layered asset + physics scene), no repairs, no validation:
+            # sanitize_names and unique_materials run anyway (USD needs them).
+            cmd = [
+                exe, "compile", entry.path, "-t", "usd", "-o", out, "--layered", "--physics-scene",
+                "--no-validate", "--missing-mesh", "warn", "--invalid-inertia", "warn", "-q", *pkg_args,
+            ]
+            ours_ok, ours_s, ours_err = _best(cmd, args.repeat)
             rows.append(Row(entry.name, peer_ok, peer_s, peer_err, ours_ok, ours_s, ours_err))
             print(
                 f"{entry.name:60s} peer {peer_s:6.2f}s {'ok' if peer_ok else 'FAIL'}  robodesc {ours_s:6.2f}s {'ok' if ours_ok else 'FAIL'}",
@@ -180,8 +137,7 @@ def main() -> int:
         _in_process(robots, rows, work, args.passes)
     finally:
         shutil.rmtree(work, ignore_errors=True)
-    how = "robodesc compile -t usd --layered --physics-scene --no-validate" if use_cli else f"benchmark --convert-one --passes {args.passes}"
-    report = _report(rows, how)
+    report = _report(rows, "robodesc compile -t usd --layered --physics-scene --no-validate")
     os.makedirs(os.path.dirname(args.out), exist_ok=True)
     with open(args.out, "w", encoding="utf-8") as handle:
         handle.write(report)

@@ -124,7 +124,7 @@ def set_pose(prim: Prim, m: Mat, scale: tuple[float, float, float] | None = None
     if t[0] or t[1] or t[2]:
         prim.attr("xformOp:translate", "double3", (float(t[0]), float(t[1]), float(t[2])))
         order.append("xformOp:translate")
-    q = matrix_to_quat_wxyz(m[:3, :3])
+    q = quat(m)
     if q != (1.0, 0.0, 0.0, 0.0):
         prim.attr("xformOp:orient", "quatd", q)
         order.append("xformOp:orient")
@@ -138,9 +138,10 @@ def set_pose(prim: Prim, m: Mat, scale: tuple[float, float, float] | None = None
 def set_full_pose(prim: Prim, m: Mat) -> None:
     t = m[:3, 3]
     prim.attr("xformOp:translate", "double3", (float(t[0]), float(t[1]), float(t[2])))
-    prim.attr("xformOp:orient", "quatd", matrix_to_quat_wxyz(m[:3, :3]))
+    prim.attr("xformOp:orient", "quatd", quat(m))
     prim.attr("xformOpOrder", "token[]", ["xformOp:translate", "xformOp:orient"], uniform=True)
 
 
 def quat(m: Mat) -> tuple[float, float, float, float]:
+    """(w, x, y, z) of the rotation part of a 3x3 or 4x4 matrix."""
     return matrix_to_quat_wxyz(m[:3, :3])

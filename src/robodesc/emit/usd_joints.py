@@ -10,7 +10,6 @@ from __future__ import annotations
 import numpy as np
 
 from robodesc.emit.usd_context import (
-    JOINTS_SCOPE,
     LOOPS_SCOPE,
     PHYSICS,
     UsdContext,
@@ -259,7 +258,3 @@ def loop_scope_paths(ctx: UsdContext) -> dict[str, str]:
             raise UnsupportedError("two loop joints share this name", element=f"loop_joint {name!r}", loc=loop.src)
         out[name] = f"{scope}/{name}"
     return out
-
-
-def joint_scope(ctx: UsdContext) -> str:
-    return f"{ctx.robot_path}/{JOINTS_SCOPE}"

@@ -109,7 +109,3 @@ def camera_from_sensor() -> Mat:
     """Rotation from a USD camera (looks down -Z, +Y up) to a ROS/URDF sensor frame (+X forward,
     +Z up)."""
     return np.array([[0.0, 0.0, -1.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
-
-
-def quat_of(m: Mat) -> Quat:
-    return matrix_to_quat_wxyz(m)

@@ -228,14 +228,12 @@ def format_float_array(flat: Any) -> list[str]:
                 out[i] = text
     with np.errstate(over="ignore"):
         back = np.array(out, dtype=np.float64).astype(np.float32)
-    wrong = np.nonzero((back != values) & ~np.isnan(values))[0].tolist()
-    for i in wrong:
-        out[i] = format_float(as_double[i])
-    for i, text in enumerate(out):
-        if "e" in text or "n" in text:
+    # The scalar path for what one %g pass cannot give: a text that reads back wrong, subnormals
+    # (whose shortest form may have fewer than 6 digits), and exponent, nan or inf spellings.
+    redo = ((back != values) & ~np.isnan(values)) | ((np.abs(values) < _F32_NORMAL) & (values != 0))
+    for i, (text, again) in enumerate(zip(out, redo.tolist(), strict=True)):
+        if again or "e" in text or "n" in text:
             out[i] = format_float(as_double[i])
-    for i in np.nonzero((np.abs(values) < _F32_NORMAL) & (values != 0))[0].tolist():
-        out[i] = format_float(as_double[i])
     return out
 
 
