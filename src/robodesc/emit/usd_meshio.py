@@ -11,15 +11,14 @@ colliders often share a file.
 from __future__ import annotations
 
 import os
-import warnings
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from robodesc.emit.mesh_collada import MeshReadError as MeshReadError
 from robodesc.emit.mesh_collada import fan_triangulate, read_collada_indexed
+from robodesc.emit.number_text import parse_floats, parse_ints
 from robodesc.ir.geometry import Vec3
 
 F32 = NDArray[np.float32]
@@ -204,7 +203,7 @@ def _obj_vertices(lines: tuple[bytes, int]) -> NDArray[np.float64] | None:
         rank = np.arange(len(first_bytes)) - (np.cumsum(counts) - counts)[line]
         token = np.cumsum(joined.begins) - 1  # of each byte (a gap counts with the token before it)
         text[~joined.gap & (rank[token] > 3)] = 32
-    values = _parse_numbers(text.tobytes(), np.float64)
+    values = parse_floats(text.tobytes())
     if values is None or len(values) != 3 * count:
         return None
     return values.reshape(-1, 3)
@@ -221,25 +220,13 @@ def _obj_faces(lines: tuple[bytes, int]) -> NDArray[np.int64] | None:
     # when there are more slashes up to it than up to the last gap before it.
     slashes = np.cumsum(text == 47, dtype=np.int32)
     at_gap = np.maximum.accumulate(np.where(joined.gap, slashes, 0))
-    values = _parse_numbers(text[slashes <= at_gap].tobytes(), np.int64)
+    values = parse_ints(text[slashes <= at_gap].tobytes())
     corners = joined.tokens_per_line() - 1
     if values is None or len(values) != int(corners.sum()):
         return None  # an empty index ("/2") or junk: the line reader reports it
     if len(values) and values.min() <= 0:
         return None  # relative (negative) indices count the vertices read so far: line reader
     return fan_triangulate(values - 1, corners)
-
-
-def _parse_numbers(text: bytes, dtype: type[np.float64] | type[np.int64]) -> NDArray[Any] | None:
-    """Whitespace-separated numbers, or None if any token is not one (numpy 1.x warns, 2.x raises)."""
-    if not text.strip():
-        return np.zeros(0, dtype=dtype)  # fromstring reads blank text as [-1]
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("error", DeprecationWarning)
-            return np.fromstring(text, dtype=dtype, sep=" ")
-    except (ValueError, DeprecationWarning):
-        return None
 
 
 def _read_stl(path: str) -> NDArray[np.float64]:
