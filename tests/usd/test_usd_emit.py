@@ -168,7 +168,8 @@ def test_meshes_and_colliders(tmp_path: Path) -> None:
     assert len(points) == 6 and len(mesh.GetFaceVertexCountsAttr().Get()) == 8
     assert mesh.GetSubdivisionSchemeAttr().Get() == "none"
     # Outward normals survive the mirroring: the bottom face (z = 0 before, the top after) points +z.
-    normals = np.array(mesh.GetNormalsAttr().Get()).reshape(-1, 3, 3)[:, 0]
+    assert mesh.GetNormalsInterpolation() == UsdGeom.Tokens.uniform
+    normals = np.array(mesh.GetNormalsAttr().Get())
     centroids = points[np.array(mesh.GetFaceVertexIndicesAttr().Get()).reshape(-1, 3)].mean(axis=1)
     centre = points.mean(axis=0)
     assert np.all(np.einsum("ij,ij->i", normals, centroids - centre) > 0)

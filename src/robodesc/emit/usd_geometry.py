@@ -2,7 +2,7 @@
 
 Primitives map to UsdGeom gprims (a unit ``Cube`` scaled to the box, ``Sphere``, ``Cylinder`` and
 ``Capsule`` along Z); meshes become ``Mesh`` prims with the file's triangles, the URDF scale baked
-into the points and face-varying normals.
+into the points and one flat normal per face (``uniform``).
 """
 
 from __future__ import annotations
@@ -104,7 +104,9 @@ def _author_mesh(prim: Prim, data: MeshData) -> None:
     prim.attr("points", "point3f[]", data.points)
     prim.attr("faceVertexCounts", "int[]", data.face_vertex_counts)
     prim.attr("faceVertexIndices", "int[]", data.face_vertex_indices)
-    prim.attr("normals", "normal3f[]", data.normals, interpolation="faceVarying")
+    # One normal per triangle: the flat shading faceVarying would give by repeating it at each
+    # corner, in a third of the data (NVIDIA's converter writes per-face normals too).
+    prim.attr("normals", "normal3f[]", data.normals, interpolation="uniform")
     prim.attr("subdivisionScheme", "token", "none", uniform=True)
     prim.attr("extent", "float3[]", data.extent)
     if data.uv is not None:

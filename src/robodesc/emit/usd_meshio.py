@@ -30,7 +30,7 @@ class MeshData:
     points: F32  # (n, 3), scale applied
     face_vertex_counts: I32  # (m,)
     face_vertex_indices: I32  # (sum counts,)
-    normals: F32  # (sum counts, 3): faceVarying, one per face corner
+    normals: F32  # (m, 3): uniform, one per face
     extent: F32  # (2, 3)
     uv: F32 | None = None  # (n, 2) per vertex, when the file has texture coordinates
 
@@ -394,7 +394,7 @@ def build_mesh(path: str, scale: Vec3 | None) -> MeshData:
         points=points,
         face_vertex_counts=np.full(len(tri), 3, dtype=np.int32),
         face_vertex_indices=np.ascontiguousarray(tri.reshape(-1), dtype=np.int32),
-        normals=np.repeat(normals, 3, axis=0).astype(np.float32),
+        normals=normals.astype(np.float32),
         extent=extent,
         uv=uv.astype(np.float32) if uv is not None else None,
     )
