@@ -1,18 +1,30 @@
-"""Builds robodesc's one C extension; everything else is in pyproject.toml.
+"""Builds robodesc's C extensions; everything else is in pyproject.toml.
 
-``robodesc._numtext`` parses the numbers in mesh files about five times faster than numpy. It is
-optional: without a C compiler the install goes on and robodesc parses with numpy instead (same
-numbers, slower).
+- ``robodesc._numtext`` parses the numbers in mesh text (COLLADA, OBJ) about seven times faster
+  than numpy;
+- ``robodesc._meshweld`` welds mesh corners into points and computes face normals about five times
+  faster than robodesc's numpy code.
+
+Both are optional: without a C compiler the install goes on and robodesc uses its numpy code
+instead, which gives the same numbers bit for bit, more slowly. FMA contraction is off so the
+normals are computed with exactly numpy's roundings.
 """
+
+import sys
 
 from setuptools import Extension, setup
 
+# MSVC neither contracts to FMA by default nor knows the GCC/Clang flag.
+STRICT_FP = [] if sys.platform == "win32" else ["-ffp-contract=off"]
+
 setup(
     ext_modules=[
+        Extension("robodesc._numtext", sources=["src/robodesc/_numtext.c"], optional=True),
         Extension(
-            "robodesc._numtext",
-            sources=["src/robodesc/_numtext.c"],
+            "robodesc._meshweld",
+            sources=["src/robodesc/_meshweld.c"],
+            extra_compile_args=STRICT_FP,
             optional=True,
-        )
+        ),
     ]
 )

@@ -21,6 +21,11 @@ from robodesc.emit.mesh_collada import fan_triangulate, read_collada_indexed
 from robodesc.emit.number_text import parse_floats, parse_ints
 from robodesc.ir.geometry import Vec3
 
+try:
+    from robodesc import _meshweld
+except ImportError:  # installed without a C compiler: the numpy weld and normals below (same bits, slower)
+    _meshweld = None  # type: ignore[assignment]
+
 F32 = NDArray[np.float32]
 I32 = NDArray[np.int32]
 
@@ -268,6 +273,8 @@ def _weld(tri: NDArray[np.float64]) -> tuple[NDArray[np.float64], I32]:
     n = len(flat)
     if n == 0:
         return flat, np.zeros(0, dtype=np.int32)
+    if _meshweld is not None:
+        return _native_weld(flat, None)
     rows = flat.view(np.uint64)
     order, same_hash = _hash_order(rows)
     changed = _row_changes(rows, order)
@@ -294,6 +301,8 @@ def _weld_indexed(points: NDArray[np.float64], corners: NDArray[np.int64]) -> tu
     """``_weld(points[corners])``, the same points and indices, without welding every corner: the
     points are welded, then numbered by the first corner that uses them."""
     k = len(corners)
+    if _meshweld is not None and k:
+        return _native_weld(np.ascontiguousarray(points, dtype=np.float64), corners)
     if len(points) >= k:
         return _weld(np.take(points, corners, axis=0))  # mostly unused points: weld the corners
     unique, row_class = _weld(points)
@@ -307,6 +316,13 @@ def _weld_indexed(points: NDArray[np.float64], corners: NDArray[np.int64]) -> tu
     number = np.empty(len(unique), dtype=np.intp)
     number[group[used]] = (np.cumsum(is_first) - 1)[used]
     return np.take(unique, group[is_first], axis=0), np.take(number, group).astype(np.int32)
+
+
+def _native_weld(rows: NDArray[np.float64], corners: NDArray[np.int64] | None) -> tuple[NDArray[np.float64], I32]:
+    """:func:`_weld` (or :func:`_weld_indexed` with ``corners``) through the C hash table."""
+    wanted = None if corners is None else np.ascontiguousarray(corners, dtype=np.int64)
+    first, indices = _meshweld.weld(rows, wanted)
+    return np.take(rows, np.frombuffer(first, dtype=np.int64), axis=0), np.frombuffer(indices, dtype=np.int32)
 
 
 def _hash_order(rows: NDArray[np.uint64]) -> tuple[NDArray[np.intp], NDArray[np.bool_]]:
@@ -383,21 +399,33 @@ def build_mesh(path: str, scale: Vec3 | None) -> MeshData:
         if float(np.prod(s)) < 0:
             # A mirroring scale turns the faces inside out: flip the winding back.
             tri = tri[:, ::-1]
-    corners = vertices[tri]
-    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    length = np.linalg.norm(normals, axis=1, keepdims=True)
-    normals = np.divide(normals, length, out=np.zeros_like(normals), where=length > 0)
-    normals += 0.0  # no negative zeros in the text output
+    face_vertex_indices = np.ascontiguousarray(tri.reshape(-1), dtype=np.int32)
+    normals = face_normals(vertices, face_vertex_indices)
     points = vertices.astype(np.float32)
     extent = np.stack([points.min(axis=0), points.max(axis=0)])
     return MeshData(
         points=points,
         face_vertex_counts=np.full(len(tri), 3, dtype=np.int32),
-        face_vertex_indices=np.ascontiguousarray(tri.reshape(-1), dtype=np.int32),
-        normals=normals.astype(np.float32),
+        face_vertex_indices=face_vertex_indices,
+        normals=normals,
         extent=extent,
         uv=uv.astype(np.float32) if uv is not None else None,
     )
+
+
+def face_normals(vertices: NDArray[np.float64], corners: I32) -> F32:
+    """(m, 3) float32 unit normals of the triangles ``corners`` (three point numbers each) lists:
+    the cross product of the edges from the first corner, normalised; 0 for a degenerate one."""
+    if _meshweld is not None:
+        raw = _meshweld.face_normals(np.ascontiguousarray(vertices, dtype=np.float64), corners)
+        return np.frombuffer(raw, dtype=np.float32).reshape(-1, 3)
+    tri = vertices[corners.reshape(-1, 3)]
+    with np.errstate(all="ignore"):  # overflow and inf - inf in a broken file: that normal is 0 or NaN
+        normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+        length = np.linalg.norm(normals, axis=1, keepdims=True)
+    normals = np.divide(normals, length, out=np.zeros_like(normals), where=length > 0)
+    normals += 0.0  # no negative zeros in the text output
+    return normals.astype(np.float32)
 
 
 class MeshCache:
