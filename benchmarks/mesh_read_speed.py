@@ -9,6 +9,9 @@ icub-models, hello-robot-stretch-urdf, ../shared/corpus), what ``usd_meshio.read
 - stl: the same STL reader, then the old weld against the new one;
 - obj: the line-by-line reader (kept as ``_read_obj_lines``) against the vectorised one.
 
+"New" includes the C extensions when they are built (number parsing, weld); on 2026-11-21 all 964
+files read 6.3x faster than the old path (14.6 s against 2.3 s), 3.0x with the numpy code alone.
+
 The old implementations are the references in ``tests/usd/test_mesh_readers.py``. Times are the
 best of ``--repeat`` runs per file, imports excluded. A file the old path fails on (pycollada drops
 a geometry with a broken material) is timed all the same.
