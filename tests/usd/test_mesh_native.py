@@ -9,14 +9,21 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from contextlib import contextmanager
+from pathlib import Path
 
 import numpy as np
 import pytest
 from numpy.typing import NDArray
-from test_mesh_readers import corpus_files
+from test_mesh_readers import SHARED_CORPUS, corpus_files
 
-from robodesc.emit import usd_meshio
+from robodesc.emit import number_text, usd_meshio
 from robodesc.emit.mesh_collada import read_collada_indexed
+from robodesc.emit.usd import UsdOptions, emit_usd
+from robodesc.frontends.load import load_path
+from robodesc.frontends.options import LoadOptions
+from robodesc.passes.options import PassOptions
+from robodesc.passes.pipeline import run_passes
+from robodesc.validation.corpora import all_robots
 
 
 @contextmanager
@@ -121,3 +128,23 @@ def test_corpus_stl_and_collada() -> None:
         assert got[0].tobytes() == expected[0].tobytes(), path
         np.testing.assert_array_equal(got[1], expected[1])
         both_normals(*got)
+
+
+def test_same_usd_with_and_without_the_extensions(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # A whole robot with COLLADA visuals and STL colliders, written both ways: the same bytes.
+    found = [r for r in all_robots(str(SHARED_CORPUS)) if r.name == "ur_description/urdf/ur10_robot"]
+    if not found:
+        pytest.skip("example-robot-data is not installed")
+    entry = found[0]
+
+    def convert(name: str) -> bytes:
+        robot = load_path(entry.path, LoadOptions(package_paths=entry.packages)).robot
+        run_passes(robot, options=PassOptions(sanitize_names=True, unique_materials=True))
+        out = tmp_path / name / "ur10.usda"
+        emit_usd(robot, str(out), UsdOptions(layered=True))
+        return (out.parent / "Payload" / "Geometry.usdc").read_bytes()
+
+    native = convert("native")
+    monkeypatch.setattr(usd_meshio, "_meshweld", None)
+    monkeypatch.setattr(number_text, "_numtext", None)
+    assert convert("numpy") == native
