@@ -1,6 +1,6 @@
 """Whitespace-separated numbers in mesh text (COLLADA arrays, OBJ lines) as numpy arrays.
 
-The C extension ``robodesc._numtext`` parses them about five times faster than numpy's own parser,
+The C extension ``robodesc._numtext`` parses them about seven times faster than numpy's own parser,
 to the same bits (see its source). It is built at install time and optional: without a C compiler
 numpy parses instead, more slowly, with the same results.
 """

@@ -268,7 +268,8 @@ def _weld(tri: NDArray[np.float64]) -> tuple[NDArray[np.float64], I32]:
     Corners are identical when their coordinates are equal bit for bit (so 0.0 and -0.0 stay apart)
     and points come in the order of their first corner. Sorting 64-bit keys (a hash of the corner
     over its index) is about 5x faster than np.unique on 24-byte rows; a hash collision between
-    different corners is detected and handled by an exact sort."""
+    different corners is detected and handled by an exact sort. When the C extension is built, its
+    hash table gives the same result in one pass."""
     flat = np.ascontiguousarray(tri.reshape(-1, 3))
     n = len(flat)
     if n == 0:
@@ -301,7 +302,7 @@ def _weld_indexed(points: NDArray[np.float64], corners: NDArray[np.int64]) -> tu
     """``_weld(points[corners])``, the same points and indices, without welding every corner: the
     points are welded, then numbered by the first corner that uses them."""
     k = len(corners)
-    if _meshweld is not None and k:
+    if _meshweld is not None:
         return _native_weld(np.ascontiguousarray(points, dtype=np.float64), corners)
     if len(points) >= k:
         return _weld(np.take(points, corners, axis=0))  # mostly unused points: weld the corners
