@@ -34,7 +34,6 @@ from robodesc.frontends.options import LoadOptions
 from robodesc.frontends.packages import PackageResolver
 from robodesc.ir.diagnostics import BrokenReferenceError, Findings, ParseError, SourceLoc
 from robodesc.ir.geometry import RGBA, Geometry, Inertia, Inertial, Material, Mesh, Pose, Vec3
-from robodesc.ir.inertia import inertia_problem
 from robodesc.ir.model import (
     CameraSpec,
     Collision,
@@ -57,6 +56,7 @@ from robodesc.ir.model import (
     TransmissionJoint,
     Visual,
 )
+from robodesc.ir.principal import inertia_problem
 from robodesc.ir.transforms import Mat, matrix_pose, pose_matrix
 from robodesc.ir.verify import check
 

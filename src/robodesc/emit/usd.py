@@ -38,7 +38,7 @@ from robodesc.emit.usd_options import FORMATS, UsdOptions
 from robodesc.emit.usd_sensors import emit_fixed_frame, emit_sensor
 from robodesc.ir.diagnostics import BrokenReferenceError, ConfigError, Findings, UnsupportedError
 from robodesc.ir.model import FixedFrame, Robot, Sensor
-from robodesc.ir.transforms import forward_kinematics
+from robodesc.ir.rigid import link_frames
 
 __all__ = ["UsdOptions", "emit_usd"]
 
@@ -73,7 +73,7 @@ def build_layers(ctx: UsdContext, layers: LayerSet) -> None:
         root = robot.root
     except ValueError as exc:
         raise UnsupportedError(f"{exc}: USD needs one tree", element=f"robot {robot.name!r}", loc=robot.src) from None
-    ctx.link_poses = forward_kinematics(robot)
+    ctx.link_poses = link_frames(robot)
     name = ctx.robot_path[1:]
     stage_metadata(layers.main, name)
     robot_prim(layers.main, name, robot.display_name)

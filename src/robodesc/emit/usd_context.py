@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 from robodesc.emit.usd_options import UsdOptions
 from robodesc.ir.diagnostics import Findings, SourceLoc, UnsupportedError
 from robodesc.ir.model import Robot
-from robodesc.ir.transforms import Mat, matrix_to_quat_wxyz
+from robodesc.ir.rigid import Frame
 from robodesc.usdfile.spec import Layer, Prim
 
 if TYPE_CHECKING:
@@ -56,7 +56,7 @@ class UsdContext:
     link_paths: dict[str, str] = field(default_factory=dict)
     joint_paths: dict[str, str] = field(default_factory=dict)
     # World (robot-frame) pose of every link at q = 0.
-    link_poses: dict[str, Mat] = field(default_factory=dict)
+    link_poses: dict[str, Frame] = field(default_factory=dict)
 
     @property
     def meshes(self) -> MeshCache:
@@ -114,17 +114,17 @@ def set_display_name(prim: Prim, display_name: str | None) -> None:
         prim.display_name = display_name
 
 
-def set_pose(prim: Prim, m: Mat, scale: tuple[float, float, float] | None = None) -> None:
+def set_pose(prim: Prim, m: Frame, scale: tuple[float, float, float] | None = None) -> None:
     """translate (double3) + orient (quatd) [+ scale (float3)]; identity parts are skipped.
 
     The orient is double precision: for a rotation under ~5e-4 rad a quatf's real part rounds to
     exactly 1, and usd-core (GfRotation takes the angle from acos(w)) then evaluates the identity."""
     order = []
-    t = m[:3, 3]
+    t = m.translation
     if t[0] or t[1] or t[2]:
         prim.attr("xformOp:translate", "double3", (float(t[0]), float(t[1]), float(t[2])))
         order.append("xformOp:translate")
-    q = quat(m)
+    q = m.quat()
     if q != (1.0, 0.0, 0.0, 0.0):
         prim.attr("xformOp:orient", "quatd", q)
         order.append("xformOp:orient")
@@ -135,13 +135,8 @@ def set_pose(prim: Prim, m: Mat, scale: tuple[float, float, float] | None = None
         prim.attr("xformOpOrder", "token[]", order, uniform=True)
 
 
-def set_full_pose(prim: Prim, m: Mat) -> None:
-    t = m[:3, 3]
+def set_full_pose(prim: Prim, m: Frame) -> None:
+    t = m.translation
     prim.attr("xformOp:translate", "double3", (float(t[0]), float(t[1]), float(t[2])))
-    prim.attr("xformOp:orient", "quatd", quat(m))
+    prim.attr("xformOp:orient", "quatd", m.quat())
     prim.attr("xformOpOrder", "token[]", ["xformOp:translate", "xformOp:orient"], uniform=True)
-
-
-def quat(m: Mat) -> tuple[float, float, float, float]:
-    """(w, x, y, z) of the rotation part of a 3x3 or 4x4 matrix."""
-    return matrix_to_quat_wxyz(m[:3, :3])

@@ -13,7 +13,7 @@ from robodesc.emit.usd_context import GEOMETRY, MATERIALS, PHYSICS, UsdContext, 
 from robodesc.emit.usd_materials import MaterialLibrary
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Mesh, Sphere
 from robodesc.ir.model import Collision, Link, Visual
-from robodesc.ir.transforms import pose_matrix
+from robodesc.ir.rigid import pose_frame
 from robodesc.usdfile.spec import Prim
 
 if TYPE_CHECKING:
@@ -47,7 +47,7 @@ def emit_link_geometry(ctx: UsdContext, link: Link, looks: MaterialLibrary) -> N
 
 def _shape(ctx: UsdContext, path: str, item: Visual | Collision, label: str) -> bool:
     geometry: Geometry = item.geometry
-    origin = pose_matrix(item.origin)
+    origin = pose_frame(item.origin)
     if isinstance(geometry, Box):
         prim = ctx.define(GEOMETRY, path, "Cube")
         prim.attr("size", "double", 1.0)

@@ -7,21 +7,18 @@ local frames by the rotation taking +X onto it, and the joint's axis becomes X.
 
 from __future__ import annotations
 
-import numpy as np
-
 from robodesc.emit.usd_context import (
     LOOPS_SCOPE,
     PHYSICS,
     UsdContext,
     check_identifier,
-    quat,
     set_display_name,
 )
 from robodesc.emit.usd_math import DEG, PER_DEGREE, AxisFrame, axis_frame
 from robodesc.ir.diagnostics import UnsupportedError
 from robodesc.ir.model import Joint, JointType, LoopJoint
+from robodesc.ir.rigid import Frame, pose_frame
 from robodesc.ir.rules import lookup
-from robodesc.ir.transforms import Mat, pose_matrix
 from robodesc.usdfile.spec import Prim
 
 _TYPE_NAMES = {
@@ -51,7 +48,7 @@ def emit_joint(ctx: UsdContext, joint: Joint) -> None:
     set_display_name(prim, joint.display_name)
     prim.rel("physics:body0", [ctx.link_paths[joint.parent]])
     prim.rel("physics:body1", [ctx.link_paths[joint.child]])
-    _frames(prim, pose_matrix(joint.origin), np.eye(4), frame)
+    _frames(prim, pose_frame(joint.origin), Frame(), frame)
     if joint.type is JointType.PLANAR:
         # Free: the two translations in the plane and the rotation about its normal.
         locked = [f"trans{frame.token}"] + [f"rot{a}" for a in "XYZ" if a != frame.token]
@@ -65,16 +62,13 @@ def emit_joint(ctx: UsdContext, joint: Joint) -> None:
         _one_dof(ctx, joint, prim, frame)
 
 
-def _frames(prim: Prim, frame0: Mat, frame1: Mat, axis: AxisFrame) -> None:
-    r0, r1 = frame0.copy(), frame1.copy()
+def _frames(prim: Prim, frame0: Frame, frame1: Frame, axis: AxisFrame) -> None:
     if axis.rotation is not None:
-        r0[:3, :3] = frame0[:3, :3] @ axis.rotation
-        r1[:3, :3] = frame1[:3, :3] @ axis.rotation
-    t0, t1 = frame0[:3, 3], frame1[:3, 3]
-    prim.attr("physics:localPos0", "point3f", (float(t0[0]), float(t0[1]), float(t0[2])))
-    prim.attr("physics:localRot0", "quatf", quat(r0))
-    prim.attr("physics:localPos1", "point3f", (float(t1[0]), float(t1[1]), float(t1[2])))
-    prim.attr("physics:localRot1", "quatf", quat(r1))
+        frame0, frame1 = frame0.rotated(axis.rotation), frame1.rotated(axis.rotation)
+    prim.attr("physics:localPos0", "point3f", frame0.translation)
+    prim.attr("physics:localRot0", "quatf", frame0.quat())
+    prim.attr("physics:localPos1", "point3f", frame1.translation)
+    prim.attr("physics:localRot1", "quatf", frame1.quat())
 
 
 def _one_dof(ctx: UsdContext, joint: Joint, prim: Prim, frame: AxisFrame) -> None:
@@ -243,7 +237,7 @@ def emit_loop_joint(ctx: UsdContext, loop: LoopJoint, path: str) -> None:
     set_display_name(prim, loop.display_name)
     prim.rel("physics:body0", [ctx.link_paths[loop.link1.link]])
     prim.rel("physics:body1", [ctx.link_paths[loop.link2.link]])
-    _frames(prim, pose_matrix(loop.link1.origin), pose_matrix(loop.link2.origin), frame)
+    _frames(prim, pose_frame(loop.link1.origin), pose_frame(loop.link2.origin), frame)
     prim.attr("physics:excludeFromArticulation", "bool", True, uniform=True)
     if jtype is not JointType.FIXED:
         prim.attr("physics:axis", "token", frame.token, uniform=True)

@@ -1,6 +1,7 @@
 """Numbers the USD emitter derives from the IR: joint frames, mass properties, unit conversions.
 
-Pure numpy (no pxr) so tests and validation can reuse them.
+Plain floats (no numpy, no pxr): tests and validation reuse them, and a robot of primitives
+converts without importing numpy.
 """
 
 from __future__ import annotations
@@ -8,15 +9,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-from numpy.typing import NDArray
-
 from robodesc.ir.geometry import Inertial, Vec3
-from robodesc.ir.inertia import principal_axes, rotate, tensor
-from robodesc.ir.transforms import matrix_to_quat_wxyz, rpy_to_matrix
-
-Mat = NDArray[np.float64]
-Quat = tuple[float, float, float, float]  # (w, x, y, z)
+from robodesc.ir.principal import rotate_tensor, symmetric_eigen, tensor_rows
+from robodesc.ir.rigid import Mat3, Quat, rotation_quat, rpy_rotation, unit
 
 DEG = 180.0 / math.pi
 # Angular gains are per degree in USD: (N·m/rad) · (rad/deg).
@@ -34,32 +29,34 @@ class AxisFrame:
     """
 
     token: str
-    rotation: Mat | None
+    rotation: Mat3 | None
 
 
 def axis_frame(axis: Vec3) -> AxisFrame:
-    a = np.asarray(axis, dtype=float)
-    norm = float(np.linalg.norm(a))
-    if not math.isfinite(norm) or norm == 0.0:
-        raise ValueError("joint axis has zero length")
-    a = a / norm
-    key = (float(a[0]), float(a[1]), float(a[2]))
-    token = _PRINCIPAL.get(key)
+    try:
+        a = unit(axis)
+    except ValueError:
+        raise ValueError("joint axis has zero length") from None
+    token = _PRINCIPAL.get(a)
     if token is not None:
         return AxisFrame(token, None)
     return AxisFrame("X", rotation_x_to(a))
 
 
-def rotation_x_to(a: Mat) -> Mat:
-    """The shortest rotation taking +X onto the unit vector ``a`` (a half turn about Z for -X)."""
-    x = np.array([1.0, 0.0, 0.0])
-    c = float(x @ a)
+def rotation_x_to(a: Vec3) -> Mat3:
+    """The shortest rotation taking +X onto the unit vector ``a`` (a half turn about Z for -X).
+
+    Rodrigues' formula with ``v = x × a = (0, -az, ay)`` and ``c = x · a = ax``:
+    ``R = I + [v]× + [v]×² / (1 + c)``."""
+    c, ay, az = a[0], a[1], a[2]
     if c < -1.0 + 1e-12:
-        return np.diag([-1.0, -1.0, 1.0])
-    v = np.cross(x, a)
-    k = np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
-    out: Mat = np.eye(3) + k + (k @ k) / (1.0 + c)
-    return out
+        return ((-1.0, 0.0, 0.0), (0.0, -1.0, 0.0), (0.0, 0.0, 1.0))
+    f = 1.0 / (1.0 + c)
+    return (
+        (1.0 - (az * az + ay * ay) * f, -ay, -az),
+        (ay, 1.0 - ay * ay * f, -ay * az * f),
+        (az, -az * ay * f, 1.0 - az * az * f),
+    )
 
 
 @dataclass(slots=True, frozen=True)
@@ -80,32 +77,30 @@ def mass_properties(inertial: Inertial) -> MassProperties:
     mass = float(inertial.mass) if inertial.mass is not None else 0.0
     if inertial.inertia is None:
         return MassProperties(mass, com, (0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0), "no inertia tensor given")
-    m = tensor(inertial.inertia)
+    m = tensor_rows(inertial.inertia)
     if origin is not None and origin.rpy != (0.0, 0.0, 0.0):
-        m = rotate(m, rpy_to_matrix(origin.rpy))
+        m = rotate_tensor(m, rpy_rotation(origin.rpy))
     problem = None
-    if not np.all(np.isfinite(m)):
+    flat = [x for row in m for x in row]
+    if not all(math.isfinite(x) for x in flat):
         return MassProperties(mass, com, (0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0), "inertia has a non-finite value")
-    if not np.any(m):
+    if not any(flat):
         problem = "inertia tensor is zero"
     if _is_diagonal(m):
         # Keep diagonal tensors exact and in axis order: no eigen-solver noise, no axis shuffling.
-        diag = (float(m[0, 0]), float(m[1, 1]), float(m[2, 2]))
+        diag = (m[0][0], m[1][1], m[2][2])
         quat: Quat = (1.0, 0.0, 0.0, 0.0)
     else:
-        eig, vec = principal_axes(m)
-        diag = (float(eig[0]), float(eig[1]), float(eig[2]))
-        quat = matrix_to_quat_wxyz(vec)
+        diag, axes = symmetric_eigen(m)
+        quat = rotation_quat(axes)
     if problem is None and min(diag) < 0:
         problem = f"inertia tensor has a negative principal moment ({min(diag):.6g})"
     return MassProperties(mass, com, diag, quat, problem)
 
 
-def _is_diagonal(m: Mat) -> bool:
-    return bool(m[0, 1] == 0.0 and m[0, 2] == 0.0 and m[1, 2] == 0.0)
+def _is_diagonal(m: Mat3) -> bool:
+    return m[0][1] == 0.0 and m[0][2] == 0.0 and m[1][2] == 0.0
 
 
-def camera_from_sensor() -> Mat:
-    """Rotation from a USD camera (looks down -Z, +Y up) to a ROS/URDF sensor frame (+X forward,
-    +Z up)."""
-    return np.array([[0.0, 0.0, -1.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+# Rotation from a USD camera (looks down -Z, +Y up) to a ROS/URDF sensor frame (+X forward, +Z up).
+CAMERA_FROM_SENSOR: Mat3 = ((0.0, 0.0, -1.0), (-1.0, 0.0, 0.0), (0.0, 1.0, 0.0))

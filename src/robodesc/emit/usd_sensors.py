@@ -15,9 +15,9 @@ from __future__ import annotations
 import math
 
 from robodesc.emit.usd_context import GEOMETRY, UsdContext, set_display_name, set_pose
-from robodesc.emit.usd_math import camera_from_sensor
+from robodesc.emit.usd_math import CAMERA_FROM_SENSOR
 from robodesc.ir.model import FixedFrame, RayAxis, Sensor, SensorType
-from robodesc.ir.transforms import Mat, pose_matrix
+from robodesc.ir.rigid import Frame, pose_frame
 from robodesc.usdfile.spec import Prim
 
 # USD's default horizontal aperture (mm, a 35 mm film back).
@@ -27,12 +27,12 @@ LIDAR_PLUGIN = "omni.sensors.nv.lidar.lidar_core.plugin"
 
 def emit_fixed_frame(ctx: UsdContext, frame: FixedFrame, path: str) -> None:
     xform = ctx.define(GEOMETRY, path, "Xform")
-    set_pose(xform, pose_matrix(frame.origin))
+    set_pose(xform, pose_frame(frame.origin))
     set_display_name(xform, frame.display_name)
 
 
 def emit_sensor(ctx: UsdContext, sensor: Sensor, path: str) -> None:
-    pose = pose_matrix(sensor.origin)
+    pose = pose_frame(sensor.origin)
     if sensor.type in (SensorType.CAMERA, SensorType.DEPTH):
         prim = _camera(ctx, sensor, path, pose)
     elif sensor.type is SensorType.RAY:
@@ -51,11 +51,9 @@ def emit_sensor(ctx: UsdContext, sensor: Sensor, path: str) -> None:
         _custom(prim, "robodesc:sensor:parentJoint", "string", sensor.parent_joint)
 
 
-def _camera(ctx: UsdContext, sensor: Sensor, path: str, pose: Mat) -> Prim:
+def _camera(ctx: UsdContext, sensor: Sensor, path: str, pose: Frame) -> Prim:
     prim = ctx.define(GEOMETRY, path, "Camera")
-    turned = pose.copy()
-    turned[:3, :3] = pose[:3, :3] @ camera_from_sensor()
-    set_pose(prim, turned)
+    set_pose(prim, pose.rotated(CAMERA_FROM_SENSOR))
     spec = sensor.camera
     if spec is None:
         return prim

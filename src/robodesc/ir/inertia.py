@@ -1,4 +1,7 @@
-"""Inertia tensor arithmetic and physical-validity checks."""
+"""Inertia tensor arithmetic with numpy, for the passes that combine and move tensors.
+
+The validity check and the principal axes live in :mod:`robodesc.ir.principal` (no numpy), so that
+verifying and emitting a robot does not import numpy; ``inertia_problem`` is re-exported here."""
 
 from __future__ import annotations
 
@@ -6,6 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from robodesc.ir.geometry import Inertia
+from robodesc.ir.principal import inertia_problem as inertia_problem
 
 Mat3 = NDArray[np.float64]
 
@@ -24,37 +28,6 @@ def from_tensor(m: Mat3) -> Inertia:
         ixz=float(m[0, 2]),
         iyz=float(m[1, 2]),
     )
-
-
-def inertia_problem(inertia: Inertia, *, rel_tol: float = 1e-6) -> str | None:
-    """Why a tensor is not physical, or ``None``.
-
-    Physical means: symmetric positive definite, and the principal moments satisfy the triangle
-    inequality (each at most the sum of the other two). ``rel_tol`` absorbs the rounding of the
-    printed values that real files carry (a thin rod's I1 + I2 = I3 exactly).
-    """
-    m = tensor(inertia)
-    if not np.all(np.isfinite(m)):
-        return "inertia has a non-finite value"
-    if not np.any(m):
-        return "inertia tensor is zero"
-    eig = np.linalg.eigvalsh(m)
-    scale = float(np.max(np.abs(eig)))
-    # eigvalsh is exact to ~1e-16 relative; anything below 1e-14 of the largest moment is zero.
-    if eig[0] <= 1e-14 * scale:
-        return f"inertia tensor is not positive definite (principal moments {eig[0]:.6g}, {eig[1]:.6g}, {eig[2]:.6g})"
-    a, b, c = (float(x) for x in eig)
-    if c > (a + b) * (1 + rel_tol) + rel_tol * scale:
-        return f"principal moments break the triangle inequality ({c:.6g} > {a:.6g} + {b:.6g})"
-    return None
-
-
-def principal_axes(m: Mat3) -> tuple[NDArray[np.float64], Mat3]:
-    """Eigenvalues (ascending) and a right-handed rotation whose columns are the principal axes."""
-    eig, vec = np.linalg.eigh(m)
-    if np.linalg.det(vec) < 0:
-        vec[:, 2] = -vec[:, 2]
-    return eig, vec
 
 
 def rotate(m: Mat3, rotation: Mat3) -> Mat3:

@@ -14,8 +14,8 @@ from collections import Counter
 
 from robodesc.ir.diagnostics import Findings, Severity, SourceLoc, VerificationError
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Inertial, Mesh, Sphere
-from robodesc.ir.inertia import inertia_problem
 from robodesc.ir.model import Joint, JointType, Robot
+from robodesc.ir.principal import inertia_problem
 
 STAGE = "verify"
 

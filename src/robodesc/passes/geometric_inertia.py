@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from robodesc.ir.model import Robot
 from robodesc.passes.context import PassContext
-from robodesc.passes.shape_inertia import inertial_from_props, link_props
 
 NAME = "geometric_inertia"
 
@@ -21,6 +20,9 @@ def geometric_inertia(robot: Robot, ctx: PassContext) -> Robot:
         inertial = link.inertial
         if inertial is None or inertial.inertia is not None or inertial.mass is None or not inertial.mass > 0:
             continue
+        # Imported here: the shape maths needs numpy, which a robot with every tensor given never loads.
+        from robodesc.passes.shape_inertia import inertial_from_props, link_props
+
         label = f"link {link.name!r}"
         found = link_props(link)
         if found is None:

@@ -9,25 +9,15 @@ switch in :class:`PassOptions` is on; presets are named option sets (:mod:`robod
 
 from __future__ import annotations
 
+import importlib
 from collections.abc import Callable
 from dataclasses import dataclass
 
 from robodesc.ir.diagnostics import Finding, Findings, VerificationError
 from robodesc.ir.model import Robot
 from robodesc.ir.verify import check
-from robodesc.passes.armature import armature
 from robodesc.passes.context import PassContext
-from robodesc.passes.geometric_inertia import geometric_inertia
-from robodesc.passes.isaac_limits import isaac_limits
-from robodesc.passes.keep_bodies import keep_bodies
-from robodesc.passes.merge_fixed import merge_fixed
 from robodesc.passes.options import PassOptions, merge_options
-from robodesc.passes.rename import rename
-from robodesc.passes.repair_inertia import repair_inertia
-from robodesc.passes.sanitize_names import sanitize_names
-from robodesc.passes.strip_tags import strip_tags
-from robodesc.passes.unique_materials import unique_materials
-from robodesc.passes.zero_pose import zero_pose
 
 PassFn = Callable[[Robot, PassContext], Robot]
 
@@ -35,23 +25,29 @@ PassFn = Callable[[Robot, PassContext], Robot]
 @dataclass(slots=True, frozen=True)
 class Pass:
     name: str
-    run: PassFn
     enabled: Callable[[PassOptions], bool]
+
+    @property
+    def run(self) -> PassFn:
+        """The function ``robodesc.passes.<name>.<name>``, imported when a pass first runs: a compile
+        pays only for its own passes (the inertia passes import numpy and trimesh)."""
+        fn: PassFn = getattr(importlib.import_module(f"robodesc.passes.{self.name}"), self.name)
+        return fn
 
 
 PASSES: tuple[Pass, ...] = (
-    Pass("rename", rename, lambda o: bool(o.rename)),
-    Pass("sanitize_names", sanitize_names, lambda o: o.sanitize_names),
-    Pass("unique_materials", unique_materials, lambda o: o.unique_materials),
-    Pass("geometric_inertia", geometric_inertia, lambda o: o.fill_inertia),
-    Pass("repair_inertia", repair_inertia, lambda o: o.repair_inertia is not None),
+    Pass("rename", lambda o: bool(o.rename)),
+    Pass("sanitize_names", lambda o: o.sanitize_names),
+    Pass("unique_materials", lambda o: o.unique_materials),
+    Pass("geometric_inertia", lambda o: o.fill_inertia),
+    Pass("repair_inertia", lambda o: o.repair_inertia is not None),
     # Before strip_tags: merging must still see dont_collapse.
-    Pass("merge_fixed", merge_fixed, lambda o: o.merge_fixed),
-    Pass("strip_tags", strip_tags, lambda o: bool(o.strip)),
-    Pass("armature", armature, lambda o: bool(o.armature or o.armature_by_robot)),
-    Pass("isaac_limits", isaac_limits, lambda o: o.isaac_limits),
-    Pass("keep_bodies", keep_bodies, lambda o: o.keep_bodies),
-    Pass("zero_pose", zero_pose, lambda o: o.zero_pose_check),
+    Pass("merge_fixed", lambda o: o.merge_fixed),
+    Pass("strip_tags", lambda o: bool(o.strip)),
+    Pass("armature", lambda o: bool(o.armature or o.armature_by_robot)),
+    Pass("isaac_limits", lambda o: o.isaac_limits),
+    Pass("keep_bodies", lambda o: o.keep_bodies),
+    Pass("zero_pose", lambda o: o.zero_pose_check),
 )
 
 

@@ -19,8 +19,8 @@ from __future__ import annotations
 import math
 
 from robodesc.ir.geometry import Inertia, Inertial, Pose
-from robodesc.ir.inertia import inertia_problem
 from robodesc.ir.model import Link, Robot
+from robodesc.ir.principal import inertia_problem
 from robodesc.passes.context import PassContext
 from robodesc.passes.options import RepairPolicy
 from robodesc.passes.shape_inertia import inertial_from_props, link_props
