@@ -242,8 +242,145 @@ static PyObject *parse(PyObject *self, PyObject *args) {
     return out;
 }
 
+
+/* The space- or tab-separated tokens of one line, from ``p`` up to ``end``: the next token's bounds
+ * in (*start, *stop); 0 when there is none left. */
+static int next_token(const char **p, const char *end, const char **start, const char **stop) {
+    const char *q = *p;
+    while (q < end && (*q == ' ' || *q == '\t')) {
+        q++;
+    }
+    if (q == end) {
+        *p = q;
+        return 0;
+    }
+    *start = q;
+    while (q < end && *q != ' ' && *q != '\t') {
+        q++;
+    }
+    *stop = q;
+    *p = q;
+    return 1;
+}
+
+/* Growable packed buffer for obj(). */
+typedef struct {
+    char *data;
+    Py_ssize_t size, capacity;
+} Packed;
+
+static int packed_add(Packed *b, const void *value, Py_ssize_t width) {
+    if (b->size + width > b->capacity) {
+        Py_ssize_t capacity = b->capacity ? 2 * b->capacity : 4096;
+        while (capacity < b->size + width) {
+            capacity *= 2;
+        }
+        char *grown = PyMem_Realloc(b->data, capacity);
+        if (grown == NULL) {
+            PyErr_NoMemory();
+            return -1;
+        }
+        b->data = grown;
+        b->capacity = capacity;
+    }
+    memcpy(b->data + b->size, value, width);
+    b->size += width;
+    return 0;
+}
+
+/* The vertices and fan-triangulated faces of a Wavefront OBJ text whose line breaks are all "\n"
+ * and whose bytes are printable ASCII, tabs and breaks on ``v``/``f`` lines (the caller checks the
+ * rest). It reads what usd_meshio's line reader reads, the same way: lines starting "v " give x, y,
+ * z (the first three tokens after the keyword; more are ignored), lines starting "f " give corners
+ * (each token up to its first "/", an index from 1) fanned into triangles (v0, vk, vk+1). Returns
+ * (vertices float64, triangles int32) or None whenever that reader must decide: a short or bad
+ * vertex line, a bad or relative (negative) index, an index past the vertices, a non-ASCII byte
+ * on such a line. */
+static PyObject *obj(PyObject *self, PyObject *args) {
+    PyObject *text;
+    /* bytes, whose terminating NUL stops PyOS_string_to_double after the last token. */
+    if (!PyArg_ParseTuple(args, "S", &text)) {
+        return NULL;
+    }
+    const char *p = PyBytes_AS_STRING(text);
+    const char *end = p + PyBytes_GET_SIZE(text);
+    Packed vertices = {NULL, 0, 0}, triangles = {NULL, 0, 0};
+    PyObject *result = NULL;
+    int64_t largest = 0;
+    int fallback = 0;
+    while (p < end && !fallback) {
+        const char *line_end = memchr(p, '\n', end - p);
+        if (line_end == NULL) {
+            line_end = end;
+        }
+        int vertex = line_end - p >= 2 && p[0] == 'v' && p[1] == ' ';
+        int face = line_end - p >= 2 && p[0] == 'f' && p[1] == ' ';
+        if (vertex || face) {
+            for (const char *c = p; c < line_end; c++) {
+                if ((unsigned char)*c > 126) {
+                    fallback = 1;
+                }
+            }
+        }
+        const char *q = p + 2, *start, *stop;
+        if (vertex && !fallback) {
+            for (int j = 0; j < 3; j++) {
+                double value;
+                /* A token ends at a space, a tab or the line's end: the parsers stop there. */
+                if (!next_token(&q, line_end, &start, &stop) || parse_double(start, stop, &value) != 0) {
+                    fallback = 1;
+                    break;
+                }
+                if (packed_add(&vertices, &value, 8) != 0) {
+                    goto done;
+                }
+            }
+        } else if (face && !fallback) {
+            int32_t first = 0, previous = 0;
+            int corner = 0;
+            while (next_token(&q, line_end, &start, &stop)) {
+                const char *slash = memchr(start, '/', stop - start);
+                int64_t index;
+                if (parse_int(start, slash ? slash : stop, &index) != 0 || index <= 0 || index > INT32_MAX) {
+                    fallback = 1;
+                    break;
+                }
+                largest = index > largest ? index : largest;
+                int32_t point = (int32_t)(index - 1);
+                if (corner == 0) {
+                    first = point;
+                } else if (corner >= 2) {
+                    int32_t triangle[3] = {first, previous, point};
+                    if (packed_add(&triangles, triangle, 12) != 0) {
+                        goto done;
+                    }
+                }
+                previous = point;
+                corner++;
+            }
+        }
+        p = line_end + 1;
+    }
+    if (fallback || largest > vertices.size / 24) {
+        result = Py_NewRef(Py_None);
+        goto done;
+    }
+    PyObject *v = PyByteArray_FromStringAndSize(vertices.data ? vertices.data : "", vertices.size);
+    PyObject *t = PyByteArray_FromStringAndSize(triangles.data ? triangles.data : "", triangles.size);
+    if (v != NULL && t != NULL) {
+        result = PyTuple_Pack(2, v, t);
+    }
+    Py_XDECREF(v);
+    Py_XDECREF(t);
+done:
+    PyMem_Free(vertices.data);
+    PyMem_Free(triangles.data);
+    return result;
+}
+
 static PyMethodDef methods[] = {
     {"parse", parse, METH_VARARGS, "parse(text, integers) -> bytearray of packed float64 or int64"},
+    {"obj", obj, METH_VARARGS, "obj(data) -> (vertices float64, triangles int32) of an OBJ text, or None"},
     {NULL, NULL, 0, NULL},
 };
 

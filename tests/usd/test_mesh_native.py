@@ -1,12 +1,16 @@
-"""The C weld and face normals (``robodesc._meshweld``) against robodesc's numpy code, bit for bit.
+"""The C mesh code (``robodesc._meshweld``, ``robodesc._numtext.obj``) against robodesc's numpy
+code, bit for bit.
 
-The numpy code is the fallback when the extension is not built, and was itself checked against
-np.unique and np.cross (test_mesh_readers.py); here both run on the same input and must agree
-exactly, on hand-made edge cases, random meshes and every STL and COLLADA file of the corpora.
+The numpy code is the fallback when the extensions are not built, and the path for COLLADA and the
+formats trimesh reads; it was itself checked against np.unique, np.cross and the line-by-line OBJ
+reader (test_mesh_readers.py). Here both run on the same input and must agree exactly: the weld and
+normals on hand-made edge cases, random meshes and every STL and COLLADA file of the corpora, and
+whole meshes (binary STL and OBJ read, welded and finished without numpy) on every STL and OBJ file.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -16,7 +20,7 @@ import pytest
 from numpy.typing import NDArray
 from test_mesh_readers import SHARED_CORPUS, corpus_files
 
-from robodesc.emit import number_text, usd_meshio
+from robodesc.emit import mesh_data, number_text, usd_meshio
 from robodesc.emit.mesh_collada import read_collada_indexed
 from robodesc.emit.usd import UsdOptions, emit_usd
 from robodesc.frontends.load import load_path
@@ -25,15 +29,17 @@ from robodesc.passes.options import PassOptions
 from robodesc.passes.pipeline import run_passes
 from robodesc.validation.corpora import all_robots
 
+DATA = Path(__file__).parent / "data"
+
 
 @contextmanager
 def numpy_only() -> Iterator[None]:
-    native = usd_meshio._meshweld
-    usd_meshio._meshweld = None
+    native = usd_meshio._meshweld, mesh_data._meshweld
+    usd_meshio._meshweld = mesh_data._meshweld = None  # type: ignore[assignment]
     try:
         yield
     finally:
-        usd_meshio._meshweld = native
+        usd_meshio._meshweld, mesh_data._meshweld = native
 
 
 def both_welds(tri: NDArray[np.float64]) -> None:
@@ -56,6 +62,74 @@ def both_normals(vertices: NDArray[np.float64], corners: NDArray[np.int32]) -> N
 
 def test_native_weld_is_built() -> None:
     assert usd_meshio._meshweld is not None, "robodesc._meshweld is not built: pip install -e . compiles it"
+    assert mesh_data._meshweld is not None and mesh_data._numtext is not None
+
+
+def assert_same_mesh(got: mesh_data.MeshData, expected: mesh_data.MeshData, what: str) -> None:
+    for name in ("points", "face_vertex_counts", "face_vertex_indices", "normals"):
+        a, b = getattr(got, name), getattr(expected, name)
+        assert a.typecode == b.typecode and a.tobytes() == b.tobytes(), (what, name)
+    assert np.array_equal(got.extent, expected.extent, equal_nan=True), what
+    assert [math.copysign(1, v) for v in np.ravel(got.extent)] == [math.copysign(1, v) for v in np.ravel(expected.extent)]
+
+
+def both_builds(path: str, scale: tuple[float, float, float] | None) -> None:
+    """The numpy-free build of a mesh file against the numpy reader and finish."""
+    try:
+        got = mesh_data.build_mesh(path, scale)
+    except mesh_data.MeshReadError as exc:
+        with pytest.raises(mesh_data.MeshReadError) as expected_error, numpy_only():
+            usd_meshio.build_mesh_numpy(path, scale)
+        assert str(exc) == str(expected_error.value), path
+        return
+    with numpy_only():
+        expected = usd_meshio.build_mesh_numpy(path, scale)
+    assert_same_mesh(got, expected, f"{path} scale {scale}")
+
+
+@pytest.mark.parametrize("scale", [None, (0.001, 0.001, 0.001), (1.0, -2.0, 0.5)])
+def test_whole_meshes_of_the_test_data(scale: tuple[float, float, float] | None) -> None:
+    for name in ("wedge.stl", "wedge.obj"):
+        both_builds(str(DATA / name), scale)
+
+
+def test_obj_edge_cases(tmp_path: Path) -> None:
+    cases = {
+        "quad_and_pentagon": "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nf 1 2 3 4\nf 1/1 2//2 3/3/3 4 5\n",
+        "extra_coords_and_tabs": "v\t9 9 9\nv 0 0 0 1 0.5 0.5\nv 1 0 0\nv  0\t1 0 \nf 1 2 3\n",
+        "crlf": "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n",
+        "relative": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n",
+        "out_of_range": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n",
+        "short_vertex": "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+        "bad_number": "v 0 0 x\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+        "bad_index": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 /3\n",
+        "two_corners": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\nf 1 2 3\n",
+        "no_faces": "v 0 0 0\n",
+        "non_ascii_comment": "# caf\u00e9\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3",
+        "nan_and_exponents": "v nan 0 0\nv 1e0 -0 0\nv 0 1.5E-3 +2\nf 1 2 3\n",
+    }
+    for name, text in cases.items():
+        path = tmp_path / f"{name}.obj"
+        path.write_bytes(text.encode())
+        both_builds(str(path), None)
+        both_builds(str(path), (2.0, 2.0, -1.0))
+    # The C reader takes the plain files and leaves the others to the line reader.
+    native = {name for name, text in cases.items() if mesh_data._numtext.obj(text.replace("\r", "").encode())}
+    assert native == {"quad_and_pentagon", "extra_coords_and_tabs", "crlf", "two_corners", "no_faces", "non_ascii_comment", "nan_and_exponents"}
+
+
+def test_stl_edge_cases(tmp_path: Path) -> None:
+    good = (DATA / "wedge.stl").read_bytes()
+    cases = {
+        "truncated": good[:-7],
+        "empty_binary": bytes(80) + (0).to_bytes(4, "little"),
+        "too_short": b"solid",
+        "ascii": b"solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n",
+    }
+    for name, data in cases.items():
+        path = tmp_path / f"{name}.stl"
+        path.write_bytes(data)
+        both_builds(str(path), None)
 
 
 @pytest.mark.parametrize("seed", range(6))
@@ -107,6 +181,17 @@ def test_bad_input_is_an_error_not_a_crash() -> None:
 
 
 @pytest.mark.slow
+def test_corpus_whole_meshes() -> None:
+    files = corpus_files(".stl") + corpus_files(".obj")
+    if not files:
+        pytest.skip("no mesh corpus installed")
+    for path in files:
+        both_builds(path, None)
+    for path in files[::10]:
+        both_builds(path, (0.5, -1.0, 2.0))
+
+
+@pytest.mark.slow
 def test_corpus_stl_and_collada() -> None:
     stl = corpus_files(".stl")
     dae = corpus_files(".dae")
@@ -146,5 +231,6 @@ def test_same_usd_with_and_without_the_extensions(tmp_path: Path, monkeypatch: p
 
     native = convert("native")
     monkeypatch.setattr(usd_meshio, "_meshweld", None)
+    monkeypatch.setattr(mesh_data, "_meshweld", None)
     monkeypatch.setattr(number_text, "_numtext", None)
     assert convert("numpy") == native

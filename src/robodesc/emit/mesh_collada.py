@@ -29,6 +29,7 @@ import numpy as np
 from lxml import etree
 from numpy.typing import NDArray
 
+from robodesc.emit.mesh_data import MeshReadError as MeshReadError
 from robodesc.emit.number_text import parse_floats, parse_ints
 
 F32 = NDArray[np.float32]
@@ -39,11 +40,6 @@ I64 = NDArray[np.int64]
 _MAX_DEPTH = 200
 
 _PRIMITIVES = frozenset({"triangles", "polylist", "polygons", "tristrips", "trifans"})
-
-
-class MeshReadError(Exception):
-    """A mesh file could not be read. Defined here (and re-exported by ``usd_meshio``) so this module
-    does not import ``usd_meshio``, which imports it."""
 
 
 def read_collada(path: str) -> F64:

@@ -17,7 +17,7 @@ from robodesc.ir.rigid import Frame
 from robodesc.usdfile.spec import Layer, Prim
 
 if TYPE_CHECKING:
-    from robodesc.emit.usd_meshio import MeshCache
+    from robodesc.emit.mesh_data import MeshCache
 
 STAGE = "emit:usd"
 
@@ -62,7 +62,7 @@ class UsdContext:
     def meshes(self) -> MeshCache:
         # Imported on first use: mesh reading needs numpy, a robot of primitives does not.
         if self._meshes is None:
-            from robodesc.emit.usd_meshio import MeshCache
+            from robodesc.emit.mesh_data import MeshCache
 
             self._meshes = MeshCache()
         return self._meshes

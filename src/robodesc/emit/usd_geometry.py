@@ -17,7 +17,7 @@ from robodesc.ir.rigid import pose_frame
 from robodesc.usdfile.spec import Prim
 
 if TYPE_CHECKING:
-    from robodesc.emit.usd_meshio import MeshData
+    from robodesc.emit.mesh_data import MeshData
 
 
 def emit_link_geometry(ctx: UsdContext, link: Link, looks: MaterialLibrary) -> None:
@@ -86,7 +86,7 @@ def _shape(ctx: UsdContext, path: str, item: Visual | Collision, label: str) -> 
 
 
 def _mesh_data(ctx: UsdContext, mesh: Mesh, label: str) -> MeshData | None:
-    from robodesc.emit.usd_meshio import MeshReadError
+    from robodesc.emit.mesh_data import MeshReadError
 
     if mesh.path is None:
         ctx.warn("usd-missing-mesh", f"mesh {mesh.uri!r} was not found; this geometry is left out", label, mesh.src)

@@ -1,23 +1,25 @@
-"""Reading mesh files into the arrays a UsdGeom.Mesh needs.
+"""Reading mesh files into the arrays a UsdGeom.Mesh needs, with numpy.
 
-STL (binary and ASCII) and OBJ are read with numpy directly and COLLADA with lxml and numpy
-(:mod:`robodesc.emit.mesh_collada`): importing trimesh alone costs over a second, and pycollada
-about as much again on a mesh-heavy robot, more than converting the whole robot. Other formats go
-through trimesh, imported on first use. Texture coordinates are only read through trimesh (not for
-STL, OBJ, DAE yet). Results are cached per (file, scale) for one emitter run, because visuals and
-colliders often share a file.
+:mod:`robodesc.emit.mesh_data` reads binary STL and plain OBJ without numpy (through the C
+extensions) and comes here for everything else: COLLADA (with lxml and numpy,
+:mod:`robodesc.emit.mesh_collada`), ASCII STL, OBJ files that need the line reader, and other
+formats through trimesh, imported on first use (importing trimesh alone costs over a second, and
+pycollada about as much again on a mesh-heavy robot). Without the C extensions everything comes
+here. Texture coordinates are only read through trimesh (not for STL, OBJ, DAE yet).
 """
 
 from __future__ import annotations
 
-import os
+from array import array
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from robodesc.emit.mesh_collada import MeshReadError as MeshReadError
 from robodesc.emit.mesh_collada import fan_triangulate, read_collada_indexed
+from robodesc.emit.mesh_data import MeshData, finish, obj_text
+from robodesc.emit.mesh_data import MeshReadError as MeshReadError
 from robodesc.emit.number_text import parse_floats, parse_ints
 from robodesc.ir.geometry import Vec3
 
@@ -28,16 +30,6 @@ except ImportError:  # installed without a C compiler: the numpy weld and normal
 
 F32 = NDArray[np.float32]
 I32 = NDArray[np.int32]
-
-
-@dataclass(slots=True, frozen=True)
-class MeshData:
-    points: F32  # (n, 3), scale applied
-    face_vertex_counts: I32  # (m,)
-    face_vertex_indices: I32  # (sum counts,)
-    normals: F32  # (m, 3): uniform, one per face
-    extent: F32  # (2, 3)
-    uv: F32 | None = None  # (n, 2) per vertex, when the file has texture coordinates
 
 
 _STL_RECORD = np.dtype([("normal", "<f4", (3,)), ("v", "<f4", (3, 3)), ("attr", "<u2")])
@@ -95,27 +87,13 @@ def _check_obj_indices(indices: I32, count: int) -> None:
         raise MeshReadError("a face refers to a vertex that does not exist")
 
 
-# Bytes that need no second look: printable ASCII, tab and line breaks; and the non-ASCII ones.
-_PLAIN = bytes(range(32, 127)) + b"\t\n\r"
-_NON_ASCII = bytes(range(128, 256))
-# Line breaks that str.splitlines() knows and bytes.splitlines() does not (besides control bytes).
-_UNICODE_BREAKS = ("\x85".encode(), "\u2028".encode(), "\u2029".encode())
-
-
 def _read_obj_fast(data: bytes) -> tuple[NDArray[np.float64], I32] | None:
     """:func:`_read_obj_lines` with numpy over all ``v``/``f`` lines at once, or None when the file
     needs the line reader: the result is then the same, and so is the error."""
-    odd = data.translate(None, _PLAIN)
-    if odd:
-        # Other control bytes split lines or tokens differently for str, bytes and fromstring.
-        if odd.translate(None, _NON_ASCII):
-            return None
-        if any(mark in data for mark in _UNICODE_BREAKS):
-            return None
-    # The line breaks str.splitlines() sees in such a file: \r\n, \r and \n.
-    if b"\r" in data:
-        data = data.replace(b"\r\n", b"\n").replace(b"\r", b"\n")
-    lines = _LineIndex.of(data)
+    text = obj_text(data)
+    if text is None:
+        return None
+    lines = _LineIndex.of(text)
     vertices = _obj_vertices(lines.select(b"v"))
     if vertices is None:
         return None
@@ -387,10 +365,25 @@ def _read_trimesh(path: str) -> tuple[NDArray[np.float64], I32, NDArray[np.float
     return vertices, faces, uv
 
 
-def build_mesh(path: str, scale: Vec3 | None) -> MeshData:
-    if not os.path.isfile(path):
-        raise MeshReadError("file does not exist")
+def build_mesh_numpy(path: str, scale: Vec3 | None) -> MeshData:
+    """:func:`robodesc.emit.mesh_data.build_mesh` for the files it leaves to numpy: read here, then
+    finished by the C extension when it is built (the same bits as :func:`finish_numpy`)."""
     vertices, indices, uv = read_triangles(path)
+    packed_uv = None if uv is None else _packed(uv, np.float32)
+    if _meshweld is not None:
+        return finish(
+            np.ascontiguousarray(vertices, dtype=np.float64),
+            np.ascontiguousarray(indices, dtype=np.int32),
+            scale,
+            packed_uv,
+        )
+    return finish_numpy(vertices, indices, scale, packed_uv)
+
+
+def finish_numpy(
+    vertices: NDArray[np.float64], indices: I32, scale: Vec3 | None, uv: array[float] | None = None
+) -> MeshData:
+    """:func:`robodesc.emit.mesh_data.finish` in numpy."""
     if len(indices) == 0 or len(vertices) == 0:
         raise MeshReadError("mesh has no triangles")
     tri = indices.reshape(-1, 3)
@@ -403,15 +396,22 @@ def build_mesh(path: str, scale: Vec3 | None) -> MeshData:
     face_vertex_indices = np.ascontiguousarray(tri.reshape(-1), dtype=np.int32)
     normals = face_normals(vertices, face_vertex_indices)
     points = vertices.astype(np.float32)
-    extent = np.stack([points.min(axis=0), points.max(axis=0)])
+    # + 0.0: which of 0.0 and -0.0 a minimum keeps is up to numpy's loops; the extent has no -0.
+    low, high = (points.min(axis=0) + 0.0).tolist(), (points.max(axis=0) + 0.0).tolist()
     return MeshData(
-        points=points,
-        face_vertex_counts=np.full(len(tri), 3, dtype=np.int32),
-        face_vertex_indices=face_vertex_indices,
-        normals=normals,
-        extent=extent,
-        uv=uv.astype(np.float32) if uv is not None else None,
+        points=_packed(points, np.float32),
+        face_vertex_counts=array("i", [3]) * len(tri),
+        face_vertex_indices=_packed(face_vertex_indices, np.int32),
+        normals=_packed(normals, np.float32),
+        extent=((low[0], low[1], low[2]), (high[0], high[1], high[2])),
+        uv=uv,
     )
+
+
+def _packed(values: NDArray[Any], dtype: type[np.float32] | type[np.int32]) -> array[Any]:
+    out: array[Any] = array("f" if dtype is np.float32 else "i")
+    out.frombytes(np.ascontiguousarray(values, dtype=dtype).tobytes())
+    return out
 
 
 def face_normals(vertices: NDArray[np.float64], corners: I32) -> F32:
@@ -427,23 +427,3 @@ def face_normals(vertices: NDArray[np.float64], corners: I32) -> F32:
     normals = np.divide(normals, length, out=np.zeros_like(normals), where=length > 0)
     normals += 0.0  # no negative zeros in the text output
     return normals.astype(np.float32)
-
-
-class MeshCache:
-    def __init__(self) -> None:
-        self._data: dict[tuple[str, Vec3 | None], MeshData | MeshReadError] = {}
-
-    def get(self, path: str, scale: Vec3 | None) -> MeshData:
-        key = (path, scale)
-        hit = self._data.get(key)
-        if hit is None:
-            try:
-                hit = build_mesh(path, scale)
-            except MeshReadError as exc:
-                hit = exc
-            except (OSError, ValueError, IndexError) as exc:
-                hit = MeshReadError(f"{type(exc).__name__}: {exc}")
-            self._data[key] = hit
-        if isinstance(hit, MeshReadError):
-            raise hit
-        return hit

@@ -11,8 +11,10 @@ Values are plain Python, chosen by the attribute's ``type_name`` (see :data:`VAL
 - ``string``, ``token``: ``str``; ``asset``: :class:`AssetPath`;
 - vectors and colours (``float3``, ``double3``, ``point3f``, ``color3f``, ``texCoord2f`` ...): a
   tuple of floats; quaternions (``quatf``, ``quatd``): ``(w, x, y, z)``;
-- arrays (``...[]``): a sequence of the scalar form, or a numpy array of shape ``(n,)`` or
-  ``(n, k)`` (numpy stays optional: nothing here imports it).
+- arrays (``...[]``): a sequence of the scalar form, a numpy array of shape ``(n,)`` or
+  ``(n, k)`` (numpy stays optional: nothing here imports it), or an ``array.array`` holding the
+  scalars flat, element after element, of the attribute's C type (``"f"`` for float-based types,
+  ``"d"`` for double-based, ``"i"`` for int), which the .usdc writer copies as it is.
 """
 
 from __future__ import annotations

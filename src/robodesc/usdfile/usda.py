@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import struct
+from array import array
 from typing import Any
 
 from robodesc.usdfile.spec import AssetPath, Attribute, Layer, Prim, Relationship, ValueType, value_type
@@ -126,7 +127,18 @@ def format_value(type_name: str, value: Any) -> str:
         return _scalar(vtype, value)
     if hasattr(value, "dtype"):
         return "[" + ", ".join(_numpy_elements(vtype, value)) + "]"
+    if isinstance(value, array):
+        return "[" + ", ".join(_numpy_elements(vtype, _unpack(vtype, value))) + "]"
     return "[" + ", ".join(_scalar(vtype, item) for item in value) + "]"
+
+
+def _unpack(vtype: ValueType, values: array[Any]) -> Any:
+    """A flat ``array.array`` as the numpy array of its elements (text output of big arrays is
+    numpy's vectorised formatting either way)."""
+    import numpy as np
+
+    flat = np.frombuffer(values, dtype=values.typecode)
+    return flat if vtype.width == 1 else flat.reshape(-1, vtype.width)
 
 
 def _scalar(vtype: ValueType, value: Any) -> str:

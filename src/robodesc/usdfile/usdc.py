@@ -342,6 +342,8 @@ def _array_rep(crate: Crate, vtype: ValueType, value: Any) -> int:
         count = len(value)
     except TypeError:
         raise Misfit(f"{short(value)} is not an array") from None
+    if isinstance(value, array):
+        count //= vtype.width  # flat: the elements' scalars one after another
     if count == 0:
         return _rep(enum, 0, _ARRAY)  # the empty array is payload 0, nothing written
     if vtype.scalar in _TEXT:
@@ -363,6 +365,8 @@ def _text_array_bytes(crate: Crate, scalar: str, value: Any) -> bytes:
 
 
 def _numeric_array_bytes(num: _Numeric, value: Any) -> bytes:
+    if isinstance(value, array):
+        return _packed_bytes(num, value)
     if hasattr(value, "dtype") and hasattr(value, "tobytes") and value.dtype.kind != "O":
         return _numpy_bytes(num, value)
     flat = _flatten(num, value.tolist() if hasattr(value, "tolist") else value)
@@ -391,6 +395,15 @@ def _flatten(num: _Numeric, items: Any) -> list[Any]:
     if num.quat:
         return [c for row in rows for c in (row[1], row[2], row[3], row[0])]
     return list(chain.from_iterable(rows))
+
+
+def _packed_bytes(num: _Numeric, values: array[Any]) -> bytes:
+    """A flat ``array.array`` of the element type's own C scalars: its bytes are the payload."""
+    if values.typecode != num.code or num.quat:
+        raise Misfit(f"array('{values.typecode}') for {num.code!r} elements, expected array('{num.code}')")
+    if len(values) % num.width:
+        raise Misfit(f"array of {len(values)} scalars is not a whole number of {num.width}-tuples")
+    return _native_to_little(array(values.typecode, values)) if _BIG_ENDIAN else values.tobytes()
 
 
 def _numpy_bytes(num: _Numeric, arr: Any) -> bytes:
