@@ -360,10 +360,126 @@ done:
     return result;
 }
 
+/* weld(rows, corners), then the welded points themselves: (points float64, indices int32). */
+static PyObject *weld_take(PyObject *self, PyObject *args) {
+    PyObject *welded = weld(self, args);
+    if (welded == NULL) {
+        return NULL;
+    }
+    PyObject *rows_object = PyTuple_GET_ITEM(args, 0);
+    PyObject *first = PyTuple_GET_ITEM(welded, 0);
+    Py_buffer rows_view;
+    if (get_buffer(rows_object, &rows_view, "rows") != 0) {
+        Py_DECREF(welded);
+        return NULL;
+    }
+    Py_ssize_t count = PyByteArray_GET_SIZE(first) / 8;
+    const int64_t *picks = (const int64_t *)PyByteArray_AS_STRING(first);
+    PyObject *points = PyByteArray_FromStringAndSize(NULL, count * 24);
+    PyObject *result = NULL;
+    if (points != NULL) {
+        double *out = (double *)PyByteArray_AS_STRING(points);
+        const double *rows = (const double *)rows_view.buf;
+        for (Py_ssize_t i = 0; i < count; i++) {
+            memcpy(out + 3 * i, rows + 3 * picks[i], 24);
+        }
+        result = PyTuple_Pack(2, points, PyTuple_GET_ITEM(welded, 1));
+        Py_DECREF(points);
+    }
+    PyBuffer_Release(&rows_view);
+    Py_DECREF(welded);
+    return result;
+}
+
+/* COLLADA positions: ``count`` points of three float64 values at ``offset + i * stride + column``
+ * for the three columns, rounded to float32, NaN replaced by 0 (pycollada's rule).
+ * The caller checks the bounds; they are checked again here. */
+static PyObject *columns(PyObject *self, PyObject *args) {
+    Py_buffer view;
+    Py_ssize_t offset, stride, count, c0, c1, c2;
+    if (!PyArg_ParseTuple(args, "y*nnn(nnn)", &view, &offset, &stride, &count, &c0, &c1, &c2)) {
+        return NULL;
+    }
+    Py_ssize_t available = view.len / 8;
+    Py_ssize_t top = c0 > c1 ? (c0 > c2 ? c0 : c2) : (c1 > c2 ? c1 : c2);
+    if (offset < 0 || stride <= 0 || count < 0 || c0 < 0 || c1 < 0 || c2 < 0 || top >= stride ||
+        (count > 0 && offset + (count - 1) * stride + top >= available)) {
+        PyBuffer_Release(&view);
+        PyErr_SetString(PyExc_ValueError, "positions outside the array");
+        return NULL;
+    }
+    PyObject *out = PyByteArray_FromStringAndSize(NULL, count * 12);
+    if (out != NULL) {
+        const double *values = (const double *)view.buf;
+        float *points = (float *)PyByteArray_AS_STRING(out);
+        Py_ssize_t picks[3] = {c0, c1, c2};
+        for (Py_ssize_t i = 0; i < count; i++) {
+            for (int j = 0; j < 3; j++) {
+                float v = (float)values[offset + i * stride + picks[j]];
+                points[3 * i + j] = v != v ? 0.0f : v;
+            }
+        }
+    }
+    PyBuffer_Release(&view);
+    return out;
+}
+
+/* float32 points placed by a node transform: each coordinate ((r0 x + r1 y) + r2 z) + t in double,
+ * rounded once to float32, then widened and multiplied by ``unit`` (the file's metres per unit;
+ * 1.0 leaves it). ``matrix`` is the 3x4 row-major upper part of the 4x4. Returns float64 triples. */
+static PyObject *place(PyObject *self, PyObject *args) {
+    Py_buffer view;
+    double m[12], unit;
+    if (!PyArg_ParseTuple(args, "y*(dddddddddddd)d", &view, &m[0], &m[1], &m[2], &m[3], &m[4], &m[5], &m[6], &m[7],
+                          &m[8], &m[9], &m[10], &m[11], &unit)) {
+        return NULL;
+    }
+    Py_ssize_t count = view.len / 12;
+    PyObject *out = PyByteArray_FromStringAndSize(NULL, count * 24);
+    if (out != NULL) {
+        const float *p = (const float *)view.buf;
+        double *placed = (double *)PyByteArray_AS_STRING(out);
+        for (Py_ssize_t i = 0; i < count; i++) {
+            double x = p[3 * i], y = p[3 * i + 1], z = p[3 * i + 2];
+            for (int j = 0; j < 3; j++) {
+                const double *r = m + 4 * j;
+                float v = (float)(((r[0] * x + r[1] * y) + r[2] * z) + r[3]);
+                placed[3 * i + j] = unit == 1.0 ? (double)v : (double)v * unit;
+            }
+        }
+    }
+    PyBuffer_Release(&view);
+    return out;
+}
+
+/* int64 values plus ``offset``. */
+static PyObject *shift(PyObject *self, PyObject *args) {
+    Py_buffer view;
+    long long offset;
+    if (!PyArg_ParseTuple(args, "y*L", &view, &offset)) {
+        return NULL;
+    }
+    Py_ssize_t count = view.len / 8;
+    PyObject *out = PyByteArray_FromStringAndSize(NULL, count * 8);
+    if (out != NULL) {
+        const int64_t *values = (const int64_t *)view.buf;
+        int64_t *shifted = (int64_t *)PyByteArray_AS_STRING(out);
+        for (Py_ssize_t i = 0; i < count; i++) {
+            shifted[i] = values[i] + (int64_t)offset;
+        }
+    }
+    PyBuffer_Release(&view);
+    return out;
+}
+
 static PyMethodDef methods[] = {
     {"weld", weld, METH_VARARGS, "weld(rows, corners) -> (first rows int64, corner indices int32)"},
     {"face_normals", face_normals, METH_VARARGS, "face_normals(points, triangles) -> float32 normals"},
     {"stl", stl, METH_VARARGS, "stl(data) -> (points float64, indices int32) of a binary STL, or None"},
+    {"weld_take", weld_take, METH_VARARGS, "weld_take(rows, corners) -> (points float64, indices int32)"},
+    {"columns", columns, METH_VARARGS, "columns(values, offset, stride, count, (c0, c1, c2)) -> float32 points"},
+    {"place", place, METH_VARARGS, "place(points float32, matrix 3x4, unit) -> float64 points"},
+    {"shift", shift, METH_VARARGS, "shift(int64 values, offset) -> int64 values"},
     {"finish", finish, METH_VARARGS, "finish(points, triangles, scale, flip) -> (points, indices, normals, extent)"},
     {NULL, NULL, 0, NULL},
 };

@@ -5,7 +5,8 @@ The numpy code is the fallback when the extensions are not built, and the path f
 formats trimesh reads; it was itself checked against np.unique, np.cross and the line-by-line OBJ
 reader (test_mesh_readers.py). Here both run on the same input and must agree exactly: the weld and
 normals on hand-made edge cases, random meshes and every STL and COLLADA file of the corpora, and
-whole meshes (binary STL and OBJ read, welded and finished without numpy) on every STL and OBJ file.
+whole meshes (binary STL, OBJ and COLLADA read, welded and finished without numpy) on every STL,
+OBJ and COLLADA file.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ import pytest
 from numpy.typing import NDArray
 from test_mesh_readers import SHARED_CORPUS, corpus_files
 
-from robodesc.emit import mesh_data, number_text, usd_meshio
+from robodesc.emit import mesh_collada, mesh_data, number_text, usd_meshio
 from robodesc.emit.mesh_collada import read_collada_indexed
 from robodesc.emit.usd import UsdOptions, emit_usd
 from robodesc.frontends.load import load_path
@@ -34,12 +35,12 @@ DATA = Path(__file__).parent / "data"
 
 @contextmanager
 def numpy_only() -> Iterator[None]:
-    native = usd_meshio._meshweld, mesh_data._meshweld
-    usd_meshio._meshweld = mesh_data._meshweld = None  # type: ignore[assignment]
+    native = usd_meshio._meshweld, mesh_data._meshweld, mesh_collada._meshweld
+    usd_meshio._meshweld = mesh_data._meshweld = mesh_collada._meshweld = None  # type: ignore[assignment]
     try:
         yield
     finally:
-        usd_meshio._meshweld, mesh_data._meshweld = native
+        usd_meshio._meshweld, mesh_data._meshweld, mesh_collada._meshweld = native
 
 
 def both_welds(tri: NDArray[np.float64]) -> None:
@@ -70,7 +71,9 @@ def assert_same_mesh(got: mesh_data.MeshData, expected: mesh_data.MeshData, what
         a, b = getattr(got, name), getattr(expected, name)
         assert a.typecode == b.typecode and a.tobytes() == b.tobytes(), (what, name)
     assert np.array_equal(got.extent, expected.extent, equal_nan=True), what
-    assert [math.copysign(1, v) for v in np.ravel(got.extent)] == [math.copysign(1, v) for v in np.ravel(expected.extent)]
+    assert [math.copysign(1, v) for v in np.ravel(got.extent)] == [
+        math.copysign(1, v) for v in np.ravel(expected.extent)
+    ]
 
 
 def both_builds(path: str, scale: tuple[float, float, float] | None) -> None:
@@ -115,7 +118,15 @@ def test_obj_edge_cases(tmp_path: Path) -> None:
         both_builds(str(path), (2.0, 2.0, -1.0))
     # The C reader takes the plain files and leaves the others to the line reader.
     native = {name for name, text in cases.items() if mesh_data._numtext.obj(text.replace("\r", "").encode())}
-    assert native == {"quad_and_pentagon", "extra_coords_and_tabs", "crlf", "two_corners", "no_faces", "non_ascii_comment", "nan_and_exponents"}
+    assert native == {
+        "quad_and_pentagon",
+        "extra_coords_and_tabs",
+        "crlf",
+        "two_corners",
+        "no_faces",
+        "non_ascii_comment",
+        "nan_and_exponents",
+    }
 
 
 def test_stl_edge_cases(tmp_path: Path) -> None:
@@ -182,7 +193,7 @@ def test_bad_input_is_an_error_not_a_crash() -> None:
 
 @pytest.mark.slow
 def test_corpus_whole_meshes() -> None:
-    files = corpus_files(".stl") + corpus_files(".obj")
+    files = corpus_files(".stl") + corpus_files(".obj") + corpus_files(".dae")
     if not files:
         pytest.skip("no mesh corpus installed")
     for path in files:
@@ -204,9 +215,11 @@ def test_corpus_stl_and_collada() -> None:
         both_normals(points, indices)
     for path in dae:
         try:
-            points, corners = read_collada_indexed(path)
+            flat, indexed = read_collada_indexed(path)
         except usd_meshio.MeshReadError:
             continue
+        points = np.frombuffer(flat, dtype=np.float64).reshape(-1, 3)
+        corners = np.frombuffer(indexed, dtype=np.int64)
         got = usd_meshio._weld_indexed(points, corners)
         with numpy_only():
             expected = usd_meshio._weld_indexed(points, corners)
@@ -232,5 +245,6 @@ def test_same_usd_with_and_without_the_extensions(tmp_path: Path, monkeypatch: p
     native = convert("native")
     monkeypatch.setattr(usd_meshio, "_meshweld", None)
     monkeypatch.setattr(mesh_data, "_meshweld", None)
+    monkeypatch.setattr(mesh_collada, "_meshweld", None)
     monkeypatch.setattr(number_text, "_numtext", None)
     assert convert("numpy") == native

@@ -1,16 +1,20 @@
-"""Reading the triangles of a COLLADA (.dae) file with lxml and numpy.
+"""Reading the triangles of a COLLADA (.dae) file with lxml, without numpy.
 
 This replaces pycollada on the conversion path: pycollada builds Python objects for every effect,
 material and source and parses every float array (normals and texture coordinates too), which costs
 about a second on a mesh-heavy robot. Here only what the scene instances is read: the visual scene's
 node tree, the ``<vertices>`` position source of each instanced geometry and the vertex column of
-its primitives' index lists.
+its primitives' index lists. Numbers live in ``array.array`` buffers, and the per-point work runs
+in the C extension ``robodesc._meshweld`` (numpy, imported then, when it is not built: the same
+arithmetic, the same bits).
 
-The numbers follow pycollada bit for bit, because the golden files were written with it: positions
-and node transforms are parsed to float32 (NaN positions become 0), each node's matrix is the
-float32 product of its transforms, and an instance's points are ``positions @ R.T + t`` in float32.
-The result is widened to float64 and scaled by ``<asset><unit meter>`` (as ROS's loaders do).
-``<up_axis>`` is ignored, as pycollada and ROS's loaders ignore it.
+The numbers follow pycollada's rules: positions are float32 (NaN positions become 0), a node's
+matrix is the product of its transforms in document order, a child's is its parent's times its
+own, and an instance's points are ``R p + t`` rounded to float32. The products are computed in
+float64 and rounded once (pycollada rounds to float32 after every operation, so points can differ
+from its by a float32 rounding step). The result is widened to float64 and scaled by
+``<asset><unit meter>`` (as ROS's loaders do). ``<up_axis>`` is ignored, as pycollada and ROS's
+loaders ignore it.
 
 Read: ``<triangles>``, ``<polylist>`` and ``<polygons>`` (fan-triangulated), ``<tristrips>`` and
 ``<trifans>``; node transforms ``matrix``, ``translate``, ``rotate``, ``scale``, ``lookat`` and
@@ -23,18 +27,27 @@ files. Broken references and bad numbers raise :class:`MeshReadError`.
 from __future__ import annotations
 
 import math
+from array import array
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Any, TypeAlias
 
-import numpy as np
 from lxml import etree
-from numpy.typing import NDArray
 
 from robodesc.emit.mesh_data import MeshReadError as MeshReadError
 from robodesc.emit.number_text import parse_floats, parse_ints
 
-F32 = NDArray[np.float32]
-F64 = NDArray[np.float64]
-I64 = NDArray[np.int64]
+try:
+    from robodesc import _meshweld
+except ImportError:  # installed without a C compiler: numpy does the per-point work
+    _meshweld = None  # type: ignore[assignment]
+
+# Quoted: array.array takes a subscript at run time only from Python 3.12.
+Floats: TypeAlias = "array[float]"  # flat: x, y, z, x, y, z ...
+Ints: TypeAlias = "array[int]"  # int64
+Matrix = tuple[tuple[float, float, float, float], ...]  # 4x4, row-major
+
+IDENTITY: Matrix = ((1.0, 0.0, 0.0, 0.0), (0.0, 1.0, 0.0, 0.0), (0.0, 0.0, 1.0, 0.0), (0.0, 0.0, 0.0, 1.0))
 
 # Deep node trees are legal but a reference cycle is not: stop well before Python's recursion limit.
 _MAX_DEPTH = 200
@@ -42,27 +55,34 @@ _MAX_DEPTH = 200
 _PRIMITIVES = frozenset({"triangles", "polylist", "polygons", "tristrips", "trifans"})
 
 
-def read_collada(path: str) -> F64:
-    """(m, 3, 3) triangles of every geometry instance in a COLLADA file's scene, node transforms
-    applied and scaled by the file's ``<unit meter>``."""
+def read_collada(path: str) -> Any:
+    """(m, 3, 3) numpy array of the triangles of every geometry instance in a COLLADA file's scene,
+    node transforms applied and scaled by the file's ``<unit meter>`` (for tests and tools)."""
+    import numpy as np
+
     points, corners = read_collada_indexed(path)
-    return np.take(points, corners, axis=0).reshape(-1, 3, 3)
+    grid = np.frombuffer(points, dtype=np.float64).reshape(-1, 3)
+    return np.take(grid, np.frombuffer(corners, dtype=np.int64), axis=0).reshape(-1, 3, 3)
 
 
-def read_collada_indexed(path: str) -> tuple[F64, I64]:
-    """:func:`read_collada` as (n, 3) points and three corner indices into them per triangle: the
-    position sources of every instance, moved. Cheaper to weld than the triangles' corners."""
+def read_collada_indexed(path: str) -> tuple[Floats, Ints]:
+    """:func:`read_collada` as flat float64 points (x, y, z per point) and three corner indices into
+    them per triangle: the position sources of every instance, moved. Cheaper to weld than the
+    triangles' corners."""
     doc = _Document(_parse(path))
-    out = _Output()
+    unit = doc.unit_meter()
+    out = _Output(1.0 if unit is None or not unit > 0 else unit)
     for node in doc.scene_nodes():
         _walk(doc, node, None, out, 0)
     if not out.corners:
         raise MeshReadError("COLLADA file has no triangles")
-    points = np.concatenate(out.points).astype(np.float64)
-    unit = doc.unit_meter()
-    if unit is not None and unit > 0 and unit != 1.0:
-        points = points * unit
-    return points, np.concatenate(out.corners)
+    points: Floats = array("d")
+    for part in out.points:
+        points.frombytes(part)
+    corners: Ints = array("q")
+    for indices in out.corners:
+        corners.frombytes(indices)
+    return points, corners
 
 
 def _parse(path: str) -> etree._Element:
@@ -84,16 +104,17 @@ def _parse(path: str) -> etree._Element:
 
 @dataclass(slots=True)
 class _Output:
-    points: list[F32] = field(default_factory=list)  # moved position sources
-    corners: list[I64] = field(default_factory=list)  # per primitive, indices into all points so far
+    unit: float  # metres per file unit
+    points: list[bytes | bytearray] = field(default_factory=list)  # moved position sources, float64
+    corners: list[bytes | bytearray] = field(default_factory=list)  # per primitive, int64 into all points
     count: int = 0  # points so far
 
 
 @dataclass(slots=True)
 class _Mesh:
-    # Per primitive: (n, 3) positions in the geometry's frame (shared between primitives that use the
-    # same source) and (k, 3) indices into them.
-    parts: list[tuple[F32, I64]]
+    # Per primitive: float32 positions in the geometry's frame (shared between primitives that use
+    # the same source) and three indices into them per triangle.
+    parts: list[tuple[Floats, Ints]]
 
 
 class _Document:
@@ -169,13 +190,13 @@ def _local_url(element: etree._Element, what: str) -> str:
 # --- scene graph -------------------------------------------------------------------------------
 
 
-def _walk(doc: _Document, node: etree._Element, parent: F32 | None, out: _Output, depth: int) -> None:
+def _walk(doc: _Document, node: etree._Element, parent: Matrix | None, out: _Output, depth: int) -> None:
     """Add the triangles under ``node`` to ``out`` in document order (as pycollada yields them)."""
     if depth > _MAX_DEPTH:
         raise MeshReadError("COLLADA node tree is too deep (an instance_node cycle?)")
     own = _node_matrix(doc, node)
-    # pycollada: a top-level node's matrix is its own, a child's is np.dot(parent, own).
-    matrix = own if parent is None else np.dot(parent, own)
+    # pycollada: a top-level node's matrix is its own, a child's is parent @ own.
+    matrix = own if parent is None else _product(parent, own)
     for child in node:
         name = doc.local(child)
         if name == "node":
@@ -190,7 +211,7 @@ def _walk(doc: _Document, node: etree._Element, parent: F32 | None, out: _Output
                 _instance(doc, url[1:], matrix, out)
 
 
-def _instance(doc: _Document, gid: str, matrix: F32, out: _Output) -> None:
+def _instance(doc: _Document, gid: str, matrix: Matrix, out: _Output) -> None:
     mesh = doc.meshes.get(gid)
     if gid not in doc.meshes:
         mesh = doc.meshes[gid] = _read_mesh(doc, doc.geometry(gid))
@@ -201,94 +222,143 @@ def _instance(doc: _Document, gid: str, matrix: F32, out: _Output) -> None:
         offset = offsets.get(id(positions))
         if offset is None:
             offset = offsets[id(positions)] = out.count
-            # Exactly pycollada's BoundTriangleSet: float32 positions times the float32 matrix.
-            out.points.append(np.dot(positions, matrix[:3, :3].T) + matrix[:3, 3])
-            out.count += len(positions)
-        out.corners.append(tri.reshape(-1) + offset)
+            out.points.append(_place(positions, matrix, out.unit))
+            out.count += len(positions) // 3
+        out.corners.append(_shift(tri, offset))
 
 
-def _node_matrix(doc: _Document, node: etree._Element) -> F32:
-    """The float32 product of a node's transforms, in document order, as pycollada computes it."""
-    transforms = [m for m in (_transform(doc, child) for child in node) if m is not None]
-    if len(transforms) == 1:
-        return transforms[0]
-    matrix = np.identity(4, dtype=np.float32)
-    for m in transforms:
-        matrix = np.dot(matrix, m)
-    return matrix
+def _matrix(rows: Sequence[Sequence[float]]) -> Matrix:
+    return tuple((row[0], row[1], row[2], row[3]) for row in rows)
 
 
-def _transform(doc: _Document, element: etree._Element) -> F32 | None:
+def _product(a: Matrix, b: Matrix) -> Matrix:
+    return _matrix([[sum(a[i][k] * b[k][j] for k in range(4)) for j in range(4)] for i in range(4)])
+
+
+def _node_matrix(doc: _Document, node: etree._Element) -> Matrix:
+    """The product of a node's transforms, in document order."""
+    matrix: Matrix | None = None
+    for child in node:
+        m = _transform(doc, child)
+        if m is not None:
+            matrix = m if matrix is None else _product(matrix, m)
+    return IDENTITY if matrix is None else matrix
+
+
+def _transform(doc: _Document, element: etree._Element) -> Matrix | None:
     name = doc.local(element)
     if name not in _TRANSFORM_SIZES:
         return None
-    values = _floats(element.text, f"<{name}>").astype(np.float32)
+    values = _floats(element.text, f"<{name}>").tolist()
     if len(values) != _TRANSFORM_SIZES[name]:
         raise MeshReadError(f"<{name}> needs {_TRANSFORM_SIZES[name]} numbers, has {len(values)}")
     if name == "matrix":
-        return values.reshape(4, 4)
-    matrix = np.identity(4, dtype=np.float32)
+        return _matrix([values[4 * i : 4 * i + 4] for i in range(4)])
     if name == "translate":
-        matrix[:3, 3] = values
-    elif name == "scale":
-        matrix[0, 0], matrix[1, 1], matrix[2, 2] = values
-    elif name == "rotate":
-        matrix = _rotation(*values)
-    elif name == "lookat":
-        matrix = _look_at(values.astype(np.float64))
-    else:
-        matrix = _skew(values.astype(np.float64))
-    return matrix
+        x, y, z = values
+        return ((1.0, 0.0, 0.0, x), (0.0, 1.0, 0.0, y), (0.0, 0.0, 1.0, z), IDENTITY[3])
+    if name == "scale":
+        x, y, z = values
+        return ((x, 0.0, 0.0, 0.0), (0.0, y, 0.0, 0.0), (0.0, 0.0, z, 0.0), IDENTITY[3])
+    if name == "rotate":
+        return _rotation(*values)
+    if name == "lookat":
+        return _look_at(values)
+    return _skew(values)
 
 
 _TRANSFORM_SIZES = {"matrix": 16, "translate": 3, "rotate": 4, "scale": 3, "lookat": 9, "skew": 7}
 
 
-def _rotation(x: np.float32, y: np.float32, z: np.float32, degrees: np.float32) -> F32:
-    """pycollada's makeRotationMatrix, kept term for term (float32 scalars, axis not normalised) so
-    rotated meshes stay bit-identical to what the golden files were written with."""
-    angle = degrees * np.pi / 180.0
-    c = np.cos(angle)
-    s = np.sin(angle)
+def _rotation(x: float, y: float, z: float, degrees: float) -> Matrix:
+    """pycollada's makeRotationMatrix, term for term (the axis is not normalised)."""
+    angle = degrees * math.pi / 180.0
+    c = math.cos(angle)
+    s = math.sin(angle)
     t = 1 - c
-    return np.array(
-        [
-            [t * x * x + c, t * x * y - s * z, t * x * z + s * y, 0],
-            [t * x * y + s * z, t * y * y + c, t * y * z - s * x, 0],
-            [t * x * z - s * y, t * y * z + s * x, t * z * z + c, 0],
-            [0, 0, 0, 1],
-        ],
-        dtype=np.float32,
+    return (
+        (t * x * x + c, t * x * y - s * z, t * x * z + s * y, 0.0),
+        (t * x * y + s * z, t * y * y + c, t * y * z - s * x, 0.0),
+        (t * x * z - s * y, t * y * z + s * x, t * z * z + c, 0.0),
+        IDENTITY[3],
     )
 
 
-def _look_at(values: F64) -> F32:
+def _look_at(values: list[float]) -> Matrix:
     """The frame of a camera at ``eye`` looking at ``interest`` (local -Z) with ``up`` as local +Y.
     pycollada's version is not a rigid transform (it writes eye into the bottom row), so this one
     follows the COLLADA spec instead; no mesh in the corpora uses it."""
     eye, interest, up = values[0:3], values[3:6], values[6:9]
-    back = _unit(eye - interest, "lookat eye and interest")
-    side = _unit(np.cross(up, back), "lookat up and view direction")
-    matrix = np.identity(4)
-    matrix[:3, 0], matrix[:3, 1], matrix[:3, 2], matrix[:3, 3] = side, np.cross(back, side), back, eye
-    return matrix.astype(np.float32)
+    back = _unit([e - i for e, i in zip(eye, interest, strict=True)], "lookat eye and interest")
+    side = _unit(_cross(up, back), "lookat up and view direction")
+    top = _cross(back, side)
+    return _matrix([*((side[i], top[i], back[i], eye[i]) for i in range(3)), IDENTITY[3]])
 
 
-def _skew(values: F64) -> F32:
+def _skew(values: list[float]) -> Matrix:
     """RenderMan's skew (which COLLADA adopts): points move along the translation axis by
     tan(angle) times their distance along the rotation axis. pycollada ignores <skew>."""
     along = _unit(values[1:4], "skew rotation axis")
     shift = _unit(values[4:7], "skew translation axis")
-    matrix = np.identity(4)
-    matrix[:3, :3] += math.tan(math.radians(values[0])) * np.outer(shift, along)
-    return matrix.astype(np.float32)
+    k = math.tan(math.radians(values[0]))
+    rows = [[(1.0 if i == j else 0.0) + k * shift[i] * along[j] for j in range(3)] + [0.0] for i in range(3)]
+    return _matrix([*rows, IDENTITY[3]])
 
 
-def _unit(vector: F64, what: str) -> F64:
-    length = float(np.linalg.norm(vector))
+def _cross(a: Sequence[float], b: Sequence[float]) -> list[float]:
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def _unit(vector: Sequence[float], what: str) -> list[float]:
+    length = math.sqrt(sum(v * v for v in vector))
     if not length > 0:
         raise MeshReadError(f"{what} are degenerate")
-    return vector / length
+    return [v / length for v in vector]
+
+
+# --- per-point work: C, or numpy with the same arithmetic ----------------------------------------
+
+
+def _place(positions: Floats, matrix: Matrix, unit: float) -> bytes | bytearray:
+    """float64 points: each float32 position moved by ``matrix`` in float64, rounded to float32,
+    widened and multiplied by ``unit`` (see ``place`` in _meshweld.c)."""
+    flat = tuple(v for row in matrix[:3] for v in row)
+    if _meshweld is not None:
+        return _meshweld.place(positions, flat, unit)
+    import numpy as np
+
+    p = np.frombuffer(positions, dtype=np.float32).reshape(-1, 3).astype(np.float64)
+    out = np.empty_like(p)
+    for j in range(3):
+        r0, r1, r2, t = flat[4 * j : 4 * j + 4]
+        # Elementwise, in the C code's order (no BLAS, whose kernels sum and fuse differently).
+        out[:, j] = (((r0 * p[:, 0] + r1 * p[:, 1]) + r2 * p[:, 2]) + t).astype(np.float32)
+    if unit != 1.0:
+        out *= unit
+    return out.tobytes()
+
+
+def _shift(values: Ints, offset: int) -> bytes | bytearray:
+    if _meshweld is not None:
+        return _meshweld.shift(values, offset)
+    import numpy as np
+
+    return (np.frombuffer(values, dtype=np.int64) + offset).tobytes()
+
+
+def _columns(values: Floats, offset: int, stride: int, count: int, picks: tuple[int, int, int]) -> Floats:
+    """float32 x, y, z of ``count`` points at ``offset + i * stride + pick``; NaN becomes 0."""
+    out: Floats = array("f")
+    if _meshweld is not None:
+        out.frombytes(_meshweld.columns(values, offset, stride, count, picks))
+        return out
+    import numpy as np
+
+    block = np.frombuffer(values, dtype=np.float64)[offset : offset + count * stride].reshape(count, stride)
+    positions = np.ascontiguousarray(block[:, list(picks)], dtype=np.float32)
+    positions[np.isnan(positions)] = 0
+    out.frombytes(positions.tobytes())
+    return out
 
 
 # --- geometry ----------------------------------------------------------------------------------
@@ -302,8 +372,8 @@ def _read_mesh(doc: _Document, geometry: etree._Element) -> _Mesh | None:
     gid = geometry.get("id", "")
     sources = {s.get("id", ""): s for s in mesh.iterfind(doc.q("source"))}
     vertices = mesh.find(doc.q("vertices"))
-    positions: dict[str, F32] = {}
-    parts: list[tuple[F32, I64]] = []
+    positions: dict[str, Floats] = {}
+    parts: list[tuple[Floats, Ints]] = []
     for primitive in mesh:
         kind = doc.local(primitive)
         if kind not in _PRIMITIVES:
@@ -319,10 +389,11 @@ def _read_mesh(doc: _Document, geometry: etree._Element) -> _Mesh | None:
                 raise MeshReadError(f"{where}: position source '#{sid}' is missing")
             positions[sid] = _positions(doc, source, f"geometry '{gid}' source '{sid}'")
         points = positions[sid]
-        low, high = int(tri.min()), int(tri.max())
-        if low < 0 or high >= len(points):
+        count = len(points) // 3
+        low, high = min(tri), max(tri)
+        if low < 0 or high >= count:
             bad = low if low < 0 else high
-            raise MeshReadError(f"{where}: vertex index {bad} out of range for {len(points)} positions")
+            raise MeshReadError(f"{where}: vertex index {bad} out of range for {count} positions")
         parts.append((points, tri))
     return _Mesh(parts)
 
@@ -369,12 +440,12 @@ def _position_source(doc: _Document, sid: str, vertices: etree._Element | None, 
     raise MeshReadError(f"{where}: <vertices id='{sid}'> has no POSITION input")
 
 
-def _positions(doc: _Document, source: etree._Element, where: str) -> F32:
-    """(n, 3) float32 positions of a ``<source>``, through its accessor's offset, stride and params."""
-    array = source.find(doc.q("float_array"))
-    if array is None:
+def _positions(doc: _Document, source: etree._Element, where: str) -> Floats:
+    """float32 x, y, z of a ``<source>``, through its accessor's offset, stride and params."""
+    array_element = source.find(doc.q("float_array"))
+    if array_element is None:
         raise MeshReadError(f"{where} has no float_array")
-    values = _floats(array.text, f"float_array in {where}")
+    values = _floats(array_element.text, f"float_array in {where}")
     accessor = source.find(doc.q("technique_common", "accessor"))
     params = [] if accessor is None else accessor.findall(doc.q("param"))
     # A param without a name marks a value to skip; files that name none still mean x, y, z.
@@ -389,63 +460,61 @@ def _positions(doc: _Document, source: etree._Element, where: str) -> F32:
         raise MeshReadError(f"{where}: accessor stride {stride} and offset {offset} do not fit x, y, z")
     # The accessor's count is not trusted (pycollada does not read it either): the array length is.
     count = max(len(values) - offset, 0) // stride
-    block = values[offset : offset + count * stride].reshape(count, stride)[:, columns]
-    positions = np.ascontiguousarray(block, dtype=np.float32)
-    positions[np.isnan(positions)] = 0  # pycollada's rule; a NaN point would poison the extent
-    return positions
+    return _columns(values, offset, stride, count, (columns[0], columns[1], columns[2]))
 
 
-def _corner_indices(doc: _Document, p: etree._Element | None, columns: _Columns, where: str) -> I64:
+def _corner_indices(doc: _Document, p: etree._Element | None, columns: _Columns, where: str) -> Ints:
     """The VERTEX index of each corner listed in a ``<p>``."""
     values = _ints(None if p is None else p.text, f"<p> of {where}")
     if len(values) % columns.stride:
         raise MeshReadError(f"{where}: <p> has {len(values)} indices, not a multiple of {columns.stride} inputs")
-    return values.reshape(-1, columns.stride)[:, columns.vertex]
+    return values if columns.stride == 1 else values[columns.vertex :: columns.stride]
 
 
-def _read_triangles(doc: _Document, primitive: etree._Element, columns: _Columns, where: str) -> I64:
+def _read_triangles(doc: _Document, primitive: etree._Element, columns: _Columns, where: str) -> Ints:
     # One <p> by the spec; pycollada reads only the first, so later ones are ignored here too.
     corners = _corner_indices(doc, primitive.find(doc.q("p")), columns, where)
     if len(corners) % 3:
         raise MeshReadError(f"{where}: {len(corners)} corners do not make whole triangles")
-    return corners.reshape(-1, 3)
+    return corners
 
 
-def _read_polylist(doc: _Document, primitive: etree._Element, columns: _Columns, where: str) -> I64:
+def _read_polylist(doc: _Document, primitive: etree._Element, columns: _Columns, where: str) -> Ints:
     vcount = primitive.find(doc.q("vcount"))
     counts = _ints(None if vcount is None else vcount.text, f"<vcount> of {where}")
     corners = _corner_indices(doc, primitive.find(doc.q("p")), columns, where)
     return _fan(corners, counts, where)
 
 
-def _read_polygons(doc: _Document, primitive: etree._Element, columns: _Columns, where: str) -> I64:
+def _read_polygons(doc: _Document, primitive: etree._Element, columns: _Columns, where: str) -> Ints:
     # Only direct <p> children: a <ph> (polygon with holes) is skipped whole, as pycollada does.
     polygons = [_corner_indices(doc, p, columns, where) for p in primitive.iterfind(doc.q("p"))]
-    if not polygons:
-        return np.zeros((0, 3), dtype=np.int64)
-    counts = np.array([len(polygon) for polygon in polygons], dtype=np.int64)
-    return _fan(np.concatenate(polygons), counts, where)
+    corners: Ints = array("q")
+    for polygon in polygons:
+        corners.extend(polygon)
+    return _fan(corners, array("q", [len(polygon) for polygon in polygons]), where)
 
 
-def _read_strips(doc: _Document, primitive: etree._Element, columns: _Columns, where: str) -> I64:
-    parts: list[I64] = []
+def _read_strips(doc: _Document, primitive: etree._Element, columns: _Columns, where: str) -> Ints:
+    out: Ints = array("q")
     for p in primitive.iterfind(doc.q("p")):
         strip = _corner_indices(doc, p, columns, where)
-        if len(strip) < 3:
-            continue
         # pycollada's order: the even triangles of a strip, then the odd ones (winding kept).
-        parts.append(np.stack([strip[0:-2:2], strip[1:-1:2], strip[2::2]], axis=1))
-        parts.append(np.stack([strip[2:-1:2], strip[1:-2:2], strip[3::2]], axis=1))
-    return np.concatenate(parts) if parts else np.zeros((0, 3), dtype=np.int64)
+        for first in (0, 1):
+            for k in range(first, len(strip) - 2, 2):
+                out.extend(
+                    (strip[k], strip[k + 1], strip[k + 2]) if k % 2 == 0 else (strip[k + 1], strip[k], strip[k + 2])
+                )
+    return out
 
 
-def _read_fans(doc: _Document, primitive: etree._Element, columns: _Columns, where: str) -> I64:
-    parts: list[I64] = []
+def _read_fans(doc: _Document, primitive: etree._Element, columns: _Columns, where: str) -> Ints:
+    out: Ints = array("q")
     for p in primitive.iterfind(doc.q("p")):
         fan = _corner_indices(doc, p, columns, where)
-        if len(fan) >= 3:
-            parts.append(np.stack([np.full(len(fan) - 2, fan[0]), fan[1:-1], fan[2:]], axis=1))
-    return np.concatenate(parts) if parts else np.zeros((0, 3), dtype=np.int64)
+        for k in range(1, len(fan) - 1):
+            out.extend((fan[0], fan[k], fan[k + 1]))
+    return out
 
 
 _PRIMITIVE_READERS = {
@@ -457,39 +526,41 @@ _PRIMITIVE_READERS = {
 }
 
 
-def _fan(corners: I64, counts: I64, where: str) -> I64:
-    if len(counts) and counts.min() < 0:
+def _fan(corners: Ints, counts: Ints, where: str) -> Ints:
+    if len(counts) and min(counts) < 0:
         raise MeshReadError(f"{where}: negative vertex count")
-    if int(counts.sum()) > len(corners):
-        raise MeshReadError(f"{where}: vcount lists {int(counts.sum())} corners but <p> has {len(corners)}")
+    total = sum(counts)
+    if total > len(corners):
+        raise MeshReadError(f"{where}: vcount lists {total} corners but <p> has {len(corners)}")
     return fan_triangulate(corners, counts)
 
 
-def fan_triangulate(corners: I64, counts: I64) -> I64:
-    """(k, 3) fan triangulation of polygons of ``counts`` corners each, listed one after another in
-    ``corners``: (v0, v1, v2), (v0, v2, v3), ... A polygon of fewer than three corners gives none.
+def fan_triangulate(corners: Ints, counts: Ints) -> Ints:
+    """Fan triangulation of polygons of ``counts`` corners each, listed one after another in
+    ``corners``: (v0, v1, v2), (v0, v2, v3) ... A polygon of fewer than three corners gives none.
     Counts must be non-negative and sum to at most ``len(corners)``."""
-    if len(counts) and counts.min() == 3 and counts.max() == 3:
-        return corners[: 3 * len(counts)].reshape(-1, 3)  # already triangles: the common case
-    starts = np.cumsum(counts) - counts
-    fans = np.maximum(counts - 2, 0)
-    first = np.repeat(starts, fans)
-    # k-th triangle of its polygon (from 1): corners first, first + k, first + k + 1.
-    k = np.arange(len(first)) - np.repeat(np.cumsum(fans) - fans, fans) + 1
-    return np.stack([corners[first], corners[first + k], corners[first + k + 1]], axis=1)
+    if counts.count(3) == len(counts):
+        return corners[: 3 * len(counts)]  # already triangles: the common case
+    out: Ints = array("q")
+    start = 0
+    for count in counts:
+        for k in range(start + 1, start + count - 1):
+            out.extend((corners[start], corners[k], corners[k + 1]))
+        start += count
+    return out
 
 
 # --- numbers -----------------------------------------------------------------------------------
 
 
-def _floats(text: str | None, what: str) -> F64:
+def _floats(text: str | None, what: str) -> Floats:
     values = parse_floats(text)
     if values is None:
         raise MeshReadError(f"bad number in {what}: {_first_bad(text or '', float)!r}")
     return values
 
 
-def _ints(text: str | None, what: str) -> I64:
+def _ints(text: str | None, what: str) -> Ints:
     values = parse_ints(text)
     if values is None:
         raise MeshReadError(f"bad integer in {what}: {_first_bad(text or '', int)!r}")

@@ -1,10 +1,11 @@
 """Mesh files as the arrays a UsdGeom.Mesh needs, without numpy on the common path.
 
-numpy's import costs about 0.1 s, more than converting a small robot's meshes. So binary STL and
-plain OBJ files go through the C extensions from the file's bytes to the finished arrays (welded
-points, triangles, face normals, extent), and the arrays stay Python ``array.array`` buffers,
-which the .usdc writer copies to the file as they are. Everything else (COLLADA, ASCII STL, OBJ
-that needs the line reader, trimesh's formats, an install without a C compiler) goes through
+numpy's import costs about 0.1 s, more than converting a small robot's meshes. So binary STL,
+plain OBJ and COLLADA (:mod:`robodesc.emit.mesh_collada`) files go through the C extensions from
+the file to the finished arrays (welded points, triangles, face normals, extent), and the arrays
+stay Python ``array.array`` buffers, which the .usdc writer copies to the file as they are.
+Everything else (ASCII STL, OBJ that needs the line reader, trimesh's formats, an install without
+a C compiler) goes through
 :mod:`robodesc.emit.usd_meshio`'s numpy readers, imported on first use. Both give the same bits
 (tests/usd/test_mesh_native.py).
 
@@ -46,6 +47,12 @@ def build_mesh(path: str, scale: Vec3 | None) -> MeshData:
     if not os.path.isfile(path):
         raise MeshReadError("file does not exist")
     lower = path.lower()
+    if _meshweld is not None and lower.endswith(".dae"):
+        from robodesc.emit.mesh_collada import read_collada_indexed
+
+        points, corners = read_collada_indexed(path)
+        welded, indices = _meshweld.weld_take(points, corners)
+        return finish(welded, indices, scale)
     if _meshweld is not None and (lower.endswith(".stl") or lower.endswith(".obj")):
         with open(path, "rb") as handle:
             data = handle.read()

@@ -1,17 +1,15 @@
-"""Whitespace-separated numbers in mesh text (COLLADA arrays, OBJ lines) as numpy arrays.
+"""Whitespace-separated numbers in mesh text (COLLADA arrays, OBJ lines) as ``array.array``.
 
 The C extension ``robodesc._numtext`` parses them about seven times faster than numpy's own parser,
-to the same bits (see its source). It is built at install time and optional: without a C compiler
-numpy parses instead, more slowly, with the same results.
+to the same bits (see its source), and without importing numpy. It is built at install time and
+optional: without a C compiler numpy parses instead (imported then), more slowly, with the same
+results.
 """
 
 from __future__ import annotations
 
 import warnings
-from typing import Any
-
-import numpy as np
-from numpy.typing import NDArray
+from array import array
 
 try:
     from robodesc import _numtext
@@ -24,33 +22,38 @@ def native() -> bool:
     return _numtext is not None
 
 
-def parse_floats(text: str | bytes | None) -> NDArray[np.float64] | None:
-    """The numbers in ``text`` as a 1-D float64 array, or None if any token is not a number."""
-    out: NDArray[np.float64] | None = _parse(text, np.float64)
+def parse_floats(text: str | bytes | None) -> array[float] | None:
+    """The numbers in ``text`` as float64 (``array('d')``), or None if any token is not a number."""
+    out: array[float] | None = _parse(text, "d")
     return out
 
 
-def parse_ints(text: str | bytes | None) -> NDArray[np.int64] | None:
-    """The integers in ``text`` as a 1-D int64 array, or None if any token is not an integer."""
-    out: NDArray[np.int64] | None = _parse(text, np.int64)
+def parse_ints(text: str | bytes | None) -> array[int] | None:
+    """The integers in ``text`` as int64 (``array('q')``), or None if any token is not an integer."""
+    out: array[int] | None = _parse(text, "q")
     return out
 
 
-def _parse(text: str | bytes | None, dtype: type[np.float64] | type[np.int64]) -> Any:
+def _parse(text: str | bytes | None, code: str) -> array | None:  # type: ignore[type-arg]
+    out = array(code)
     if not text:
-        return np.zeros(0, dtype=dtype)
+        return out
     if _numtext is not None:
         try:
-            raw = _numtext.parse(text, dtype is np.int64)
+            out.frombytes(_numtext.parse(text, code == "q"))
         except ValueError:
             return None
-        return np.frombuffer(raw, dtype=dtype)
+        return out
     if text.isspace():  # fromstring reads an all-blank text as [-1]
-        return np.zeros(0, dtype=dtype)
+        return out
+    import numpy as np
+
     # fromstring signals trailing junk with a warning on numpy 1.x and a ValueError on 2.x.
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("error", DeprecationWarning)
-            return np.fromstring(text, dtype=dtype, sep=" ")
+            values = np.fromstring(text, dtype=np.float64 if code == "d" else np.int64, sep=" ")
     except (ValueError, DeprecationWarning):
         return None
+    out.frombytes(values.tobytes())
+    return out

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from robodesc.emit.mesh_collada import fan_triangulate, read_collada_indexed
+from robodesc.emit.mesh_collada import read_collada_indexed
 from robodesc.emit.mesh_data import MeshData, finish, obj_text
 from robodesc.emit.mesh_data import MeshReadError as MeshReadError
 from robodesc.emit.number_text import parse_floats, parse_ints
@@ -41,7 +41,9 @@ def read_triangles(path: str) -> tuple[NDArray[np.float64], I32, NDArray[np.floa
     if lower.endswith(".stl"):
         return (*_weld(_read_stl(path)), None)
     elif lower.endswith(".dae"):
-        return (*_weld_indexed(*read_collada_indexed(path)), None)
+        points, corners = read_collada_indexed(path)
+        grid = np.frombuffer(points, dtype=np.float64).reshape(-1, 3)
+        return (*_weld_indexed(grid, np.frombuffer(corners, dtype=np.int64)), None)
     elif lower.endswith(".obj"):
         return (*_read_obj(path), None)
     return _read_trimesh(path)
@@ -186,10 +188,10 @@ def _obj_vertices(lines: tuple[bytes, int]) -> NDArray[np.float64] | None:
         rank = np.arange(len(first_bytes)) - (np.cumsum(counts) - counts)[line]
         token = np.cumsum(joined.begins) - 1  # of each byte (a gap counts with the token before it)
         text[~joined.gap & (rank[token] > 3)] = 32
-    values = parse_floats(text.tobytes())
-    if values is None or len(values) != 3 * count:
+    parsed = parse_floats(text.tobytes())
+    if parsed is None or len(parsed) != 3 * count:
         return None
-    return values.reshape(-1, 3)
+    return np.frombuffer(parsed, dtype=np.float64).reshape(-1, 3)
 
 
 def _obj_faces(lines: tuple[bytes, int]) -> NDArray[np.int64] | None:
@@ -203,13 +205,29 @@ def _obj_faces(lines: tuple[bytes, int]) -> NDArray[np.int64] | None:
     # when there are more slashes up to it than up to the last gap before it.
     slashes = np.cumsum(text == 47, dtype=np.int32)
     at_gap = np.maximum.accumulate(np.where(joined.gap, slashes, 0))
-    values = parse_ints(text[slashes <= at_gap].tobytes())
+    parsed = parse_ints(text[slashes <= at_gap].tobytes())
     corners = joined.tokens_per_line() - 1
-    if values is None or len(values) != int(corners.sum()):
+    if parsed is None or len(parsed) != int(corners.sum()):
         return None  # an empty index ("/2") or junk: the line reader reports it
+    values = np.frombuffer(parsed, dtype=np.int64)
     if len(values) and values.min() <= 0:
         return None  # relative (negative) indices count the vertices read so far: line reader
     return fan_triangulate(values - 1, corners)
+
+
+def fan_triangulate(corners: NDArray[np.int64], counts: NDArray[np.int64]) -> NDArray[np.int64]:
+    """(k, 3) fan triangulation of polygons of ``counts`` corners each, listed one after another in
+    ``corners``: (v0, v1, v2), (v0, v2, v3), ... A polygon of fewer than three corners gives none.
+    Counts must be non-negative and sum to at most ``len(corners)``. (The numpy twin of
+    :func:`robodesc.emit.mesh_collada.fan_triangulate`, for OBJ faces.)"""
+    if len(counts) and counts.min() == 3 and counts.max() == 3:
+        return corners[: 3 * len(counts)].reshape(-1, 3)  # already triangles: the common case
+    starts = np.cumsum(counts) - counts
+    fans = np.maximum(counts - 2, 0)
+    first = np.repeat(starts, fans)
+    # k-th triangle of its polygon (from 1): corners first, first + k, first + k + 1.
+    k = np.arange(len(first)) - np.repeat(np.cumsum(fans) - fans, fans) + 1
+    return np.stack([corners[first], corners[first + k], corners[first + k + 1]], axis=1)
 
 
 def _read_stl(path: str) -> NDArray[np.float64]:
