@@ -13,7 +13,6 @@ from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 from robodesc.emit.files import staged_folder, write_atomic, write_files
-from robodesc.emit.urdf import UrdfOptions, emit_urdf
 from robodesc.frontends.load import load_path, load_string
 from robodesc.ir.diagnostics import (
     ConfigError,
@@ -137,6 +136,9 @@ def _emit_urdf(robot: Robot, out: str | None, options: CompileOptions, findings:
             element=f"robot {robot.name!r}",
             stage="emit:urdf",
         )
+    # Imported per target, like the other emitters: a USD compile does not load the URDF writer.
+    from robodesc.emit.urdf import UrdfOptions, emit_urdf
+
     out_dir = os.path.dirname(os.path.abspath(out)) if out else None
     text = emit_urdf(robot, UrdfOptions(path_mode=options.mesh_paths, out_dir=out_dir))
     emitted = Emitted(text=text)

@@ -136,6 +136,10 @@ def test_stl_edge_cases(tmp_path: Path) -> None:
         "empty_binary": bytes(80) + (0).to_bytes(4, "little"),
         "too_short": b"solid",
         "ascii": b"solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n",
+        "ascii_exponents": b"solid t\nfacet normal 0 0 1\nouter loop\nVERTEX -0 1e-3 2.5E+1\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+        b"facet normal 0 0 1\nouter loop\nvertex -0 0.001 25\nvertex 0 1 0\nvertex 1 1 0\nendloop\nendfacet\nendsolid\n",
+        "ascii_bad_number": b"solid t\nouter loop\nvertex 0 0 x\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendsolid\n",
+        "ascii_incomplete": b"solid t\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendsolid\n",
     }
     for name, data in cases.items():
         path = tmp_path / f"{name}.stl"

@@ -1,10 +1,10 @@
 """Mesh files as the arrays a UsdGeom.Mesh needs, without numpy on the common path.
 
-numpy's import costs about 0.1 s, more than converting a small robot's meshes. So binary STL,
+numpy's import costs about 0.1 s, more than converting a small robot's meshes. So STL,
 plain OBJ and COLLADA (:mod:`robodesc.emit.mesh_collada`) files go through the C extensions from
 the file to the finished arrays (welded points, triangles, face normals, extent), and the arrays
 stay Python ``array.array`` buffers, which the .usdc writer copies to the file as they are.
-Everything else (ASCII STL, OBJ that needs the line reader, trimesh's formats, an install without
+Everything else (broken STL, OBJ that needs the line reader, trimesh's formats, an install without
 a C compiler) goes through
 :mod:`robodesc.emit.usd_meshio`'s numpy readers, imported on first use. Both give the same bits
 (tests/usd/test_mesh_native.py).
@@ -58,6 +58,8 @@ def build_mesh(path: str, scale: Vec3 | None) -> MeshData:
             data = handle.read()
         if lower.endswith(".stl"):
             found = _meshweld.stl(data)  # None for ASCII or a broken file
+            if found is None and data.lstrip()[:5].lower() == b"solid":
+                found = _ascii_stl(data)
         else:
             text = obj_text(data)
             found = None if text is None else _numtext.obj(text)  # None when the line reader must decide
@@ -66,6 +68,20 @@ def build_mesh(path: str, scale: Vec3 | None) -> MeshData:
     from robodesc.emit.usd_meshio import build_mesh_numpy
 
     return build_mesh_numpy(path, scale)
+
+
+def _ascii_stl(data: bytes) -> tuple[bytearray, bytearray] | None:
+    """An ASCII STL's welded points and triangles: the three numbers after each ``vertex``, parsed
+    as usd_meshio's numpy reader parses them; None when that reader must report a broken file."""
+    tokens = data.lower().split()
+    at = [i for i, token in enumerate(tokens) if token == b"vertex"]
+    if not at or len(at) % 3 or at[-1] + 3 >= len(tokens):
+        return None
+    try:
+        values = _numtext.parse(b" ".join(b" ".join(tokens[i + 1 : i + 4]) for i in at), False)
+    except ValueError:
+        return None
+    return _meshweld.weld_take(values, None)
 
 
 def finish(vertices: object, triangles: object, scale: Vec3 | None, uv: array[float] | None = None) -> MeshData:

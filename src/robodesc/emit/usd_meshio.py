@@ -1,11 +1,12 @@
 """Reading mesh files into the arrays a UsdGeom.Mesh needs, with numpy.
 
-:mod:`robodesc.emit.mesh_data` reads binary STL and plain OBJ without numpy (through the C
-extensions) and comes here for everything else: COLLADA (with lxml and numpy,
-:mod:`robodesc.emit.mesh_collada`), ASCII STL, OBJ files that need the line reader, and other
-formats through trimesh, imported on first use (importing trimesh alone costs over a second, and
-pycollada about as much again on a mesh-heavy robot). Without the C extensions everything comes
-here. Texture coordinates are only read through trimesh (not for STL, OBJ, DAE yet).
+:mod:`robodesc.emit.mesh_data` reads STL, plain OBJ and COLLADA without numpy (through the C
+extensions) and comes here for the rest: broken STL files (for their error message), OBJ files that
+need the line reader, and other formats through trimesh (importing trimesh alone costs over a
+second). Without the C extensions every file comes here, and the same arithmetic runs in numpy
+(COLLADA's per-point work in :mod:`robodesc.emit.mesh_collada`'s numpy branches). The tests hold
+the two paths to the same bits. Texture coordinates are only read through trimesh (not for STL,
+OBJ, DAE yet).
 """
 
 from __future__ import annotations
