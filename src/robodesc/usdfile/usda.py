@@ -9,6 +9,7 @@ scientific exponents from -6 to 14 and ``1e-7`` style outside.
 from __future__ import annotations
 
 import math
+import re
 import struct
 from array import array
 from typing import Any
@@ -280,9 +281,15 @@ def _usd_notation(text: str) -> str:
 _ESCAPES = {"\\": "\\\\", "\t": "\\t", "\r": "\\r", "\b": "\\b", "\f": "\\f", "\v": "\\v", "\a": "\\a"}
 
 
+# Text that needs no escaping and no other quotes: the common case, quoted without a loop.
+_PLAIN_TEXT = re.compile(r'[^"\\\x00-\x1f\x7f]*\Z')
+
+
 def quote(text: str, allow_single: bool = True) -> str:
     """A string literal as Sdf writes it: single quotes when that avoids escaping a double quote,
     triple quotes around text with line breaks."""
+    if _PLAIN_TEXT.match(text):
+        return '"' + text + '"'
     q = "'" if allow_single and '"' in text and "'" not in text else '"'
     multiline = "\n" in text
     parts: list[str] = []
