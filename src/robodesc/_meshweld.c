@@ -226,17 +226,25 @@ static void unit_normal(const double *a, const double *b, const double *c, float
     }
 }
 
+/* The float64 points and int32 triangles of face_normals() and finish(); 0 on success. */
+static int get_mesh(PyObject *points, PyObject *triangles, Py_buffer *points_view, Py_buffer *triangles_view) {
+    if (get_buffer(points, points_view, "points") != 0) {
+        return -1;
+    }
+    if (PyObject_GetBuffer(triangles, triangles_view, PyBUF_C_CONTIGUOUS) != 0) {
+        PyBuffer_Release(points_view);
+        return -1;
+    }
+    return 0;
+}
+
 static PyObject *face_normals(PyObject *self, PyObject *args) {
     PyObject *points_object, *triangles_object;
     if (!PyArg_ParseTuple(args, "OO", &points_object, &triangles_object)) {
         return NULL;
     }
     Py_buffer points_view, triangles_view;
-    if (get_buffer(points_object, &points_view, "points") != 0) {
-        return NULL;
-    }
-    if (PyObject_GetBuffer(triangles_object, &triangles_view, PyBUF_C_CONTIGUOUS) != 0) {
-        PyBuffer_Release(&points_view);
+    if (get_mesh(points_object, triangles_object, &points_view, &triangles_view) != 0) {
         return NULL;
     }
     const double *p = (const double *)points_view.buf;
@@ -280,11 +288,7 @@ static PyObject *finish(PyObject *self, PyObject *args) {
         return NULL;
     }
     Py_buffer points_view, triangles_view;
-    if (get_buffer(points_object, &points_view, "points") != 0) {
-        return NULL;
-    }
-    if (PyObject_GetBuffer(triangles_object, &triangles_view, PyBUF_C_CONTIGUOUS) != 0) {
-        PyBuffer_Release(&points_view);
+    if (get_mesh(points_object, triangles_object, &points_view, &triangles_view) != 0) {
         return NULL;
     }
     Py_ssize_t point_count = points_view.len / 24;
