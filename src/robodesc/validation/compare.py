@@ -335,6 +335,29 @@ def rotation_angle(r: Mat) -> float:
     return math.atan2(s, c)
 
 
+def pose_error(got: Mat, want: Mat) -> tuple[float, float]:
+    """Position (m) and rotation (rad) distance between two 4x4 poses."""
+    return float(np.linalg.norm(got[:3, 3] - want[:3, 3])), rotation_angle(want[:3, :3].T @ got[:3, :3])
+
+
+def keep_worst(
+    worst: dict[str, tuple[float, float, dict[str, float]]],
+    link: str,
+    got: Mat,
+    want: Mat,
+    q: dict[str, float],
+    options: ValidateOptions,
+) -> None:
+    """Record ``link``'s pose error at ``q`` when it is its largest so far, measured against the
+    position and rotation tolerances (what :func:`report_fk` reports)."""
+    ep, er = pose_error(got, want)
+    prev = worst.get(link)
+    if prev is None or max(ep / options.position_tol, er / options.rotation_tol) > max(
+        prev[0] / options.position_tol, prev[1] / options.rotation_tol
+    ):
+        worst[link] = (ep, er, q)
+
+
 def compare_fk(robot: Robot, model: Any, options: ValidateOptions, report: ValidationReport) -> None:
     ids = Ids(model)
     roots = robot.root_links()
@@ -353,15 +376,7 @@ def compare_fk(robot: Robot, model: Any, options: ValidateOptions, report: Valid
             b = ids.body(link.name)
             if b < 0 or link.name not in expected:
                 continue
-            got = inv_root @ _body_pose(data, b)
-            want = expected[link.name]
-            ep = float(np.linalg.norm(got[:3, 3] - want[:3, 3]))
-            er = rotation_angle(want[:3, :3].T @ got[:3, :3])
-            prev = worst.get(link.name)
-            if prev is None or max(ep / options.position_tol, er / options.rotation_tol) > max(
-                prev[0] / options.position_tol, prev[1] / options.rotation_tol
-            ):
-                worst[link.name] = (ep, er, q)
+            keep_worst(worst, link.name, inv_root @ _body_pose(data, b), expected[link.name], q, options)
     report_fk(robot, worst, len(configs), options, report)
 
 

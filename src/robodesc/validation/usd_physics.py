@@ -25,7 +25,9 @@ from robodesc.ir.transforms import Mat, axis_angle_matrix, forward_kinematics, q
 from robodesc.validation.compare import (
     expected_inertial,
     joint_label,
+    keep_worst,
     link_label,
+    pose_error,
     report_fk,
     rotation_angle,
     sample_configurations,
@@ -473,14 +475,7 @@ def _compare_fk(robot: Robot, parsed: Parsed, options: ValidateOptions, report: 
             if link.name not in got:
                 unreached.add(link.name)
                 continue
-            g, w = got[link.name], expected[link.name]
-            ep = float(np.linalg.norm(g[:3, 3] - w[:3, 3]))
-            er = rotation_angle(w[:3, :3].T @ g[:3, :3])
-            prev = worst.get(link.name)
-            if prev is None or max(ep / opts.position_tol, er / opts.rotation_tol) > max(
-                prev[0] / opts.position_tol, prev[1] / opts.rotation_tol
-            ):
-                worst[link.name] = (ep, er, q)
+            keep_worst(worst, link.name, got[link.name], expected[link.name], q, opts)
     for name in sorted(unreached):
         report.add("fk", Status.FAIL, link_label(name), f"not reachable from the root link {root!r} through USD joints")
     report_fk(robot, worst, len(configs), opts, report)
@@ -500,10 +495,8 @@ def _compare_rest_pose(
         pose = parsed.body_poses.get(link.name)
         if pose is None or link.name not in expected:
             continue
-        got = inv_root @ _frame(*pose)
         want = expected[link.name]
-        ep = float(np.linalg.norm(got[:3, 3] - want[:3, 3]))
-        er = rotation_angle(want[:3, :3].T @ got[:3, :3])
+        ep, er = pose_error(inv_root @ _frame(*pose), want)
         message = (
             f"usd-core places the body {ep:.3g} m and {er:.3g} rad from the source pose at q = 0 (relative to the root)"
         )
