@@ -1,8 +1,8 @@
 """Builds robodesc's C extensions; everything else is in pyproject.toml.
 
-- ``robodesc._numtext`` parses the numbers in mesh text (COLLADA, OBJ) about seven times faster
+- ``robodesc.meshes._numtext`` parses the numbers in mesh text (COLLADA, OBJ) about seven times faster
   than numpy;
-- ``robodesc._meshweld`` welds mesh corners into points and computes face normals about five times
+- ``robodesc.meshes._weld`` welds mesh corners into points and computes face normals about five times
   faster than robodesc's numpy code.
 
 Both are optional: without a C compiler the install goes on and robodesc uses its numpy code
@@ -19,10 +19,10 @@ STRICT_FP = [] if sys.platform == "win32" else ["-ffp-contract=off"]
 
 setup(
     ext_modules=[
-        Extension("robodesc._numtext", sources=["src/robodesc/_numtext.c"], optional=True),
+        Extension("robodesc.meshes._numtext", sources=["src/robodesc/meshes/_numtext.c"], optional=True),
         Extension(
-            "robodesc._meshweld",
-            sources=["src/robodesc/_meshweld.c"],
+            "robodesc.meshes._weld",
+            sources=["src/robodesc/meshes/_weld.c"],
             extra_compile_args=STRICT_FP,
             optional=True,
         ),

@@ -20,7 +20,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from robodesc.emit.paths import PathMode
+from robodesc.emit.common.paths import PathMode
 from robodesc.emit.urdf import UrdfOptions, emit_urdf
 from robodesc.frontends.load import load_path
 from robodesc.frontends.options import LoadOptions, MissingMesh
@@ -93,8 +93,7 @@ def run_urdf(robot: Robot, options: ValidateOptions, workdir: str) -> TargetResu
 
 def run_sdf(robot: Robot, options: ValidateOptions, workdir: str) -> TargetResult:
     try:
-        from robodesc.emit.sdf import build_sdf
-        from robodesc.emit.sdf_options import SdfOptions
+        from robodesc.emit.sdf import SdfOptions, build_sdf
     except ImportError as exc:
         return TargetResult("sdf", "n/a", f"target not available ({exc})")
     from robodesc.validation.drake_sdf import validate_sdf
@@ -428,7 +427,7 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{out} is out of date; regenerate it with {' '.join(sys.argv)}", file=sys.stderr)
             return 1
         return 0
-    from robodesc.emit.files import write_atomic
+    from robodesc.emit.common.files import write_atomic
 
     write_atomic(out, text)
     print(f"wrote {out}")

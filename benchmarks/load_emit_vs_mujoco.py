@@ -72,7 +72,9 @@ def main() -> int:
         except Exception as exc:
             rows.append((robot, _best(ours, args.repeat), None, f"mujoco: {exc}"))
             continue
-        rows.append((robot, _best(ours, args.repeat), _best(lambda text=text: mujoco.MjSpec.from_string(text), args.repeat), ""))
+        rows.append(
+            (robot, _best(ours, args.repeat), _best(lambda text=text: mujoco.MjSpec.from_string(text), args.repeat), "")
+        )
 
     both = [(r, a, b) for r, a, b, note in rows if a is not None and b is not None]
     ratios = [a / b for _, a, b in both]
@@ -85,7 +87,9 @@ def main() -> int:
         f"- robots measured on both: {len(both)} of {len(rows)}",
         f"- total: robodesc {sum(a for _, a, _ in both) * 1e3:.1f} ms, MuJoCo {sum(b for _, _, b in both) * 1e3:.1f} ms, "
         f"ratio {sum(a for _, a, _ in both) / max(1e-12, sum(b for _, _, b in both)):.2f}",
-        f"- median per-robot ratio {statistics.median(ratios):.2f} (min {min(ratios):.2f}, max {max(ratios):.2f})" if ratios else "",
+        f"- median per-robot ratio {statistics.median(ratios):.2f} (min {min(ratios):.2f}, max {max(ratios):.2f})"
+        if ratios
+        else "",
         "",
         "| corpus | robot | robodesc ms | MuJoCo ms | ratio | note |",
         "|---|---|---:|---:|---:|---|",
@@ -93,7 +97,9 @@ def main() -> int:
     for robot, a, b, note in rows:
         ratio = f"{a / b:.2f}" if a and b else ""
         lines.append(
-            f"| {robot.corpus} | {robot.name} | {a * 1e3:.2f} | {b * 1e3:.2f} | {ratio} | {note} |".replace("| None", "| ")
+            f"| {robot.corpus} | {robot.name} | {a * 1e3:.2f} | {b * 1e3:.2f} | {ratio} | {note} |".replace(
+                "| None", "| "
+            )
             if a and b
             else f"| {robot.corpus} | {robot.name} | {'' if a is None else f'{a * 1e3:.2f}'} | | | {note[:120]} |"
         )

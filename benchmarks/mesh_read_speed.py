@@ -35,8 +35,8 @@ sys.path.insert(0, os.path.join(ROOT, "tests", "usd"))
 
 from test_mesh_readers import corpus_files, pycollada_triangles, weld_reference  # noqa: E402
 
-from robodesc.emit import usd_meshio  # noqa: E402
-from robodesc.emit.mesh_collada import MeshReadError, read_collada  # noqa: E402
+from robodesc.meshes import readers as usd_meshio  # noqa: E402
+from robodesc.meshes.collada import MeshReadError, read_collada  # noqa: E402
 from robodesc.validation.corpora import example_robot_data_root  # noqa: E402
 
 Reader = Callable[[str], object]

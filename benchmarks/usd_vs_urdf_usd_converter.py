@@ -125,8 +125,22 @@ def main() -> int:
             # The peer's output shape (layered asset + physics scene), no repairs, no validation:
             # sanitize_names and unique_materials run anyway (USD needs them).
             cmd = [
-                exe, "compile", entry.path, "-t", "usd", "-o", out, "--layered", "--physics-scene",
-                "--no-validate", "--missing-mesh", "warn", "--invalid-inertia", "warn", "-q", *pkg_args,
+                exe,
+                "compile",
+                entry.path,
+                "-t",
+                "usd",
+                "-o",
+                out,
+                "--layered",
+                "--physics-scene",
+                "--no-validate",
+                "--missing-mesh",
+                "warn",
+                "--invalid-inertia",
+                "warn",
+                "-q",
+                *pkg_args,
             ]
             ours_ok, ours_s, ours_err = _best(cmd, args.repeat)
             rows.append(Row(entry.name, peer_ok, peer_s, peer_err, ours_ok, ours_s, ours_err))
@@ -187,7 +201,11 @@ def _report(rows: list[Row], how: str) -> str:
         if ratios
         else "- no robot converted by both",
         f"- robodesc in-process batch (imports paid once): {sum(inproc):.1f} s for {len(inproc)} robots"
-        + (f", x{sum(r.peer_s for r in both if r.inproc_s) / sum(r.inproc_s for r in both if r.inproc_s):.1f} against the peer's runs on the same robots" if inproc else ""),
+        + (
+            f", x{sum(r.peer_s for r in both if r.inproc_s) / sum(r.inproc_s for r in both if r.inproc_s):.1f} against the peer's runs on the same robots"
+            if inproc
+            else ""
+        ),
         "",
         "| robot | peer | peer s | robodesc | robodesc s | speed-up | in-process s | failure reason |",
         "|---|---|---|---|---|---|---|---|",

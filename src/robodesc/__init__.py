@@ -1,21 +1,28 @@
 """robodesc: a compiler for robot descriptions (URDF, xacro, compositions → URDF, SDF, USD).
 
-The public API lives in :mod:`robodesc.api` and is re-exported here.
+The public API lives in :mod:`robodesc.api` and is re-exported here. It is imported on first use
+(PEP 562), so that ``import robodesc.ir`` or ``robodesc.meshes`` does not load the whole pipeline and
+no stage's import can come back round to this package.
 """
 
-__version__ = "0.1.0"
+from __future__ import annotations
 
-from robodesc.api import (
-    CompileResult,
-    compile_for_gazebo,
-    compile_for_isaac_sim,
-    compile_for_ros2,
-    compile_to_sdf,
-    compile_to_urdf,
-    compile_to_usd,
-    load,
-    validate,
-)
+from typing import TYPE_CHECKING, Any
+
+from robodesc._version import __version__
+
+if TYPE_CHECKING:
+    from robodesc.api import (
+        CompileResult,
+        compile_for_gazebo,
+        compile_for_isaac_sim,
+        compile_for_ros2,
+        compile_to_sdf,
+        compile_to_urdf,
+        compile_to_usd,
+        load,
+        validate,
+    )
 
 __all__ = [
     "CompileResult",
@@ -29,3 +36,11 @@ __all__ = [
     "load",
     "validate",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    if name in __all__:
+        from robodesc import api
+
+        return getattr(api, name)
+    raise AttributeError(f"module 'robodesc' has no attribute {name!r}")

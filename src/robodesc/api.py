@@ -39,6 +39,7 @@ __all__ = [
     "compile_to_usd",
     "load",
     "validate",
+    "validate_file",
 ]
 
 
@@ -98,7 +99,7 @@ def compile_to_sdf(
 ) -> CompileResult:
     """Compile to SDF (Gazebo Harmonic, SDF 1.10 by default). Options: ``version``, ``world``,
     ``fix_base``, ``flavour`` ("harmonic" | "classic"), ``pose_frames``, ``step_size`` ... (see docs/sdf.md)."""
-    from robodesc.emit.sdf_options import SdfOptions
+    from robodesc.emit.sdf import SdfOptions
 
     return _compile("sdf", source, out, progress, options, SdfOptions)
 
@@ -109,7 +110,7 @@ def compile_for_ros2(
     """Write the ROS 2 / Gazebo Harmonic folder: URDF with ``<ros2_control>``, controllers.yaml,
     launch file, ros_gz_bridge YAML and world. Options: ``command_interface``, ``controller``,
     ``update_rate``, ``spawn_z``."""
-    from robodesc.emit.ros2_options import Ros2Options
+    from robodesc.emit.ros2 import Ros2Options
 
     return _compile("ros2", source, out_dir, progress, options, Ros2Options)
 
@@ -118,8 +119,8 @@ def compile_for_gazebo(
     source: Source, out_dir: str | os.PathLike[str], *, progress: Progress | None = None, **options: Any
 ) -> CompileResult:
     """The ROS 2 folder plus an SDF world holding the model (``<robot>.sdf``)."""
-    from robodesc.emit.ros2_options import Ros2Options
-    from robodesc.emit.sdf_options import SdfOptions
+    from robodesc.emit.ros2 import Ros2Options
+    from robodesc.emit.sdf import SdfOptions
 
     result = _compile("ros2", source, out_dir, progress, options, Ros2Options, SdfOptions)
     sdf_opts = {k: v for k, v in options.items() if k in {f.name for f in dataclasses.fields(SdfOptions)}}
@@ -137,7 +138,7 @@ def compile_to_usd(
     and materials made unique first (USD needs both). Options: ``fix_base``, ``drive_type``,
     ``target_type``, ``stiffness``/``damping`` (SI; a number or a ``{regex: value}`` table),
     ``collision_approximation``, ``layered``, ``solver_position_iterations``, ... (docs/usd.md)."""
-    from robodesc.emit.usd_options import UsdOptions
+    from robodesc.emit.usd import UsdOptions
 
     return _compile("usd", source, out, progress, options, UsdOptions)
 
@@ -159,7 +160,7 @@ def compile_for_isaac_sim(
     """
     import tempfile
 
-    from robodesc.emit.isaac_settings import IsaacSettings
+    from robodesc.emit.isaac import IsaacSettings
 
     target = os.fspath(out_dir) if out_dir is not None else tempfile.mkdtemp(prefix="robodesc-isaac-")
     return _compile("isaac", source, target, progress, options, IsaacSettings)
@@ -176,3 +177,35 @@ def validate(source: Source, target: str = "urdf", **options: Any) -> Any:
         cls = target_options_class(target)
         result = _compile(target, source, out, None, {**options, "validate": True}, *((cls,) if cls else ()))
     return result.validation
+
+
+def validate_file(path: str, options: Any = None, load_options: Any = None) -> Any:
+    """Load ``path`` (URDF/xacro), emit URDF with absolute mesh paths and validate it in MuJoCo.
+
+    ``options`` is a :class:`~robodesc.validation.options.ValidateOptions`, ``load_options`` a
+    :class:`~robodesc.frontends.options.LoadOptions`. Source defects the IR verifier finds
+    (non-physical inertia, dangling references) are added as ``source`` checks: warnings, since they
+    are the input's and a faithful compiler keeps them. Raises
+    :class:`~robodesc.ir.diagnostics.RobodescError` only when the file cannot be read at all.
+    """
+    from robodesc.emit.common.paths import PathMode
+    from robodesc.emit.urdf import UrdfOptions, emit_urdf
+    from robodesc.frontends.load import load_path
+    from robodesc.frontends.options import LoadOptions
+    from robodesc.validation.mujoco_urdf import validate_urdf_text
+    from robodesc.validation.options import ValidateOptions
+    from robodesc.validation.report import ValidationReport
+    from robodesc.validation.source import add_source_findings
+
+    opts = options or ValidateOptions()
+    lopts = load_options or LoadOptions()
+    if not opts.package_paths and lopts.package_paths:
+        opts.package_paths = dict(lopts.package_paths)
+    robot = load_path(path, lopts).robot
+    base_dir = os.path.dirname(os.path.abspath(path))
+    text = emit_urdf(robot, UrdfOptions(path_mode=PathMode.ABSOLUTE, out_dir=base_dir))
+    report = ValidationReport(robot=robot.name, target="urdf", consumer="mujoco")
+    add_source_findings(robot, report)
+    report.extend(validate_urdf_text(robot, text, base_dir, opts))
+    report.info["input"] = path
+    return report

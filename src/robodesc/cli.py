@@ -13,12 +13,12 @@ import sys
 from collections.abc import Sequence
 from typing import Any, NoReturn
 
-from robodesc import __version__
-from robodesc.emit.paths import PathMode
+from robodesc._version import __version__
+from robodesc.emit.common.paths import PathMode
 from robodesc.frontends.options import MissingMesh
 from robodesc.ir.diagnostics import ConfigError, Finding, RobodescError, Severity, VerificationError
 from robodesc.options import InvalidInertia, build_options
-from robodesc.pipeline import compile_robot, target_options_class
+from robodesc.pipeline import TARGETS, compile_robot, target_options_class
 
 EPILOG = """\
 examples:
@@ -93,7 +93,11 @@ def _parser() -> argparse.ArgumentParser:
     )
     comp.add_argument("input", help="URDF, .xacro, composition (.yaml, .holo) file")
     comp.add_argument(
-        "-t", "--target", choices=["urdf", "sdf", "usd"], default="urdf", help="output format (default: urdf)"
+        "-t",
+        "--target",
+        choices=sorted(TARGETS),
+        default="urdf",
+        help="output format (default: urdf; isaac and ros2 write folders, as --isaac-sim and --ros2 do)",
     )
     comp.add_argument(
         "-o",
@@ -302,7 +306,7 @@ def _parser() -> argparse.ArgumentParser:
         "under gravity. Exit 1 when a check fails.",
     )
     valp.add_argument("input")
-    valp.add_argument("-t", "--target", choices=["urdf", "sdf", "usd"], default="urdf")
+    valp.add_argument("-t", "--target", choices=sorted(TARGETS), default="urdf")
     _add_input_options(valp)
     valp.add_argument("--report", metavar="FILE.md", help="write the report as Markdown")
     valp.add_argument("--json", action="store_true", help="print the report as JSON")
@@ -443,7 +447,7 @@ def _cmd_compile(args: argparse.Namespace) -> int:
     result = compile_robot(args.input, target, args.output, opts, progress)
     report = result.validation
     if args.report and report is not None:
-        from robodesc.emit.files import write_atomic
+        from robodesc.emit.common.files import write_atomic
 
         write_atomic(args.report, report.to_markdown())
     if args.json:
@@ -490,7 +494,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
             print("error: nothing to validate", file=sys.stderr)
             return 2
         if args.report:
-            from robodesc.emit.files import write_atomic
+            from robodesc.emit.common.files import write_atomic
 
             write_atomic(args.report, report.to_markdown())
         if args.json:

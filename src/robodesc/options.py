@@ -13,7 +13,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from robodesc.emit.paths import PathMode
+from robodesc.emit.common.paths import PathMode
 from robodesc.frontends.options import LoadOptions, MissingMesh
 from robodesc.ir.diagnostics import ConfigError
 

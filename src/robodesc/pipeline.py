@@ -7,12 +7,13 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import importlib
 import os
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
-from robodesc.emit.files import staged_folder, write_atomic, write_files
+from robodesc.emit.common.target import EmitRequest, Emitted, Target
 from robodesc.frontends.load import load_path, load_string
 from robodesc.ir.diagnostics import (
     ConfigError,
@@ -38,16 +39,6 @@ class Buildable(Protocol):
 
 
 Source = str | os.PathLike[str] | Robot | Buildable
-
-
-@dataclass(slots=True)
-class Emitted:
-    """What an emitter produced: the main text (when it is text) and every file written."""
-
-    text: str | None = None
-    files: dict[str, str] = field(default_factory=dict)  # role -> path
-    # Emitter-specific data validation needs (the SDF emitter's renamed links and joints).
-    extra: dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass(slots=True)
@@ -87,12 +78,12 @@ def load_source(source: Source, options: CompileOptions, findings: Findings) -> 
     return loaded.robot
 
 
-def pass_options(options: CompileOptions, target: str = "urdf") -> PassOptions:
+def pass_options(options: CompileOptions, spec: Target) -> PassOptions:
     """The passes' options: the preset, overridden by explicit options, with the policies the
     compile options and the target imply."""
     chosen = options_from_mapping(options.passes)
-    resolved = resolve_options(options.preset or TARGET_PRESETS.get(target), chosen)
-    for name, value in TARGET_PASSES.get(target, {}).items():
+    resolved = resolve_options(options.preset or spec.preset, chosen)
+    for name, value in spec.passes.items():
         setattr(resolved, name, value)
     # Compositions give masses without tensors; those are always filled from geometry.
     resolved.fill_inertia = True
@@ -126,111 +117,29 @@ def verify_source(robot: Robot, options: CompileOptions, findings: Findings, rep
 
 
 # ---- targets ---------------------------------------------------------------------------------
-def _emit_urdf(robot: Robot, out: str | None, options: CompileOptions, findings: Findings) -> Emitted:
-    with_armature = [j.name for j in robot.joints if j.armature is not None]
-    if with_armature:
-        findings.info(
-            "urdf-armature",
-            f"armature of {len(with_armature)} joints written as <dynamics armature=...> (URDF has no armature element; "
-            "standard parsers ignore it, the USD output carries physxJoint:armature and newton:armature)",
-            element=f"robot {robot.name!r}",
-            stage="emit:urdf",
-        )
-    # Imported per target, like the other emitters: a USD compile does not load the URDF writer.
-    from robodesc.emit.urdf import UrdfOptions, emit_urdf
-
-    out_dir = os.path.dirname(os.path.abspath(out)) if out else None
-    text = emit_urdf(robot, UrdfOptions(path_mode=options.mesh_paths, out_dir=out_dir))
-    emitted = Emitted(text=text)
-    if out:
-        write_atomic(out, text)
-        emitted.files["urdf"] = out
-    return emitted
+# The target table: a name and the package that exports its ``TARGET``. Packages are imported when a
+# compile asks for them, so a USD compile does not load the URDF writer. Adding a target is adding
+# a package under robodesc/emit/ and a line here.
+TARGETS: dict[str, str] = {
+    "urdf": "robodesc.emit.urdf",
+    "sdf": "robodesc.emit.sdf",
+    "usd": "robodesc.emit.usd",
+    "ros2": "robodesc.emit.ros2",
+    "isaac": "robodesc.emit.isaac",
+}
 
 
-def _emit_sdf(robot: Robot, out: str | None, options: CompileOptions, findings: Findings) -> Emitted:
-    from robodesc.emit.sdf import build_sdf
-    from robodesc.emit.sdf_options import SdfOptions
-
-    sdf_options = dataclass_from_mapping(SdfOptions, target_options(SdfOptions, options), "sdf")
-    sdf_options.path_mode = options.mesh_paths
-    sdf_options.out_dir = os.path.dirname(os.path.abspath(out)) if out else None
-    result = build_sdf(robot, sdf_options)
-    findings.extend(result.findings)
-    text = result.text
-    emitted = Emitted(
-        text=text,
-        extra={
-            "link_names": result.names.by_kind.get("link", {}),
-            "joint_names": result.names.by_kind.get("joint", {}),
-            "sdf_options": sdf_options,
-        },
-    )
-    if out:
-        write_atomic(out, text)
-        emitted.files["sdf"] = out
-    return emitted
-
-
-def _emit_ros2(robot: Robot, out: str | None, options: CompileOptions, findings: Findings) -> Emitted:
-    from robodesc.emit.ros2 import Ros2Options, build_ros2_package
-
-    if not out:
-        raise ConfigError("the ROS 2 package is several files: give an output folder with -o")
-    ros2_options = dataclass_from_mapping(Ros2Options, target_options(Ros2Options, options), "ros2")
-    ros2_options.out_dir = os.path.abspath(out)
-    package = build_ros2_package(robot, ros2_options)
-    findings.extend(package.findings)
-    return Emitted(files=write_folder(out, package.files))
-
-
-def _emit_usd(robot: Robot, out: str | None, options: CompileOptions, findings: Findings) -> Emitted:
-    from robodesc.emit.usd import emit_usd
-    from robodesc.emit.usd_options import UsdOptions
-
-    if not out:
-        raise ConfigError("USD is written to a file: give one with -o robot.usda|.usdc|.usd")
-    usd_options = dataclass_from_mapping(UsdOptions, target_options(UsdOptions, options), "usd")
-    if "fix_base" not in options.target_options and robot.fixed_base is not None:
-        usd_options.fix_base = robot.fixed_base
-    findings.extend(emit_usd(robot, out, usd_options))
-    return Emitted(files={"usd": out})
-
-
-def _emit_isaac(robot: Robot, out: str | None, options: CompileOptions, findings: Findings) -> Emitted:
-    from robodesc.emit.isaac_settings import IsaacSettings
-    from robodesc.isaac import write_isaac_folder
-
-    if not out:
-        raise ConfigError("the Isaac Sim target writes a folder: give it with -o OUT_DIR")
-    settings = dataclass_from_mapping(IsaacSettings, target_options(IsaacSettings, options), "isaac")
-    if "fix_base" not in options.target_options and robot.fixed_base is not None:
-        settings.fix_base = robot.fixed_base
-    if "init_pos" not in options.target_options and robot.placement is not None:
-        settings.init_pos = robot.placement.xyz  # where the composition put the robot
-    files = write_isaac_folder(robot, out, settings, findings, options.mesh_paths)
-    return Emitted(files=files, extra={"settings": settings})
+def target_spec(name: str) -> Target:
+    if name not in TARGETS:
+        raise ConfigError(f"unknown target {name!r} (one of {', '.join(sorted(TARGETS))})")
+    spec = importlib.import_module(TARGETS[name]).TARGET
+    assert isinstance(spec, Target)
+    return spec
 
 
 def target_options_class(target: str) -> type[Any] | None:
-    """The options dataclass a target takes (imported lazily: each pulls its emitter's module)."""
-    if target == "sdf":
-        from robodesc.emit.sdf_options import SdfOptions
-
-        return SdfOptions
-    if target == "usd":
-        from robodesc.emit.usd_options import UsdOptions
-
-        return UsdOptions
-    if target == "isaac":
-        from robodesc.emit.isaac_settings import IsaacSettings
-
-        return IsaacSettings
-    if target == "ros2":
-        from robodesc.emit.ros2_options import Ros2Options
-
-        return Ros2Options
-    return None
+    """The options dataclass a target takes."""
+    return target_spec(target).options
 
 
 def target_options(cls: type[Any], options: CompileOptions) -> dict[str, Any]:
@@ -239,31 +148,11 @@ def target_options(cls: type[Any], options: CompileOptions) -> dict[str, Any]:
     return {k: v for k, v in options.target_options.items() if k in names}
 
 
-def write_folder(out: str, files: Mapping[str, str | bytes]) -> dict[str, str]:
-    """Write ``files`` into folder ``out`` as one unit."""
-    with staged_folder(out) as staging:
-        write_files(staging, files)
-    return {name: os.path.join(out, name) for name in sorted(files)}
-
-
-Target = Callable[[Robot, str | None, CompileOptions, Findings], Emitted]
-TARGETS: dict[str, Target] = {
-    "urdf": _emit_urdf,
-    "sdf": _emit_sdf,
-    "usd": _emit_usd,
-    "ros2": _emit_ros2,
-    "isaac": _emit_isaac,
-}
-# Targets whose output is a folder rather than a file.
-FOLDER_TARGETS = {"ros2", "isaac"}
-# What a target cannot do without: USD prim names must be identifiers, and Isaac merges materials
-# that share a name.
-TARGET_PASSES: dict[str, dict[str, bool]] = {
-    "usd": {"sanitize_names": True, "unique_materials": True},
-    "isaac": {"sanitize_names": True, "unique_materials": True},
-}
-# The preset a target implies when the user names none.
-TARGET_PRESETS = {"isaac": "isaac_sim"}
+def _request(spec: Target, out: str | None, options: CompileOptions) -> EmitRequest:
+    built = None
+    if spec.options is not None:
+        built = dataclass_from_mapping(spec.options, target_options(spec.options, options), spec.name)
+    return EmitRequest(out=out, options=built, mesh_paths=options.mesh_paths, given=frozenset(options.target_options))
 
 
 def compile_robot(
@@ -273,10 +162,9 @@ def compile_robot(
     options: CompileOptions,
     progress: Progress = _quiet,
 ) -> CompileResult:
-    if target not in TARGETS:
-        raise ConfigError(f"unknown target {target!r} (one of {', '.join(sorted(TARGETS))})")
+    spec = target_spec(target)
     findings = Findings()
-    resolved = pass_options(options, target)
+    resolved = pass_options(options, spec)
     progress("loading")
     robot = load_source(source, options, findings)
     progress("verifying")
@@ -292,40 +180,33 @@ def compile_robot(
     if resolved.copy_meshes:
         if not out:
             raise ConfigError("--copy-meshes needs an output file (-o)")
-        out_dir = out if target in FOLDER_TARGETS else os.path.dirname(os.path.abspath(out))
+        out_dir = out if spec.folder else os.path.dirname(os.path.abspath(out))
         progress(f"copying meshes to {os.path.join(out_dir, 'meshes')}")
         ctx = PassContext(resolved)
         copy_meshes(robot, out_dir, ctx)
         findings.extend(ctx.findings)
     progress(f"writing {target}")
-    emitted = TARGETS[target](robot, out, options, findings)
+    emitted = spec.emit(robot, _request(spec, out, options), findings)
     result = CompileResult(
         robot=robot, findings=_unique(findings), target=target, text=emitted.text, files=emitted.files
     )
     if options.validate:
         progress("validating")
-        result.validation = validate_emitted(robot, target, emitted, out, options, after)
-    if target == "isaac" and out:
-        from robodesc.isaac import findings_markdown
-
-        # Written after the folder moved in place: the report describes the files as written.
-        write_atomic(os.path.join(out, "findings.md"), findings_markdown(robot, result.findings))
-        result.files["findings"] = os.path.join(out, "findings.md")
-        if result.validation is not None:
-            write_atomic(os.path.join(out, "validation.md"), result.validation.to_markdown())
-            write_atomic(os.path.join(out, "validation.json"), result.validation.to_json())
-            result.files["validation"] = os.path.join(out, "validation.md")
+        result.validation = validate_emitted(robot, spec, emitted, out, options, after)
+    if spec.finish is not None and out:
+        # Written after the output moved in place: the reports describe the files as written.
+        result.files.update(spec.finish(robot, out, result.findings, result.validation))
     return result
 
 
 def validate_emitted(
-    robot: Robot, target: str, emitted: Emitted, out: str | None, options: CompileOptions, verified: Findings
+    robot: Robot, spec: Target, emitted: Emitted, out: str | None, options: CompileOptions, verified: Findings
 ) -> Any:
     """Load what was emitted in an independent consumer and compare it with the IR."""
     from robodesc.validation.options import ValidateOptions
 
     vopts = ValidateOptions(package_paths=dict(options.package_paths))
-    if target == "sdf" and emitted.text is not None:
+    if spec.validator == "sdf" and emitted.text is not None:
         from robodesc.emit.sdf import build_sdf
         from robodesc.validation.drake_sdf import validate_sdf
         from robodesc.validation.report import Status
@@ -344,7 +225,7 @@ def validate_emitted(
                 f"loop_joint {loop.name!r}",
                 "Drake models kinematic trees only; the tree was checked without this closure",
             )
-    elif target == "usd" and "usd" in emitted.files:
+    elif spec.validator == "usd" and "usd" in emitted.files:
         from robodesc.validation.mujoco_usd import validate_usd
 
         report = validate_usd(robot, emitted.files["usd"], vopts)
@@ -352,7 +233,7 @@ def validate_emitted(
         from robodesc.validation.mujoco_urdf import validate_urdf_text
 
         urdf_text = emitted.text
-        base_dir = os.path.dirname(os.path.abspath(out)) if out and target == "urdf" else os.getcwd()
+        base_dir = os.path.dirname(os.path.abspath(out)) if out and not spec.folder else os.getcwd()
         if urdf_text is None:  # folder targets: validate the URDF they contain
             urdf = next((p for p in emitted.files.values() if p.endswith(".urdf")), None)
             if urdf is None:

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 import robodesc
-from robodesc.emit.paths import PathMode
+from robodesc.emit.common.paths import PathMode
 from robodesc.emit.urdf import UrdfOptions, emit_urdf
 from robodesc.frontends.load import load_path
 from robodesc.frontends.options import LoadOptions, MissingMesh

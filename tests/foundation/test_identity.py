@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 import yourdfpy
 
-from robodesc.emit.paths import PathMode
+from robodesc.emit.common.paths import PathMode
 from robodesc.emit.urdf import UrdfOptions, emit_urdf
 from robodesc.frontends.load import load_path, load_string
 from robodesc.frontends.options import LoadOptions, MissingMesh

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from robodesc.emit.sdf import SdfResult
-from robodesc.emit.sdf_model import UNLIMITED
+from robodesc.emit.sdf.model import UNLIMITED
 from robodesc.ir.inertia import tensor
 from robodesc.ir.model import JointType, Robot
 from robodesc.ir.transforms import forward_kinematics, pose_matrix, resolve_mimic

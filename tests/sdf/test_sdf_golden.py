@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from robodesc.emit.paths import PathMode
+from robodesc.emit.common.paths import PathMode
 from robodesc.emit.ros2 import Ros2Options, build_ros2_package
 from robodesc.emit.sdf import PoseFrames, SdfFlavour, SdfOptions, SdfProp, emit_sdf
 from tests.conftest import Golden

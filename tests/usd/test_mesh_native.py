@@ -1,4 +1,4 @@
-"""The C mesh code (``robodesc._meshweld``, ``robodesc._numtext.obj``) against robodesc's numpy
+"""The C mesh code (``robodesc.meshes._weld``, ``robodesc.meshes._numtext.obj``) against robodesc's numpy
 code, bit for bit.
 
 The numpy code is the fallback when the extensions are not built, and the path for COLLADA and the
@@ -21,11 +21,15 @@ import pytest
 from numpy.typing import NDArray
 from test_mesh_readers import SHARED_CORPUS, corpus_files
 
-from robodesc.emit import mesh_collada, mesh_data, number_text, usd_meshio
-from robodesc.emit.mesh_collada import read_collada_indexed
 from robodesc.emit.usd import UsdOptions, emit_usd
 from robodesc.frontends.load import load_path
 from robodesc.frontends.options import LoadOptions
+from robodesc.meshes import buffers as mesh_buffers
+from robodesc.meshes import collada as mesh_collada
+from robodesc.meshes import data as mesh_data
+from robodesc.meshes import readers as usd_meshio
+from robodesc.meshes import text_numbers as number_text
+from robodesc.meshes.collada import read_collada_indexed
 from robodesc.passes.options import PassOptions
 from robodesc.passes.pipeline import run_passes
 from robodesc.validation.corpora import all_robots
@@ -35,12 +39,15 @@ DATA = Path(__file__).parent / "data"
 
 @contextmanager
 def numpy_only() -> Iterator[None]:
-    native = usd_meshio._meshweld, mesh_data._meshweld, mesh_collada._meshweld
-    usd_meshio._meshweld = mesh_data._meshweld = mesh_collada._meshweld = None  # type: ignore[assignment]
+    modules = (usd_meshio, mesh_data, mesh_collada, mesh_buffers)
+    native = [m._cweld for m in modules]
+    for m in modules:
+        m._cweld = None  # type: ignore[assignment]
     try:
         yield
     finally:
-        usd_meshio._meshweld, mesh_data._meshweld, mesh_collada._meshweld = native
+        for m, weld in zip(modules, native, strict=True):
+            m._cweld = weld
 
 
 def both_welds(tri: NDArray[np.float64]) -> None:
@@ -62,8 +69,8 @@ def both_normals(vertices: NDArray[np.float64], corners: NDArray[np.int32]) -> N
 
 
 def test_native_weld_is_built() -> None:
-    assert usd_meshio._meshweld is not None, "robodesc._meshweld is not built: pip install -e . compiles it"
-    assert mesh_data._meshweld is not None and mesh_data._numtext is not None
+    assert usd_meshio._cweld is not None, "robodesc.meshes._weld is not built: pip install -e . compiles it"
+    assert mesh_data._cweld is not None and mesh_data._numtext is not None
 
 
 def assert_same_mesh(got: mesh_data.MeshData, expected: mesh_data.MeshData, what: str) -> None:
@@ -185,7 +192,7 @@ def test_edge_cases() -> None:
 
 
 def test_bad_input_is_an_error_not_a_crash() -> None:
-    weld = usd_meshio._meshweld
+    weld = usd_meshio._cweld
     assert weld is not None
     with pytest.raises(ValueError, match="refers to row"):
         weld.weld(np.zeros((2, 3)), np.array([0, 2], dtype=np.int64))
@@ -247,8 +254,9 @@ def test_same_usd_with_and_without_the_extensions(tmp_path: Path, monkeypatch: p
         return (out.parent / "Payload" / "Geometry.usdc").read_bytes()
 
     native = convert("native")
-    monkeypatch.setattr(usd_meshio, "_meshweld", None)
-    monkeypatch.setattr(mesh_data, "_meshweld", None)
-    monkeypatch.setattr(mesh_collada, "_meshweld", None)
+    monkeypatch.setattr(usd_meshio, "_cweld", None)
+    monkeypatch.setattr(mesh_data, "_cweld", None)
+    monkeypatch.setattr(mesh_collada, "_cweld", None)
+    monkeypatch.setattr(mesh_buffers, "_cweld", None)
     monkeypatch.setattr(number_text, "_numtext", None)
     assert convert("numpy") == native

@@ -1,6 +1,6 @@
 """The mesh readers against the implementations they replaced.
 
-``robodesc.emit.mesh_collada`` must give pycollada's triangles, to float32 rounding (pycollada
+``robodesc.meshes.collada`` must give pycollada's triangles, to float32 rounding (pycollada
 rounds node transforms to float32 after every operation, mesh_collada once at the end),
 ``usd_meshio._weld`` the np.unique weld's points and indices, and the vectorised OBJ reader
 the line-by-line one's. The references are kept here (:func:`pycollada_triangles`,
@@ -20,8 +20,8 @@ import numpy as np
 import pytest
 from numpy.typing import NDArray
 
-from robodesc.emit import usd_meshio
-from robodesc.emit.mesh_collada import MeshReadError, read_collada
+from robodesc.meshes import readers as usd_meshio
+from robodesc.meshes.collada import MeshReadError, read_collada
 from robodesc.validation.corpora import example_robot_data_root, icub_root, stretch_root
 
 SHARED_CORPUS = Path(__file__).resolve().parents[2] / ".." / "shared" / "corpus"

@@ -1,4 +1,4 @@
-"""The C number parser (``robodesc._numtext``) against numpy.fromstring, the parser it replaced.
+"""The C number parser (``robodesc.meshes._numtext``) against numpy.fromstring, the parser it replaced.
 
 Both must give the same doubles bit for bit (the golden files and the pycollada comparison rest on
 it) and refuse the same tokens. The numpy fallback, used when the extension was not built, is run
@@ -17,8 +17,8 @@ import pytest
 from lxml import etree
 from test_mesh_readers import corpus_files, dae, geometry, instance, node, triangles
 
-from robodesc.emit import number_text
-from robodesc.emit.mesh_collada import read_collada
+from robodesc.meshes import text_numbers as number_text
+from robodesc.meshes.collada import read_collada
 
 
 @contextmanager
@@ -47,7 +47,7 @@ def assert_same_floats(text: str) -> None:
 def test_native_parser_is_built() -> None:
     # pip install (the README's commands, CI) compiles it; a plain source checkout on PYTHONPATH
     # does not, and then runs the numpy fallback, slower.
-    assert number_text.native(), "robodesc._numtext is not built: pip install -e . compiles it"
+    assert number_text.native(), "robodesc.meshes._numtext is not built: pip install -e . compiles it"
 
 
 def random_token(rng: random.Random) -> str:

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from lxml import etree
 
-from robodesc.emit.paths import PathMode
+from robodesc.emit.common.paths import PathMode
 from robodesc.emit.urdf import UrdfOptions, emit_urdf
 from robodesc.frontends.load import load_path
 from robodesc.frontends.options import LoadOptions

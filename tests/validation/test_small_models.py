@@ -13,14 +13,14 @@ import pytest
 import trimesh
 from helpers import SPIRIT_XACRO, edit, joint_el, link_el
 
-from robodesc.emit.paths import PathMode
+from robodesc.api import validate_file
+from robodesc.emit.common.paths import PathMode
 from robodesc.emit.urdf import UrdfOptions, emit_urdf
 from robodesc.frontends.load import load_string
 from robodesc.ir.model import Robot
 from robodesc.validation.mujoco_urdf import validate_urdf_text
 from robodesc.validation.mujoco_usd import mujoco_usd_available, validate_usd
 from robodesc.validation.options import ValidateOptions
-from robodesc.validation.pipeline import validate_file
 from robodesc.validation.report import Status, ValidationReport
 
 INERTIA = '<inertia ixx="0.01" iyy="0.02" izz="0.025" ixy="0.001" ixz="0" iyz="0.002"/>'

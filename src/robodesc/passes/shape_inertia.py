@@ -24,6 +24,8 @@ from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Inertial, Mes
 from robodesc.ir.inertia import balance, from_tensor, parallel_axis, rotate
 from robodesc.ir.model import Link
 from robodesc.ir.transforms import rpy_to_matrix
+from robodesc.meshes.buffers import MeshReadError
+from robodesc.meshes.trimesh_io import load_trimesh
 
 Vec = NDArray[np.float64]
 
@@ -68,10 +70,11 @@ def primitive_props(geom: Box | Cylinder | Sphere | Capsule) -> MassProps:
 def _mesh_props_cached(
     path: str, mtime: float, scale: tuple[float, float, float]
 ) -> tuple[float, tuple[float, ...], tuple[float, ...], str | None]:
-    import trimesh
-
-    loaded = trimesh.load(path, force="mesh")
-    if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
+    try:
+        loaded = load_trimesh(path)
+    except MeshReadError as exc:
+        raise ValueError(str(exc)) from None
+    if len(loaded.faces) == 0:
         raise ValueError("no triangles")
     mesh = loaded.copy()
     mesh.apply_transform(np.diag([*scale, 1.0]))

@@ -11,12 +11,12 @@ import hashlib
 import os
 import tempfile
 from collections.abc import Iterable, Mapping
-from typing import Any
 from urllib.parse import unquote
 
-from robodesc.emit.files import write_atomic
+from robodesc.emit.common.files import write_atomic
 from robodesc.ir.geometry import Mesh
 from robodesc.ir.model import Robot
+from robodesc.meshes.trimesh_io import load_trimesh
 
 MUJOCO_FORMATS = (".stl", ".obj", ".msh")
 
@@ -88,9 +88,7 @@ def mujoco_readable(path: str, cache_dir: str | None) -> str:
     if os.path.isfile(out):
         return out
     try:
-        import trimesh
-
-        loaded: Any = trimesh.load(path, force="mesh", process=False)
+        loaded = load_trimesh(path, process=False)
         if len(loaded.faces) == 0:
             raise MeshProblem(f"mesh file {path} has no triangles")
         data = loaded.export(file_type="stl")

@@ -1,0 +1,1 @@
+"""What every writer shares: number formatting, mesh paths, atomic files and the target contract."""

@@ -1,0 +1,69 @@
+"""Writing outputs atomically: a reader never sees a half-written file, and a failed run leaves
+whatever was there before untouched."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+from collections.abc import Iterator, Mapping
+from contextlib import contextmanager
+
+
+def write_atomic(path: str, data: str | bytes) -> None:
+    directory = os.path.dirname(os.path.abspath(path))
+    os.makedirs(directory, exist_ok=True)
+    raw = data.encode("utf-8") if isinstance(data, str) else data
+    fd, tmp = tempfile.mkstemp(prefix=".robodesc-", suffix=".tmp", dir=directory)
+    try:
+        with os.fdopen(fd, "wb") as handle:
+            handle.write(raw)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def replace_dir_atomic(staging: str, target: str) -> None:
+    """Move a fully written ``staging`` folder to ``target``, replacing an older one."""
+    if os.path.isdir(target):
+        backup = tempfile.mkdtemp(prefix=".robodesc-old-", dir=os.path.dirname(os.path.abspath(target)))
+        os.rmdir(backup)
+        os.replace(target, backup)
+        os.replace(staging, target)
+        shutil.rmtree(backup, ignore_errors=True)
+    else:
+        os.replace(staging, target)
+
+
+@contextmanager
+def staged_folder(target: str) -> Iterator[str]:
+    """A folder to fill beside ``target``; when the block ends without error it replaces ``target``
+    as one unit, otherwise it is removed and ``target`` stays as it was."""
+    parent = os.path.dirname(os.path.abspath(target))
+    os.makedirs(parent, exist_ok=True)
+    staging = tempfile.mkdtemp(prefix=".robodesc-", dir=parent)
+    try:
+        yield staging
+        replace_dir_atomic(staging, target)
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
+
+
+def write_files(directory: str, files: Mapping[str, str | bytes]) -> None:
+    """Write ``{relative name: text or bytes}`` under ``directory``."""
+    for name, data in sorted(files.items()):
+        path = os.path.join(directory, name)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "wb") as handle:
+            handle.write(data.encode("utf-8") if isinstance(data, str) else data)
+
+
+def write_folder(out: str, files: Mapping[str, str | bytes]) -> dict[str, str]:
+    """Write ``files`` into folder ``out`` as one unit; role (the file name) -> path."""
+    with staged_folder(out) as staging:
+        write_files(staging, files)
+    return {name: os.path.join(out, name) for name in sorted(files)}

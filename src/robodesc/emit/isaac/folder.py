@@ -1,0 +1,94 @@
+"""The Isaac Sim target: one folder with everything Isaac Sim and Isaac Lab need.
+
+- ``<robot>.usda``: the UsdPhysics articulation (drives, armature, limits in degrees ...);
+- ``<robot>.urdf``: the Isaac-flavoured URDF (``<loop_joint>``, ``<fixed_frame>``, ``<sensor>``,
+  ``dont_collapse``, a ``<limit>`` on every revolute/prismatic joint);
+- ``importer_settings.json``: the same choices in Isaac Sim 5.x ``ImportConfig`` and Isaac Lab
+  ``UrdfConverterCfg`` vocabularies, for users who import the URDF themselves;
+- ``<robot>_isaaclab.py``: an Isaac Lab ``ArticulationCfg`` (plain data, importable anywhere);
+- ``validation.md`` / ``validation.json``: what the independent consumers saw;
+- ``findings.md``: every finding of the compile.
+
+One :class:`IsaacSettings` feeds all of them, so they cannot disagree.
+"""
+
+from __future__ import annotations
+
+import os
+
+from robodesc._version import __version__
+from robodesc.emit.common.files import staged_folder, write_files
+from robodesc.emit.common.paths import PathMode
+from robodesc.emit.isaac.lab import isaac_lab_module
+from robodesc.emit.isaac.settings import IsaacSettings, importer_settings_json
+from robodesc.emit.urdf.writer import UrdfOptions, emit_urdf
+from robodesc.emit.usd.emitter import emit_usd
+from robodesc.emit.usd.options import UsdOptions
+from robodesc.ir.diagnostics import Finding, Findings
+from robodesc.ir.model import Robot
+
+
+def usd_options(settings: IsaacSettings) -> UsdOptions:
+    return UsdOptions(
+        fix_base=settings.fix_base,
+        drive_type=settings.drive_type,
+        target_type=settings.target_type,
+        stiffness=settings.stiffness,
+        damping=settings.damping,
+        collision_approximation=settings.collision_approximation,
+        layered=settings.layered,
+        solver_position_iterations=settings.solver_position_iterations,
+        solver_velocity_iterations=settings.solver_velocity_iterations,
+        self_collision=settings.self_collision,
+        contact_offset=settings.contact_offset,
+        rest_offset=settings.rest_offset,
+        physics_scene=settings.physics_scene,
+    )
+
+
+def isaac_file_names(robot: Robot) -> dict[str, str]:
+    return {
+        "usd": f"{robot.name}.usda",
+        "urdf": f"{robot.name}.urdf",
+        "importer_settings": "importer_settings.json",
+        "isaaclab": f"{robot.name}_isaaclab.py",
+    }
+
+
+def write_isaac_folder(
+    robot: Robot,
+    out_dir: str,
+    settings: IsaacSettings,
+    findings: Findings,
+    path_mode: PathMode,
+) -> dict[str, str]:
+    """Write the folder atomically (staged beside ``out_dir``, then moved in place)."""
+    names = isaac_file_names(robot)
+    with staged_folder(out_dir) as staging:
+        findings.extend(emit_usd(robot, os.path.join(staging, names["usd"]), usd_options(settings)))
+        # Relative mesh paths are computed against the final folder (a sibling of the staging one).
+        urdf = emit_urdf(robot, UrdfOptions(path_mode=path_mode, out_dir=os.path.abspath(out_dir)))
+        write_files(
+            staging,
+            {
+                names["urdf"]: urdf,
+                names["importer_settings"]: importer_settings_json(robot, settings),
+                names["isaaclab"]: isaac_lab_module(robot, settings, names["usd"], findings, __version__).text,
+            },
+        )
+        # A layered USD adds its payload folder: report every top-level entry.
+        extra = {
+            name: os.path.join(out_dir, name) for name in sorted(os.listdir(staging)) if name not in names.values()
+        }
+    return {**{role: os.path.join(out_dir, name) for role, name in names.items()}, **extra}
+
+
+def findings_markdown(robot: Robot, findings: list[Finding]) -> str:
+    lines = [f"# robodesc findings for {robot.name}", "", f"robodesc {__version__}; {len(findings)} findings.", ""]
+    if findings:
+        lines += ["| severity | stage | element | where | message |", "|---|---|---|---|---|"]
+        for f in findings:
+            where = str(f.loc) if f.loc else ""
+            message = f.message.replace("|", "\\|")
+            lines.append(f"| {f.severity.value} | {f.stage} | {f.element} | {where} | {message} |")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,45 @@
+"""The Isaac Sim target as the pipeline sees it."""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+from robodesc.emit.common.files import write_atomic
+from robodesc.emit.common.target import EmitRequest, Emitted, Target
+from robodesc.emit.isaac.folder import findings_markdown, write_isaac_folder
+from robodesc.emit.isaac.settings import IsaacSettings
+from robodesc.ir.diagnostics import Finding, Findings
+from robodesc.ir.model import Robot
+
+
+def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
+    out = request.output("the Isaac Sim target writes a folder: give it with -o OUT_DIR")
+    request.default("fix_base", robot.fixed_base)
+    # Where the composition put the robot.
+    request.default("init_pos", robot.placement.xyz if robot.placement is not None else None)
+    settings: IsaacSettings = request.options
+    files = write_isaac_folder(robot, out, settings, findings, request.mesh_paths)
+    return Emitted(files=files, extra={"settings": settings})
+
+
+def finish(robot: Robot, out: str, findings: list[Finding], validation: Any) -> dict[str, str]:
+    """The findings and validation reports, written once validation has run."""
+    written = {"findings": os.path.join(out, "findings.md")}
+    write_atomic(written["findings"], findings_markdown(robot, findings))
+    if validation is not None:
+        write_atomic(os.path.join(out, "validation.md"), validation.to_markdown())
+        write_atomic(os.path.join(out, "validation.json"), validation.to_json())
+        written["validation"] = os.path.join(out, "validation.md")
+    return written
+
+
+TARGET = Target(
+    name="isaac",
+    emit=emit_target,
+    options=IsaacSettings,
+    folder=True,
+    passes={"sanitize_names": True, "unique_materials": True},
+    preset="isaac_sim",
+    finish=finish,
+)

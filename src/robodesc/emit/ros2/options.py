@@ -1,0 +1,32 @@
+"""Options of the ROS 2 / Gazebo Harmonic package files (``--ros2``)."""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass
+
+from robodesc.emit.common.paths import PathMode
+
+
+class CommandInterface(enum.Enum):
+    POSITION = "position"
+    VELOCITY = "velocity"
+    EFFORT = "effort"
+
+
+class ControllerKind(enum.Enum):
+    JOINT_TRAJECTORY = "joint_trajectory"  # joint_trajectory_controller/JointTrajectoryController
+    FORWARD_COMMAND = "forward_command"  # forward_command_controller/ForwardCommandController
+
+
+@dataclass(slots=True)
+class Ros2Options:
+    command_interface: CommandInterface = CommandInterface.POSITION
+    controller: ControllerKind = ControllerKind.JOINT_TRAJECTORY
+    update_rate: int = 100  # controller_manager's loop rate (Hz)
+    # The URDF travels over the robot_description topic, where a relative mesh path means nothing,
+    # so meshes are absolute by default (PACKAGE suits an installed ROS package).
+    path_mode: PathMode = PathMode.ABSOLUTE
+    out_dir: str | None = None
+    # Height at which ros_gz_sim spawns the robot (m).
+    spawn_z: float = 0.0

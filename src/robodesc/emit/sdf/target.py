@@ -1,0 +1,35 @@
+"""The SDF target as the pipeline sees it."""
+
+from __future__ import annotations
+
+import os
+
+from robodesc.emit.common.files import write_atomic
+from robodesc.emit.common.target import EmitRequest, Emitted, Target
+from robodesc.emit.sdf.emitter import build_sdf
+from robodesc.emit.sdf.options import SdfOptions
+from robodesc.ir.diagnostics import Findings
+from robodesc.ir.model import Robot
+
+
+def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
+    sdf_options: SdfOptions = request.options
+    sdf_options.path_mode = request.mesh_paths
+    sdf_options.out_dir = os.path.dirname(os.path.abspath(request.out)) if request.out else None
+    result = build_sdf(robot, sdf_options)
+    findings.extend(result.findings)
+    emitted = Emitted(
+        text=result.text,
+        extra={
+            "link_names": result.names.by_kind.get("link", {}),
+            "joint_names": result.names.by_kind.get("joint", {}),
+            "sdf_options": sdf_options,
+        },
+    )
+    if request.out:
+        write_atomic(request.out, result.text)
+        emitted.files["sdf"] = request.out
+    return emitted
+
+
+TARGET = Target(name="sdf", emit=emit_target, options=SdfOptions, validator="sdf")

@@ -1,0 +1,128 @@
+"""Visuals and colliders of one link: ``<link>/visuals/*`` and ``<link>/collisions/*``.
+
+Primitives map to UsdGeom gprims (a unit ``Cube`` scaled to the box, ``Sphere``, ``Cylinder`` and
+``Capsule`` along Z); meshes become ``Mesh`` prims with the file's triangles, the URDF scale baked
+into the points and one flat normal per face (``uniform``).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from robodesc.emit.usd.context import GEOMETRY, MATERIALS, PHYSICS, UsdContext, set_pose, unique_name
+from robodesc.emit.usd.materials import MaterialLibrary
+from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Mesh, Sphere
+from robodesc.ir.model import Collision, Link, Visual
+from robodesc.ir.rigid import pose_frame
+from robodesc.usdfile.spec import Prim
+
+if TYPE_CHECKING:
+    from robodesc.meshes.buffers import MeshData
+
+
+def emit_link_geometry(ctx: UsdContext, link: Link, looks: MaterialLibrary) -> None:
+    link_path = ctx.link_paths[link.name]
+    label = f"link {link.name!r}"
+    if link.visuals:
+        used: set[str] = set()
+        scope = f"{link_path}/visuals"
+        ctx.define(GEOMETRY, scope, "Xform")
+        for index, visual in enumerate(link.visuals):
+            path = f"{scope}/{unique_name(visual.name or '', used, 'visual')}"
+            if _shape(ctx, path, visual, f"{label} visual {index}"):
+                look = looks.path_for(visual.material)
+                if look is not None:
+                    prim = ctx.over(MATERIALS, path)
+                    prim.apply("MaterialBindingAPI")
+                    prim.rel("material:binding", [look])
+    if link.collisions:
+        used = set()
+        scope = f"{link_path}/collisions"
+        ctx.define(GEOMETRY, scope, "Xform")
+        for index, collision in enumerate(link.collisions):
+            path = f"{scope}/{unique_name(collision.name or '', used, 'collision')}"
+            if _shape(ctx, path, collision, f"{label} collision {index}"):
+                _collider(ctx, path, collision)
+
+
+def _shape(ctx: UsdContext, path: str, item: Visual | Collision, label: str) -> bool:
+    geometry: Geometry = item.geometry
+    origin = pose_frame(item.origin)
+    if isinstance(geometry, Box):
+        prim = ctx.define(GEOMETRY, path, "Cube")
+        prim.attr("size", "double", 1.0)
+        prim.attr("extent", "float3[]", [(-0.5, -0.5, -0.5), (0.5, 0.5, 0.5)])
+        sx, sy, sz = (float(v) for v in geometry.size)
+        set_pose(prim, origin, (sx, sy, sz))
+    elif isinstance(geometry, Sphere):
+        prim = ctx.define(GEOMETRY, path, "Sphere")
+        r = float(geometry.radius)
+        prim.attr("radius", "double", r)
+        prim.attr("extent", "float3[]", [(-r, -r, -r), (r, r, r)])
+        set_pose(prim, origin)
+    elif isinstance(geometry, Cylinder | Capsule):
+        r, h = float(geometry.radius), float(geometry.length)
+        if isinstance(geometry, Cylinder):
+            prim = ctx.define(GEOMETRY, path, "Cylinder")
+            half = h / 2
+        else:
+            prim = ctx.define(GEOMETRY, path, "Capsule")
+            half = h / 2 + r
+        prim.attr("radius", "double", r)
+        prim.attr("height", "double", h)
+        prim.attr("axis", "token", "Z", uniform=True)
+        prim.attr("extent", "float3[]", [(-r, -r, -half), (r, r, half)])
+        set_pose(prim, origin)
+    else:
+        data = _mesh_data(ctx, geometry, label)
+        if data is None:
+            return False
+        prim = ctx.define(GEOMETRY, path, "Mesh")
+        _author_mesh(prim, data)
+        set_pose(prim, origin)
+    if isinstance(item, Collision):
+        prim.attr("purpose", "token", "guide", uniform=True)
+    return True
+
+
+def _mesh_data(ctx: UsdContext, mesh: Mesh, label: str) -> MeshData | None:
+    from robodesc.meshes.buffers import MeshReadError
+
+    if mesh.path is None:
+        ctx.warn("usd-missing-mesh", f"mesh {mesh.uri!r} was not found; this geometry is left out", label, mesh.src)
+        return None
+    try:
+        return ctx.meshes.get(mesh.path, mesh.scale)
+    except MeshReadError as exc:
+        ctx.warn(
+            "usd-bad-mesh", f"mesh {mesh.path!r} could not be read ({exc}); this geometry is left out", label, mesh.src
+        )
+        return None
+
+
+def _author_mesh(prim: Prim, data: MeshData) -> None:
+    prim.attr("points", "point3f[]", data.points)
+    prim.attr("faceVertexCounts", "int[]", data.face_vertex_counts)
+    prim.attr("faceVertexIndices", "int[]", data.face_vertex_indices)
+    # One normal per triangle: the flat shading faceVarying would give by repeating it at each
+    # corner, in a third of the data (NVIDIA's converter writes per-face normals too).
+    prim.attr("normals", "normal3f[]", data.normals, interpolation="uniform")
+    prim.attr("subdivisionScheme", "token", "none", uniform=True)
+    prim.attr("extent", "float3[]", data.extent)
+    if data.uv is not None:
+        prim.attr("primvars:st", "texCoord2f[]", data.uv, interpolation="vertex")
+
+
+def _collider(ctx: UsdContext, path: str, collision: Collision) -> None:
+    options = ctx.options
+    prim = ctx.over(PHYSICS, path)
+    prim.apply("PhysicsCollisionAPI")
+    if isinstance(collision.geometry, Mesh):
+        prim.apply("PhysicsMeshCollisionAPI")
+        prim.attr("physics:approximation", "token", options.collision_approximation, uniform=True)
+    if options.contact_offset is not None or options.rest_offset is not None:
+        prim.apply("PhysxCollisionAPI")
+        if options.contact_offset is not None:
+            prim.attr("physxCollision:contactOffset", "float", options.contact_offset)
+        if options.rest_offset is not None:
+            prim.attr("physxCollision:restOffset", "float", options.rest_offset)

@@ -1,0 +1,254 @@
+"""Joints under ``<robot>/joints`` and loop closures under ``<robot>/loop_joints``.
+
+Frames: ``body0`` = parent link, ``localPos0/localRot0`` = the URDF joint origin in the parent;
+``body1`` = child link with the identity frame. A URDF axis that is not +X, +Y or +Z turns both
+local frames by the rotation taking +X onto it, and the joint's axis becomes X.
+"""
+
+from __future__ import annotations
+
+from robodesc.emit.usd.context import (
+    LOOPS_SCOPE,
+    PHYSICS,
+    UsdContext,
+    check_identifier,
+    set_display_name,
+)
+from robodesc.emit.usd.quantities import DEG, PER_DEGREE, AxisFrame, axis_frame
+from robodesc.ir.diagnostics import UnsupportedError
+from robodesc.ir.model import Joint, JointType, LoopJoint
+from robodesc.ir.rigid import Frame, pose_frame
+from robodesc.ir.rules import lookup
+from robodesc.usdfile.spec import Prim
+
+_TYPE_NAMES = {
+    JointType.REVOLUTE: "PhysicsRevoluteJoint",
+    JointType.CONTINUOUS: "PhysicsRevoluteJoint",
+    JointType.PRISMATIC: "PhysicsPrismaticJoint",
+    JointType.FIXED: "PhysicsFixedJoint",
+    JointType.SPHERICAL: "PhysicsSphericalJoint",
+    # Floating and planar: a generic (D6) joint; free unless a LimitAPI locks a degree of freedom.
+    JointType.FLOATING: "PhysicsJoint",
+    JointType.PLANAR: "PhysicsJoint",
+}
+
+
+def joint_axis_frame(joint: Joint) -> AxisFrame:
+    if joint.type in (JointType.FIXED, JointType.FLOATING):
+        return AxisFrame("X", None)
+    try:
+        return axis_frame(joint.effective_axis)
+    except ValueError:
+        raise UnsupportedError("joint axis has zero length", element=f"joint {joint.name!r}", loc=joint.src) from None
+
+
+def emit_joint(ctx: UsdContext, joint: Joint) -> None:
+    frame = joint_axis_frame(joint)
+    prim = ctx.define(PHYSICS, ctx.joint_paths[joint.name], _TYPE_NAMES[joint.type])
+    set_display_name(prim, joint.display_name)
+    prim.rel("physics:body0", [ctx.link_paths[joint.parent]])
+    prim.rel("physics:body1", [ctx.link_paths[joint.child]])
+    _frames(prim, pose_frame(joint.origin), Frame(), frame)
+    if joint.type is JointType.PLANAR:
+        # Free: the two translations in the plane and the rotation about its normal.
+        locked = [f"trans{frame.token}"] + [f"rot{a}" for a in "XYZ" if a != frame.token]
+        for dof in locked:
+            prim.apply(f"PhysicsLimitAPI:{dof}")
+            prim.attr(f"limit:{dof}:physics:low", "float", 1.0)
+            prim.attr(f"limit:{dof}:physics:high", "float", -1.0)
+    elif joint.type is JointType.SPHERICAL:
+        prim.attr("physics:axis", "token", frame.token, uniform=True)
+    if joint.type.dof == 1:
+        _one_dof(ctx, joint, prim, frame)
+
+
+def _frames(prim: Prim, frame0: Frame, frame1: Frame, axis: AxisFrame) -> None:
+    if axis.rotation is not None:
+        frame0, frame1 = frame0.rotated(axis.rotation), frame1.rotated(axis.rotation)
+    prim.attr("physics:localPos0", "point3f", frame0.translation)
+    prim.attr("physics:localRot0", "quatf", frame0.quat())
+    prim.attr("physics:localPos1", "point3f", frame1.translation)
+    prim.attr("physics:localRot1", "quatf", frame1.quat())
+
+
+def _one_dof(ctx: UsdContext, joint: Joint, prim: Prim, frame: AxisFrame) -> None:
+    angular = joint.type.is_angular
+    unit = DEG if angular else 1.0
+    label = f"joint {joint.name!r}"
+    prim.attr("physics:axis", "token", frame.token, uniform=True)
+    limit = joint.limit
+    lower = limit.lower if limit is not None and joint.type is not JointType.CONTINUOUS else None
+    upper = limit.upper if limit is not None and joint.type is not JointType.CONTINUOUS else None
+    if lower is not None and upper is not None:
+        prim.attr("physics:lowerLimit", "float", lower * unit)
+        prim.attr("physics:upperLimit", "float", upper * unit)
+    elif joint.type is not JointType.CONTINUOUS:
+        ctx.warn("usd-no-limit", "joint has no lower/upper limit: written without limits", label, joint.src)
+    # Start at 0 when the range allows it, else at the nearer bound.
+    start = 0.0
+    if lower is not None and upper is not None:
+        start = min(max(0.0, lower), upper)
+    kind = "angular" if angular else "linear"
+    prim.apply(f"PhysicsJointStateAPI:{kind}")
+    prim.attr(f"state:{kind}:physics:position", "float", start * unit)
+    prim.attr(f"state:{kind}:physics:velocity", "float", 0.0)
+    if joint.mimic is None:
+        _drive(ctx, joint, prim, kind, start)
+    else:
+        _mimic(ctx, joint, prim, frame)
+    _extras(joint, prim, unit)
+
+
+def _drive(ctx: UsdContext, joint: Joint, prim: Prim, kind: str, start: float) -> None:
+    options = ctx.options
+    angular = kind == "angular"
+    per = PER_DEGREE if angular else 1.0
+    unit = DEG if angular else 1.0
+    dyn = joint.dynamics
+    target_position: float | None = None
+    target_velocity: float | None = None
+    if options.target_type == "position":
+        stiffness = _gain(ctx, options.stiffness, joint, "stiffness")
+        damping = _gain(ctx, options.damping, joint, "damping")
+        target_position = start
+    elif options.target_type == "velocity":
+        stiffness = 0.0
+        damping = _gain(ctx, options.damping, joint, "damping")
+        target_velocity = 0.0
+    else:
+        # No target: only the URDF's passive spring and damping act through the drive.
+        stiffness = dyn.spring_stiffness if dyn is not None and dyn.spring_stiffness is not None else 0.0
+        damping = dyn.damping if dyn is not None and dyn.damping is not None else 0.0
+        if dyn is not None and dyn.spring_reference is not None:
+            target_position = dyn.spring_reference
+    prim.apply(f"PhysicsDriveAPI:{kind}")
+    base = f"drive:{kind}:physics"
+    prim.attr(f"{base}:type", "token", options.drive_type, uniform=True)
+    prim.attr(f"{base}:stiffness", "float", stiffness * per)
+    prim.attr(f"{base}:damping", "float", damping * per)
+    if joint.limit is not None and joint.limit.effort is not None and joint.limit.effort > 0:
+        prim.attr(f"{base}:maxForce", "float", joint.limit.effort)
+    if target_position is not None:
+        prim.attr(f"{base}:targetPosition", "float", target_position * unit)
+    if target_velocity is not None:
+        prim.attr(f"{base}:targetVelocity", "float", target_velocity * unit)
+
+
+def _gain(ctx: UsdContext, gain: object, joint: Joint, what: str) -> float:
+    value = lookup(gain, joint.name, what)  # type: ignore[arg-type]
+    if value is None:
+        ctx.warn(
+            "usd-no-gain",
+            f"no {what} pattern matches this joint: 0 written",
+            f"joint {joint.name!r}",
+            joint.src,
+        )
+        return 0.0
+    return value
+
+
+def _mimic(ctx: UsdContext, joint: Joint, prim: Prim, frame: AxisFrame) -> None:
+    mimic = joint.mimic
+    assert mimic is not None
+    label = f"joint {joint.name!r}"
+    leader_path = ctx.joint_paths.get(mimic.joint)
+    leader = ctx.robot.joint_map().get(mimic.joint)
+    if leader_path is None or leader is None or leader.type.dof != 1:
+        ctx.warn(
+            "usd-bad-mimic", f"mimic leader {mimic.joint!r} is not a one-DOF joint: mimic left out", label, mimic.src
+        )
+        return
+    multiplier = mimic.multiplier if mimic.multiplier is not None else 1.0
+    offset = mimic.offset if mimic.offset is not None else 0.0
+    unit = DEG if joint.type.is_angular else 1.0
+    prim.apply("NewtonMimicAPI")
+    prim.rel("newton:mimicJoint", [leader_path])
+    prim.attr("newton:mimicCoef0", "float", offset * unit)
+    prim.attr("newton:mimicCoef1", "float", multiplier)
+    # PhysX: q + gearing * q_ref + offset = 0, offset in PhysX's internal units (rad or m).
+    instance = f"rot{frame.token}"
+    prim.apply(f"PhysxMimicJointAPI:{instance}")
+    base = f"physxMimicJoint:{instance}"
+    prim.rel(f"{base}:referenceJoint", [leader_path])
+    leader_token = joint_axis_frame(leader).token
+    prim.attr(f"{base}:referenceJointAxis", "token", f"rot{leader_token}")
+    prim.attr(f"{base}:gearing", "float", -multiplier)
+    prim.attr(f"{base}:offset", "float", -offset)
+    if joint.type is JointType.CONTINUOUS:
+        ctx.warn(
+            "usd-mimic-unlimited",
+            "PhysX mimic joints need a finite limit on a revolute follower; this one is continuous",
+            label,
+            mimic.src,
+        )
+
+
+def _extras(joint: Joint, prim: Prim, unit: float) -> None:
+    armature = joint.armature
+    velocity = joint.limit.velocity if joint.limit is not None else None
+    dyn = joint.dynamics
+    friction = dyn.friction if dyn is not None else None
+    damping = dyn.damping if dyn is not None else None
+    if armature is None and velocity is None and friction is None and damping is None:
+        return
+    if armature is not None or velocity is not None or friction is not None:
+        prim.apply("PhysxJointAPI")
+        if armature is not None:
+            prim.attr("physxJoint:armature", "float", armature)
+        if velocity is not None:
+            prim.attr("physxJoint:maxJointVelocity", "float", velocity * unit)
+        if friction is not None:
+            prim.attr("physxJoint:jointFriction", "float", friction)
+    prim.apply("NewtonJointAPI")
+    if armature is not None:
+        prim.attr("newton:armature", "float", armature)
+    if velocity is not None:
+        prim.attr("newton:maxJointVelocity", "float", velocity * unit)
+    if friction is not None:
+        prim.attr("newton:friction", "float", friction)
+    if damping is not None:
+        prim.attr("newton:damping", "float", damping)
+
+
+def emit_loop_joint(ctx: UsdContext, loop: LoopJoint, path: str) -> None:
+    label = f"loop_joint {loop.name!r}"
+    for side in (loop.link1, loop.link2):
+        if side.link not in ctx.link_paths:
+            raise UnsupportedError(f"refers to unknown link {side.link!r}", element=label, loc=loop.src)
+    kind = loop.type.lower()
+    jtype = {
+        "spherical": JointType.SPHERICAL,
+        "revolute": JointType.REVOLUTE,
+        "continuous": JointType.CONTINUOUS,
+        "prismatic": JointType.PRISMATIC,
+        "fixed": JointType.FIXED,
+    }.get(kind)
+    if jtype is None:
+        raise UnsupportedError(
+            f"loop joint type {loop.type!r} has no UsdPhysics equivalent", element=label, loc=loop.src
+        )
+    frame = AxisFrame("X", None)
+    if jtype in (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC):
+        try:
+            frame = axis_frame(loop.axis or (1.0, 0.0, 0.0))
+        except ValueError:
+            raise UnsupportedError("loop joint axis has zero length", element=label, loc=loop.src) from None
+    prim = ctx.define(PHYSICS, path, _TYPE_NAMES[jtype])
+    set_display_name(prim, loop.display_name)
+    prim.rel("physics:body0", [ctx.link_paths[loop.link1.link]])
+    prim.rel("physics:body1", [ctx.link_paths[loop.link2.link]])
+    _frames(prim, pose_frame(loop.link1.origin), pose_frame(loop.link2.origin), frame)
+    prim.attr("physics:excludeFromArticulation", "bool", True, uniform=True)
+    if jtype is not JointType.FIXED:
+        prim.attr("physics:axis", "token", frame.token, uniform=True)
+
+
+def loop_scope_paths(ctx: UsdContext) -> dict[str, str]:
+    scope = f"{ctx.robot_path}/{LOOPS_SCOPE}"
+    out: dict[str, str] = {}
+    for loop in ctx.robot.loop_joints:
+        name = check_identifier(loop.name, f"loop_joint {loop.name!r}", loop.src)
+        if name in out:
+            raise UnsupportedError("two loop joints share this name", element=f"loop_joint {name!r}", loc=loop.src)
+        out[name] = f"{scope}/{name}"
+    return out

@@ -1,0 +1,105 @@
+"""Where the USD emitter's opinions go, and writing them atomically.
+
+Single file: one layer, written through ``write_atomic`` as text (``.usda``) or as a crate file
+(``.usdc``, and ``.usd``, whose default encoding is the crate).
+
+Layered (NVIDIA's converter layout)::
+
+    robot.usda                  interface: stage metadata, /robot with a payload, /PhysicsScene
+    Payload/Contents.usda       /robot itself; sublayers the three below
+    Payload/Physics.usda        bodies, masses, colliders' physics APIs, joints, articulation
+    Payload/Materials.usda      /robot/Looks and material bindings
+    Payload/Geometry.usdc       link transforms, visual and collision shapes, frames, sensors
+
+Everything is written into a staging folder beside the output, then moved into place (the payload
+folder first, the interface file last, so a reader never sees an interface without its payload).
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+
+from robodesc.emit.common.files import staged_folder, write_atomic, write_files
+from robodesc.emit.usd.context import GEOMETRY, MATERIALS, PHYSICS, ROLES
+from robodesc.usdfile.spec import Layer, Payload, Prim
+from robodesc.usdfile.usda import usda_text
+
+PAYLOAD_DIR = "Payload"
+CONTENTS = "Contents"
+# Strongest first; the three never disagree, the order only matters to someone layering over them.
+SUBLAYERS = (("Physics", PHYSICS), ("Materials", MATERIALS), ("Geometry", GEOMETRY))
+
+
+@dataclass
+class LayerSet:
+    """The layers of one asset: ``roles`` maps each kind of opinion to the layer it goes to."""
+
+    ext: str
+    layered: bool
+    main: Layer  # the single file, or the payload's Contents layer
+    roles: dict[str, Layer] = field(default_factory=dict)
+    interface: Layer | None = None
+
+    @staticmethod
+    def create(path: str, layered: bool) -> LayerSet:
+        ext = os.path.splitext(path)[1].lower()
+        main = Layer()
+        if not layered:
+            return LayerSet(ext, False, main, dict.fromkeys(ROLES, main))
+        return LayerSet(ext, True, main, {role: Layer() for _, role in SUBLAYERS}, Layer())
+
+    def sub_ext(self, role: str | None) -> str:
+        # Mesh arrays are the bulk of an asset: always binary (as NVIDIA's converter does).
+        if role == GEOMETRY or self.ext != ".usda":
+            return ".usdc"
+        return ".usda"
+
+
+def stage_metadata(layer: Layer, default_prim: str) -> None:
+    layer.default_prim = default_prim
+    layer.meters_per_unit = 1.0
+    layer.kilograms_per_unit = 1.0
+    layer.up_axis = "Z"
+
+
+def robot_prim(layer: Layer, name: str, display_name: str | None) -> Prim:
+    """The default prim: an Xform of kind component, named as the asset."""
+    prim = layer.prim(f"/{name}", "Xform")
+    prim.kind = "component"
+    prim.asset_name = name
+    if display_name:
+        prim.display_name = display_name
+    return prim
+
+
+def encode(layer: Layer, ext: str) -> str | bytes:
+    if ext == ".usda":
+        return usda_text(layer)
+    from robodesc.usdfile.usdc import usdc_bytes
+
+    return usdc_bytes(layer)
+
+
+def write_layers(layers: LayerSet, path: str, robot_name: str) -> None:
+    """Write the asset; ``layers.main`` (and the interface) must already hold the robot prim."""
+    if not layers.layered:
+        write_atomic(path, encode(layers.main, layers.ext))
+        return
+    assert layers.interface is not None
+    contents = CONTENTS + layers.sub_ext(None)
+    files: dict[str, str | bytes] = {}
+    for stem, role in SUBLAYERS:
+        name = stem + layers.sub_ext(role)
+        layers.main.sublayers.append(f"./{name}")
+        files[name] = encode(layers.roles[role], layers.sub_ext(role))
+    files[contents] = encode(layers.main, layers.sub_ext(None))
+    interface = layers.interface
+    stage_metadata(interface, robot_name)
+    prim = interface.root.children[robot_name]
+    prim.payloads.append(Payload(f"./{PAYLOAD_DIR}/{contents}", f"/{robot_name}"))
+    out_dir = os.path.dirname(os.path.abspath(path))
+    # The payload folder first, the interface last: a reader never sees an interface without its payload.
+    with staged_folder(os.path.join(out_dir, PAYLOAD_DIR)) as staging:
+        write_files(staging, files)
+    write_atomic(path, encode(interface, layers.ext))

@@ -1,0 +1,26 @@
+"""The USD target as the pipeline sees it."""
+
+from __future__ import annotations
+
+from robodesc.emit.common.target import EmitRequest, Emitted, Target
+from robodesc.emit.usd.emitter import emit_usd
+from robodesc.emit.usd.options import UsdOptions
+from robodesc.ir.diagnostics import Findings
+from robodesc.ir.model import Robot
+
+
+def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
+    out = request.output("USD is written to a file: give one with -o robot.usda|.usdc|.usd")
+    request.default("fix_base", robot.fixed_base)
+    findings.extend(emit_usd(robot, out, request.options))
+    return Emitted(files={"usd": out})
+
+
+# USD prim names must be identifiers, and Isaac merges materials that share a name.
+TARGET = Target(
+    name="usd",
+    emit=emit_target,
+    options=UsdOptions,
+    passes={"sanitize_names": True, "unique_materials": True},
+    validator="usd",
+)

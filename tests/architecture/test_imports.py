@@ -1,0 +1,195 @@
+"""The import rule of docs/architecture.md, checked on the source with ``ast``.
+
+Every import counts, including those inside functions (a lazy import is still a dependency). An
+edge goes to the module named: ``from a.b import c`` reaches ``a.b.c`` when that is a module and the
+package ``a.b`` otherwise. The parent packages Python initialises on the way are not edges: a
+package's ``__init__`` re-exporting its own submodules is not a cycle. ``from robodesc import x``
+reaches the root package, which would come back round through the API: that is what this catches.
+"""
+
+from __future__ import annotations
+
+import ast
+import pathlib
+
+import pytest
+
+SRC = pathlib.Path(__file__).resolve().parents[2] / "src"
+PACKAGE = SRC / "robodesc"
+
+# Stage packages and what each may import (besides itself). The top-level modules are the driver
+# (api, pipeline, cli and their helpers): the only code that imports everything.
+DRIVER = "<driver>"
+ALLOWED: dict[str, set[str]] = {
+    "ir": set(),
+    "usdfile": set(),
+    "meshes": {"ir"},
+    "frontends": {"ir", "compose"},
+    "compose": {"ir", "frontends"},
+    "passes": {"ir", "meshes"},
+    "emit": {"ir", "meshes", "usdfile"},
+    "validation": {"ir", "meshes", "emit", "usdfile"},
+}
+# Frontends and compositions are one stage (compositions are frontends that live in their own
+# package); they must still not form a module cycle, which the cycle check below sees.
+
+
+def module_name(path: pathlib.Path) -> str:
+    parts = list(path.relative_to(SRC).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+MODULES: dict[str, pathlib.Path] = {module_name(p): p for p in PACKAGE.rglob("*.py")}
+EXTENSIONS = {module_name(p) for p in PACKAGE.rglob("*.c")}
+
+
+def _resolve(name: str) -> str | None:
+    """The robodesc module an import name refers to (a submodule or, failing that, its package)."""
+    while name:
+        if name in MODULES or name in EXTENSIONS:
+            return name
+        name = name.rpartition(".")[0]
+    return None
+
+
+def imports_of(module: str) -> set[str]:
+    path = MODULES[module]
+    tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    found: set[str] = set()
+    for node in ast.walk(tree):
+        names: list[str] = []
+        if isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                anchor = package.split(".")
+                anchor = anchor[: len(anchor) - node.level + 1]
+                base = ".".join([*anchor, base] if base else anchor)
+            # ``from pkg import name``: name may be a submodule.
+            names = [f"{base}.{a.name}" for a in node.names] + [base]
+        for name in names:
+            if not name.startswith("robodesc"):
+                continue
+            target = _resolve(name)
+            if target is None or target == module:
+                continue
+            found.add(target)
+    return found
+
+
+GRAPH = {m: imports_of(m) for m in MODULES}
+
+
+# A leaf every stage may name.
+LEAVES = {"robodesc._version"}
+
+
+def stage(module: str) -> str:
+    if module in LEAVES:
+        return "leaf"
+    parts = module.split(".")
+    if len(parts) >= 3 or (len(parts) == 2 and (PACKAGE / parts[1]).is_dir()):
+        return parts[1]
+    return DRIVER
+
+
+def test_every_module_is_seen() -> None:
+    assert "robodesc.emit.usd.joints" in GRAPH and "robodesc.meshes.collada" in GRAPH
+    assert "robodesc.meshes._weld" in EXTENSIONS and "robodesc.meshes._numtext" in EXTENSIONS
+
+
+def test_no_import_cycle() -> None:
+    # Tarjan's algorithm, iterative; every strongly connected component must be a single module.
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    on_stack: set[str] = set()
+    stack: list[str] = []
+    cycles: list[list[str]] = []
+    counter = 0
+    for start in sorted(GRAPH):
+        if start in index:
+            continue
+        work = [(start, iter(sorted(GRAPH[start])))]
+        index[start] = low[start] = counter
+        counter += 1
+        stack.append(start)
+        on_stack.add(start)
+        while work:
+            node, edges = work[-1]
+            for nxt in edges:
+                if nxt not in GRAPH:
+                    continue
+                if nxt not in index:
+                    index[nxt] = low[nxt] = counter
+                    counter += 1
+                    stack.append(nxt)
+                    on_stack.add(nxt)
+                    work.append((nxt, iter(sorted(GRAPH[nxt]))))
+                    break
+                if nxt in on_stack:
+                    low[node] = min(low[node], index[nxt])
+            else:
+                work.pop()
+                if work:
+                    low[work[-1][0]] = min(low[work[-1][0]], low[node])
+                if low[node] == index[node]:
+                    component = []
+                    while True:
+                        top = stack.pop()
+                        on_stack.discard(top)
+                        component.append(top)
+                        if top == node:
+                            break
+                    if len(component) > 1:
+                        cycles.append(sorted(component))
+    assert not cycles, "import cycles:\n" + "\n".join(" <-> ".join(c) for c in cycles)
+
+
+@pytest.mark.parametrize("module", sorted(m for m in GRAPH if stage(m) not in (DRIVER, "leaf")))
+def test_imports_follow_the_stage_order(module: str) -> None:
+    own = stage(module)
+    wrong = sorted(
+        target
+        for target in GRAPH[module]
+        if stage(target) not in (own, "leaf") and (stage(target) == DRIVER or stage(target) not in ALLOWED[own])
+    )
+    assert not wrong, f"{module} ({own}) imports {wrong}; {own} may import {sorted(ALLOWED[own]) or 'nothing'}"
+
+
+def test_the_root_package_imports_only_its_version_eagerly() -> None:
+    tree = ast.parse((PACKAGE / "__init__.py").read_text(encoding="utf-8"))
+    top_level = [n for n in tree.body if isinstance(n, ast.ImportFrom) and (n.module or "").startswith("robodesc")]
+    assert [n.module for n in top_level] == ["robodesc._version"]
+
+
+def test_public_import_paths_of_the_docs() -> None:
+    """The import paths README.md and docs/ show keep working."""
+    import robodesc
+    from robodesc.emit.common.numbers import fmt
+    from robodesc.emit.isaac import write_isaac_folder
+    from robodesc.emit.ros2 import Ros2Options, build_ros2_package, emit_ros2_package
+    from robodesc.emit.sdf import SdfOptions, build_sdf, emit_sdf
+    from robodesc.emit.urdf import UrdfOptions, emit_urdf
+    from robodesc.emit.usd import UsdOptions, emit_usd
+
+    for name in robodesc.__all__:
+        assert getattr(robodesc, name) is not None
+    assert callable(robodesc.compile_for_isaac_sim) and callable(robodesc.load)
+    assert all(
+        callable(x)
+        for x in (
+            fmt,
+            write_isaac_folder,
+            build_ros2_package,
+            emit_ros2_package,
+            build_sdf,
+            emit_sdf,
+            emit_urdf,
+            emit_usd,
+        )
+    )
+    assert {SdfOptions, UsdOptions, Ros2Options, UrdfOptions}
