@@ -7,6 +7,7 @@ never dropped. Values are parsed strictly: ``"1/12*m"`` is an error naming the a
 
 from __future__ import annotations
 
+import functools
 import os
 import re
 from collections.abc import Callable
@@ -157,10 +158,11 @@ class UrdfReader:
         for el in root.iter():
             if not isinstance(el.tag, str):
                 continue
-            for key, value in el.attrib.items():
+            for key, raw in el.attrib.items():
+                value = str(raw)
                 if "$(" not in value:
                     continue
-                new = _ENV_SUBST.sub(lambda m, el=el: self._env_value(m, el), value)
+                new = _ENV_SUBST.sub(functools.partial(self._env_value, el=el), value)
                 if new != value:
                     el.set(key, new)
 
