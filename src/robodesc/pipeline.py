@@ -137,9 +137,8 @@ def verify_source(robot: Robot, options: CompileOptions, findings: Findings, rep
     passes through as a warning (``--invalid-inertia error`` makes it fatal) unless the passes will
     repair it."""
     result = verify(robot)
-    errors = result.errors
-    if not options.strict:
-        errors = _drop_dangling(robot, errors, findings)
+    # Dropped elements are warnings; --strict refuses them with every other warning at the end.
+    errors = _drop_dangling(robot, result.errors, findings)
     structural = [f for f in errors if f.code not in PHYSICAL_CODES]
     physical = [f for f in errors if f.code in PHYSICAL_CODES]
     findings.extend([f for f in result.items if f.severity is not Severity.ERROR])

@@ -48,7 +48,7 @@ def _portable(text: str, out_dir: Path) -> str:
     import os
     import re
 
-    corpus = Path(__file__).resolve().parents[3] / "shared" / "corpus"
+    corpus = (Path(__file__).resolve().parents[3] / "shared" / "corpus").resolve()
 
     def fix(match: re.Match[str]) -> str:
         if "://" in match.group(1):  # a missing mesh keeps its URI
