@@ -473,13 +473,28 @@ def _summary_line(result: Any, target: str, out: str | None) -> str:
     return f"{head}; {_verdict(result)}"
 
 
+# The numbers validation compares with the source, and their units (simulation metrics such as
+# penetration are not errors against the source and are left to the full table).
+_COMPARED = {
+    "fk_position": " m",
+    "fk_rotation": " rad",
+    "com": " m",
+    "mass": " (relative)",
+    "inertia": " (relative)",
+    "axis": "",
+    "limit": "",
+}
+
+
 def _verdict(result: Any) -> str:
     report = result.validation
     if report is None:
         return "not validated (--no-validate)"
     consumer = getattr(report, "consumer", "")
-    largest = sorted(((v, k) for k, v in report.max_errors.items() if v is not None), reverse=True)[:2]
-    errors = ", ".join(f"{k} {v:.2g}" for v, k in largest)
+    largest = sorted(((v, k) for k, v in report.max_errors.items() if v is not None and k in _COMPARED), reverse=True)[
+        :2
+    ]
+    errors = ", ".join(f"{k} {v:.2g}{_COMPARED[k]}" for v, k in largest)
     state = "passed" if report.ok else "FAILED"
     extra = []
     if result.source_failures:
