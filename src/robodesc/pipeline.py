@@ -567,8 +567,44 @@ def validate_emitted(
             with open(urdf, encoding="utf-8") as handle:
                 urdf_text = handle.read()
             base_dir = os.path.dirname(urdf)
+        urdf_text, unmodelled = _without_unmodelled_shapes(urdf_text)
         report = validate_urdf_text(robot, urdf_text, base_dir, vopts)
+        if unmodelled:
+            from robodesc.validation.report import Status
+
+            report.add(
+                "unmodelled-geometry",
+                Status.SKIP,
+                "document",
+                f"{unmodelled} visual/collision element(s) with a geometry robodesc does not model are kept "
+                "verbatim in the output; MuJoCo cannot read them, so the URDF was checked without them",
+            )
     return report
+
+
+_MODELLED_SHAPES = frozenset({"box", "cylinder", "sphere", "mesh", "capsule"})
+
+
+def _without_unmodelled_shapes(text: str) -> tuple[str, int]:
+    """The URDF without the visual/collision elements kept verbatim because their geometry is one
+    robodesc does not model (a plane, a heightmap): MuJoCo refuses those whatever robodesc does."""
+    if "<geometry" not in text:
+        return text, 0
+    from lxml import etree
+
+    root = etree.fromstring(text.encode("utf-8"))
+    removed = 0
+    for el in root.iterfind("link/*"):
+        if el.tag not in ("visual", "collision"):
+            continue
+        geometry = el.find("geometry")
+        shapes = [c.tag for c in geometry if isinstance(c.tag, str)] if geometry is not None else []
+        if shapes and shapes[0] not in _MODELLED_SHAPES:
+            el.getparent().remove(el)
+            removed += 1
+    if not removed:
+        return text, 0
+    return etree.tostring(root, encoding="unicode"), removed
 
 
 # Validation checks that fail when the source is at fault whatever robodesc writes: the consumer
