@@ -599,8 +599,9 @@ def _without_unmodelled_shapes(text: str) -> tuple[str, int]:
             continue
         geometry = el.find("geometry")
         shapes = [c.tag for c in geometry if isinstance(c.tag, str)] if geometry is not None else []
-        if shapes and shapes[0] not in _MODELLED_SHAPES:
-            el.getparent().remove(el)
+        parent = el.getparent()
+        if shapes and shapes[0] not in _MODELLED_SHAPES and parent is not None:
+            parent.remove(el)
             removed += 1
     if not removed:
         return text, 0
