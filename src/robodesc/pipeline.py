@@ -641,10 +641,10 @@ def source_defect_failures(findings: Findings | list[Finding], report: Any) -> l
 
 def _unique(findings: Findings) -> list[Finding]:
     """Drop repeats (the verifier and a pass may notice the same thing)."""
-    seen: set[tuple[str, str, str]] = set()
+    seen: set[tuple[str, str, str, str]] = set()
     out = []
     for f in findings:
-        key = (f.code, f.element, f.message)
+        key = (f.code, f.element, f.message, str(f.loc))
         if key not in seen:
             seen.add(key)
             out.append(f)
