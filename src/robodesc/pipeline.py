@@ -138,7 +138,7 @@ def verify_source(robot: Robot, options: CompileOptions, findings: Findings, rep
     repair it."""
     result = verify(robot)
     # Dropped elements are warnings; --strict refuses them with every other warning at the end.
-    errors = _drop_dangling(robot, result.errors, findings)
+    errors = drop_dangling(robot, result.errors, findings)
     structural = [f for f in errors if f.code not in PHYSICAL_CODES]
     physical = [f for f in errors if f.code in PHYSICAL_CODES]
     findings.extend([f for f in result.items if f.severity is not Severity.ERROR])
@@ -165,7 +165,7 @@ _LABEL = re.compile(r"^(\w+) '(.*)'$")
 _SHAPE = re.compile(r"^link '(.*)' (visual|collision) (\d+)$")
 
 
-def _drop_dangling(robot: Robot, errors: list[Finding], findings: Findings) -> list[Finding]:
+def drop_dangling(robot: Robot, errors: list[Finding], findings: Findings) -> list[Finding]:
     """Drop the elements these errors are about where the robot stays whole without them; return
     the errors that remain. Each drop is a warning naming the element and what was lost."""
     fatal: list[Finding] = []
