@@ -74,8 +74,8 @@ ADVICE: dict[str, Advice] = {
     ),
     "dangling-link": Advice("robodesc dropped the element that names no link", "edit the source"),
     "limit-unbounded": Advice(
-        "urdfdom and MuJoCo read a missing bound as 0 (both missing: the joint cannot move); pybullet and "
-        "robodesc's SDF and USD read it as no limit",
+        "urdfdom (ROS) reads a missing bound as 0 (both missing: a joint that cannot move); MuJoCo, pybullet "
+        "and Drake read no limit, as robodesc's SDF and USD do",
         "give lower= and upper=, or make the joint continuous",
     ),
     "zero-outside-limits": Advice(

@@ -26,6 +26,7 @@ CASES = {
     "carried_values.urdf": ("unreadable-carried", "carried_values.urdf:"),
     "zero_size.urdf": ("zero-size-shape", "zero_size.urdf:4"),
     "folder_package/urdf/folder_package.urdf": ("package-by-folder", "folder_package.urdf:4"),
+    "limit_without_bounds.urdf": ("limit-unbounded", "limit_without_bounds.urdf:7"),
 }
 
 

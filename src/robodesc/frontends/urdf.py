@@ -573,6 +573,20 @@ class UrdfReader:
                 velocity=self._float(limit_el, "velocity", label),
                 src=self._loc(limit_el),
             )
+        if (
+            joint.limit is not None
+            and jtype in (JointType.REVOLUTE, JointType.PRISMATIC)
+            and (joint.limit.lower is None or joint.limit.upper is None)
+        ):
+            missing = " and ".join(b for b in ("lower", "upper") if getattr(joint.limit, b) is None)
+            self.findings.warn(
+                "limit-unbounded",
+                f"<limit> of a {jtype.value} joint without {missing}: urdfdom (ROS) reads a missing bound as 0, "
+                "MuJoCo, pybullet and Drake as no limit; robodesc keeps it unset (SDF and USD get no limit)",
+                element=label,
+                loc=self._loc(limit_el) if limit_el is not None else joint.src,
+                stage=STAGE,
+            )
         dyn_el = self._one(el, "dynamics", label)
         if dyn_el is not None:
             joint.dynamics = Dynamics(
