@@ -31,7 +31,7 @@ import numpy as np
 
 from robodesc.compose.builder import Part, RobotBuilder, joint_type
 from robodesc.compose.colors import ColorError, parse_color
-from robodesc.compose.holo_parser import Block, Document, Trait, Value, parse
+from robodesc.compose.holo_parser import Block, Document, Expr, Trait, Value, parse
 from robodesc.compose.meshes import resolve_mesh
 from robodesc.frontends.options import LoadOptions, MissingMesh
 from robodesc.frontends.packages import PackageResolver
@@ -44,8 +44,23 @@ STAGE = "compose:holo"
 
 MESH_SUFFIXES = (".stl", ".obj", ".dae", ".glb", ".gltf", ".fbx", ".ply", ".usd", ".usda", ".usdc", ".usdz", ".3ds")
 PRIMITIVES = ("box", "cube", "sphere", "cylinder", "cone", "capsule", "plane")
-OBJECT_KINDS = ("object", "orb")
-GROUP_KINDS = ("spatial_group", "group")
+# Primitive shapes HoloScript declares as blocks (`sphere "Ball" { }`), from its PRIMITIVE_SHAPES.
+SHAPE_KINDS = ("cube", "box", "sphere", "cylinder", "cone", "torus", "plane", "capsule", "ring")
+OBJECT_KINDS = ("object", "orb", "entity", "instanced_object", "spatial_agent", "link", "end_effector", *SHAPE_KINDS)
+# Blocks that only hold objects: their pose (if any) composes into their children's.
+GROUP_KINDS = ("spatial_group", "group", "scene", "composition", "robot", "spawn_group", "zone")
+JOINT_KINDS = ("joint",)
+# Trait spellings of a joint: @joint_revolute ... (HoloScript's own URDF compiler reads only @joint).
+JOINT_TRAITS = {
+    "joint_revolute": "revolute",
+    "joint_hinge": "revolute",
+    "joint_continuous": "continuous",
+    "joint_prismatic": "prismatic",
+    "joint_slider": "prismatic",
+    "joint_fixed": "fixed",
+    "joint_ball": "spherical",
+    "joint_spherical": "spherical",
+}
 KNOWN_PROPS = frozenset(
     {
         "geometry",
@@ -61,9 +76,26 @@ KNOWN_PROPS = frozenset(
         "axis",
         "limits",
         "joint_name",
+        "radius",
+        "height",
+        "length",
+        "size",
+        "joint_parent",
+        "joint_axis",
+        "joint_limits",
+        "joint_effort",
+        "joint_origin",
+        "joint_friction",
+        "joint_damping",
+        "max_velocity",
+        "armature",
+        "static",
+        "fixed",
     }
 )
-KNOWN_TRAITS = frozenset({"physics", "rigid", "collidable", "trigger", "grabbable", "joint", "sensor", "actuator"})
+KNOWN_TRAITS = frozenset(
+    {"physics", "rigid", "collidable", "trigger", "grabbable", "joint", "sensor", "actuator", "static", *JOINT_TRAITS}
+)
 BEHAVIOR_JOINTS: dict[str, str] = {
     "RevoluteJoint": "revolute",
     "HingeJoint": "revolute",
@@ -194,6 +226,9 @@ class _Lowerer:
         self.findings = findings
         self.templates: dict[str, Block] = {}
         self.objects: dict[str, _Obj] = {}
+        # Original name -> the unique name of its first object, for names used more than once.
+        self.renamed: dict[str, str] = {}
+        self.joint_decls: list[tuple[Block, str | None]] = []
         self.up = np.eye(4)
         self.y_up = False
         self.gravity: Vec3 | None = None
@@ -214,23 +249,37 @@ class _Lowerer:
     # ---- top level ---------------------------------------------------------------------------
     def run(self) -> HoloResult:
         comps = [b for b in self.doc.body.children if b.kind == "composition"]
-        if len(comps) > 1:
-            raise self.fail("one composition per file", f"composition {comps[1].name!r}", comps[1].loc)
-        comp = comps[0] if comps else self.doc.body
-        name = (comp.name if comps else None) or os.path.splitext(os.path.basename(self.file))[0]
+        comp = comps[0] if len(comps) == 1 else self.doc.body
+        name = (comp.name if len(comps) == 1 else None) or os.path.splitext(os.path.basename(self.file))[0]
         for key, loc in self.doc.duplicate_keys:
             self.note("duplicate-key", f"key {key!r} is given twice; the last one counts", loc=loc, warn=True)
         for skipped in self.doc.skipped:
             self.note(
                 "ignored-block",
-                f"'{skipped.kind}' block ignored: it is not part of a robot description",
+                f"'{skipped.kind}' {'block' if skipped.why == 'code' else 'statement'} ignored: "
+                "it is not part of a robot description",
                 loc=skipped.loc,
             )
+        if self.doc.stray:
+            text, loc = self.doc.stray[0]
+            self.note(
+                "ignored-syntax",
+                f"{len(self.doc.stray)} stray token(s) between declarations stepped over, as HoloScript's parser "
+                f"does (the first: {text[:20]!r})",
+                loc=loc,
+                warn=True,
+            )
+        for key, loc in self.doc.equals_props:
+            self.note("equals-property", f"'{key} = ...' read as '{key}: ...' (HoloScript's reading)", loc=loc)
         self._environment(comp)
         self._collect_templates(comp)
-        self._walk(comp.children, self.up, None)
-        if not self.objects:
-            raise self.fail("the composition has no objects", f"composition {name!r}", comp.loc)
+        self._walk(comp.children if comp is not self.doc.body else self.doc.body.children, self.up, None, ())
+        if not self.objects and not self.joint_decls:
+            raise self.fail(
+                "the composition holds no robot: it declares no objects and no joints",
+                f"composition {name!r}",
+                comp.loc,
+            )
         return self._build(name, comp)
 
     def _environment(self, comp: Block) -> None:
@@ -297,28 +346,52 @@ class _Lowerer:
             elif child.kind in GROUP_KINDS:
                 self._collect_templates(child)
 
-    def _walk(self, blocks: Iterable[Block], frame: Mat, enclosing: str | None) -> None:
+    def _walk(self, blocks: Iterable[Block], frame: Mat, enclosing: str | None, scope: tuple[str, ...]) -> None:
         for block in blocks:
-            if block.kind in OBJECT_KINDS:
-                obj = self._object(block, frame, enclosing)
-                self._walk([c for c in block.children if c.kind in (*OBJECT_KINDS, *GROUP_KINDS)], obj.world, obj.name)
+            if block.kind in OBJECT_KINDS and block.kind not in ("composition",):
+                if block.kind in SHAPE_KINDS and "geometry" not in block.props:
+                    block.props["geometry"] = Value(block.kind, block.loc)
+                obj = self._object(block, frame, enclosing, scope)
+                self._walk(
+                    [c for c in block.children if c.kind != "behavior"], obj.world, obj.name, (*scope, obj.name)
+                )
             elif block.kind in GROUP_KINDS:
-                label = f"{block.kind} {block.name!r}"
+                label = f"{block.kind} {block.name!r}" if block.name else block.kind
                 for key in block.props:
                     if key not in ("origin", "position", "rotation"):
                         self.note("ignored-property", f"property {key!r} ignored", label, block.prop_locs[key])
                 local = self._pose_matrix(block.props, label, position_keys=("origin", "position"))
-                self._walk(block.children, frame @ local, enclosing)
+                inner = (*scope, block.name) if block.name else scope
+                self._walk(block.children, frame @ local, enclosing, inner)
+            elif block.kind in JOINT_KINDS:
+                self.joint_decls.append((block, enclosing))
             elif block.kind == "behavior":
                 self.note("ignored-block", "behavior outside an object ignored", f"behavior {block.name!r}", block.loc)
+            elif block.kind not in ("template", "environment"):
+                what = f"'{block.kind}' block" + (f" {block.name!r}" if block.name else "")
+                self.note(
+                    "ignored-block", f"{what} ignored: it is not part of a robot description", loc=block.loc
+                )
 
-    def _object(self, block: Block, frame: Mat, enclosing: str | None) -> _Obj:
+    def _object(self, block: Block, frame: Mat, enclosing: str | None, scope: tuple[str, ...]) -> _Obj:
+        name = block.name or block.kind
         if not block.name:
-            raise self.fail("an object needs a name", block.kind, block.loc)
-        label = f"object {block.name!r}"
-        if block.name in self.objects:
-            first = self.objects[block.name].block
-            raise self.fail(f"duplicate object name {block.name!r} (first at {first.name_loc})", label, block.name_loc)
+            self.note("unnamed-object", f"unnamed {block.kind} block named {name!r}", block.kind, block.loc)
+        if name in self.objects or name in self.renamed:
+            # HoloScript allows the same name twice; links need unique names.
+            unique = _unique(f"{scope[-1]}_{name}" if scope else name, set(self.objects) | set(self.renamed))
+            first = self.objects[self.renamed.get(name, name)].block
+            self.note(
+                "renamed-duplicate",
+                f"object name {name!r} is used again (first at {first.name_loc}): this one's link is named {unique!r}"
+                f"; references to {name!r} mean the first",
+                f"object {name!r}",
+                block.name_loc,
+                warn=True,
+            )
+            self.renamed.setdefault(name, name)
+            name = unique
+        label = f"object {name!r}"
         props = dict(block.props)
         traits = list(block.traits)
         behaviors = [c for c in block.children if c.kind == "behavior"]
@@ -330,14 +403,37 @@ class _Lowerer:
                     element=label,
                     loc=block.using_loc,
                 )
+            self._note_overrides(template, block, label)
             props = _merge_props(template.props, block.props)
             traits = _merge_traits(template.traits, block.traits)
+            if _trait_or_prop_mass(template) is not None and _trait_or_prop_mass(block) is not None:
+                props, traits = _drop_template_mass(props, traits, block)
             mine = {b.name for b in behaviors}
             behaviors = [b for b in template.children if b.kind == "behavior" and b.name not in mine] + behaviors
+        if "position" not in props and "joint_origin" in props:
+            props["position"] = props["joint_origin"]
+            self.note("joint-origin-as-position", "joint_origin read as the object's position", label, props["joint_origin"].loc)
         local = self._pose_matrix(props, label, position_keys=("position",))
-        obj = _Obj(block.name, block, props, traits, behaviors, frame @ local, enclosing, len(self.objects))
-        self.objects[block.name] = obj
+        obj = _Obj(name, block, props, traits, behaviors, frame @ local, enclosing, len(self.objects))
+        self.objects[name] = obj
         return obj
+
+    def _note_overrides(self, template: Block, block: Block, label: str) -> None:
+        """Template values are defaults: say which the object overrides (an info finding)."""
+        over: list[str] = [k for k in block.props if k in template.props]
+        tmass = _trait_or_prop_mass(template)
+        omass = _trait_or_prop_mass(block)
+        if tmass is not None and omass is not None and "mass" not in over:
+            over.append("mass")
+        names = {t.name for t in template.traits}
+        over += [f"@{t.name}" for t in block.traits if t.name in names and t.params and t.name != "sensor"]
+        if over:
+            self.note(
+                "template-override",
+                f"overrides template {template.name!r} defaults: {', '.join(sorted(set(over)))}",
+                label,
+                block.name_loc,
+            )
 
     # ---- values ------------------------------------------------------------------------------
     def num(self, value: Value, path: str, element: str) -> float:
@@ -385,11 +481,92 @@ class _Lowerer:
         return pose_matrix(Pose(xyz=xyz, rpy=rpy))
 
     # ---- building ----------------------------------------------------------------------------
+    def _joint_blocks(self) -> dict[str, _JointSpec]:
+        """``joint "Name" [@joint_revolute] { type, axis, limits, parent, child }`` declarations.
+
+        A declaration naming an object as ``child`` is that object's joint. Without a child, the
+        joint moves a new, empty link ``<Name>_link``; a parent that is no object becomes an empty
+        link of that name. Each of these is reported."""
+        specs: dict[str, _JointSpec] = {}
+        previous_child: str | None = None
+        for block, enclosing in self.joint_decls:
+            jname = block.name or f"joint_{len(specs) + 1}"
+            label = f"joint {jname!r}"
+            p = {k[6:] if k.startswith("joint_") else k: v for k, v in block.props.items()}
+            for t in block.traits:
+                p.update(t.params)
+            jtype_text = next((JOINT_TRAITS[t.name] for t in block.traits if t.name in JOINT_TRAITS), None)
+            type_value = p.get("type") or p.get("jointType")
+            if type_value is not None:
+                jtype_text = self.string(type_value, "type", label)
+            if jtype_text is None:
+                raise self.fail("a joint needs a type (type: revolute, or @joint_revolute)", label, block.loc)
+            parent_value = p.get("parent") or p.get("connectedBody")
+            parent = self._text(parent_value, "parent", label)
+            if parent is None:
+                parent = previous_child or enclosing
+                if parent is not None:
+                    self.note(
+                        "inferred-parent",
+                        f"the joint names no parent: it hangs from {parent!r}, "
+                        + ("the link the previous joint moves" if parent == previous_child else "its enclosing object"),
+                        label,
+                        block.loc,
+                    )
+            if parent is not None and parent not in self.objects:
+                self._empty_link(parent, None, block, f"{label} names parent {parent!r}, which is no object")
+            child = self._text(p.get("child"), "child", label)
+            if child is None:
+                child = _unique(f"{jname}_link", set(self.objects))
+                self._empty_link(child, parent, block, f"{label} names no child object")
+            elif child not in self.objects:
+                raise BrokenReferenceError(
+                    f"joint child {child!r} is not an object of this composition{_suggest(child, self.objects)}",
+                    element=label,
+                    loc=p["child"].loc,
+                )
+            if child in specs:
+                raise self.fail(f"object {child!r} has two joints", label, block.loc)
+            specs[child] = _JointSpec(
+                type=jtype_text,
+                type_loc=block.loc if type_value is None else type_value.loc,
+                parent=parent,
+                parent_loc=None if parent_value is None else parent_value.loc,
+                params=p,
+                loc=block.loc,
+                notation="joint block",
+                name=jname,
+            )
+            previous_child = child
+        return specs
+
+    def _empty_link(self, name: str, parent: str | None, block: Block, why: str) -> None:
+        world = self.objects[parent].world if parent in self.objects else self.up
+        if "position" in block.props or "origin" in block.props:
+            world = world @ self._pose_matrix(block.props, f"joint {block.name!r}", ("origin", "position"))
+        self.objects[name] = _Obj(name, block, {}, [], [], world, parent, len(self.objects))
+        self.note(
+            "empty-link",
+            f"{why}: a link {name!r} without shape or mass stands for it",
+            f"joint {block.name!r}",
+            block.loc,
+            warn=True,
+        )
+
     def _build(self, name: str, comp: Block) -> HoloResult:
         props: list[HoloProp] = []
         joints: dict[str, _JointSpec] = {}
+        declared = self._joint_blocks()
         for obj in self.objects.values():
-            spec = self._joint_spec(obj)
+            spec = self._joint_spec(obj) if obj.block.kind not in JOINT_KINDS else None
+            if obj.name in declared:
+                if spec is not None:
+                    raise self.fail(
+                        f"joint given twice ({spec.notation} and a joint block at {declared[obj.name].loc})",
+                        obj.label,
+                        spec.loc,
+                    )
+                spec = declared[obj.name]
             if spec is not None:
                 joints[obj.name] = spec
             for key in obj.props:
@@ -402,6 +579,17 @@ class _Lowerer:
                     self.note(
                         "ignored-trait", "@trigger volumes are not part of a robot description", obj.label, trait.loc
                     )
+        if not joints:
+            for obj in self.objects.values():
+                actuator = obj.trait("actuator")
+                if actuator is not None:
+                    raise self.fail("@actuator on an object without a joint", obj.label, actuator.loc)
+            raise self.fail(
+                f"the composition holds no robot: none of its {len(self.objects)} objects declares a joint "
+                '(@joint, @joint_revolute, behavior "RevoluteJoint", joint_type, parent, or a joint block)',
+                f"composition {name!r}",
+                comp.loc,
+            )
         referenced = {s.parent for s in joints.values() if s.parent is not None}
         for spec_owner, spec in joints.items():
             if spec.parent is not None and spec.parent not in self.objects:
@@ -533,12 +721,17 @@ class _Lowerer:
         return before[-1] if before else root.name
 
     # ---- joints ------------------------------------------------------------------------------
+    def _text(self, value: Value | None, path: str, label: str) -> str | None:
+        if value is None:
+            return None
+        return self.string(value, path, label)
+
     def _joint_spec(self, obj: _Obj) -> _JointSpec | None:
         specs: list[_JointSpec] = []
         label = obj.label
         for t in obj.traits_named("joint"):
             p = t.params
-            key = "jointType" if "jointType" in p else "type" if "type" in p else None
+            key = next((k for k in ("jointType", "type", "_arg0") if k in p), None)
             if key is None:
                 raise self.fail(
                     "@joint needs jointType (revolute, continuous, prismatic, fixed, ball ...)", label, t.loc
@@ -548,12 +741,30 @@ class _Lowerer:
                 _JointSpec(
                     type=self.string(p[key], f"@joint.{key}", label),
                     type_loc=p[key].loc,
-                    parent=None if parent is None else self.string(parent, "@joint.connectedBody", label),
+                    parent=self._text(parent, "@joint.connectedBody", label),
                     parent_loc=None if parent is None else parent.loc,
                     params=p,
                     loc=t.loc,
                     notation="@joint",
-                    name=self.string(p["name"], "@joint.name", label) if "name" in p else None,
+                    name=self._text(p.get("name"), "@joint.name", label),
+                )
+            )
+        for t in obj.traits:
+            if t.name not in JOINT_TRAITS:
+                continue
+            # @joint_revolute with joint_* properties (HoloScript's Isaac Lab examples).
+            p = {**{k[6:] if k.startswith("joint_") else k: v for k, v in obj.props.items()}, **t.params}
+            parent = p.get("parent") or p.get("connectedBody")
+            specs.append(
+                _JointSpec(
+                    type=JOINT_TRAITS[t.name],
+                    type_loc=t.loc,
+                    parent=self._text(parent, "joint_parent", label),
+                    parent_loc=None if parent is None else parent.loc,
+                    params=p,
+                    loc=t.loc,
+                    notation=f"@{t.name}",
+                    name=self._text(obj.props.get("joint_name"), "joint_name", label),
                 )
             )
         for b in obj.behaviors:
@@ -565,7 +776,7 @@ class _Lowerer:
                 _JointSpec(
                     type=BEHAVIOR_JOINTS[b.name],
                     type_loc=b.name_loc,
-                    parent=None if parent is None else self.string(parent, "parent", label),
+                    parent=self._text(parent, "parent", label),
                     parent_loc=None if parent is None else parent.loc,
                     params=b.props,
                     loc=b.loc,
@@ -573,32 +784,31 @@ class _Lowerer:
                 )
             )
         if "joint_type" in obj.props:
-            parent = obj.props.get("parent")
+            parent = obj.props.get("parent") or obj.props.get("joint_parent")
             specs.append(
                 _JointSpec(
                     type=self.string(obj.props["joint_type"], "joint_type", label),
                     type_loc=obj.props["joint_type"].loc,
-                    parent=None if parent is None else self.string(parent, "parent", label),
+                    parent=self._text(parent, "parent", label),
                     parent_loc=None if parent is None else parent.loc,
                     params={k: v for k, v in obj.props.items() if k in ("axis", "limits")},
-                    loc=obj.block.prop_locs["joint_type"],
+                    loc=obj.block.prop_locs.get("joint_type", obj.block.loc),
                     notation="joint_type",
-                    name=self.string(obj.props["joint_name"], "joint_name", label)
-                    if "joint_name" in obj.props
-                    else None,
+                    name=self._text(obj.props.get("joint_name"), "joint_name", label),
                 )
             )
-        elif "parent" in obj.props and not specs:
-            parent = obj.props["parent"]
+        elif ("parent" in obj.props or "joint_parent" in obj.props) and not specs:
+            key = "parent" if "parent" in obj.props else "joint_parent"
+            parent = obj.props[key]
             specs.append(
                 _JointSpec(
                     type="fixed",
                     type_loc=parent.loc,
-                    parent=self.string(parent, "parent", label),
+                    parent=self.string(parent, key, label),
                     parent_loc=parent.loc,
                     params={},
-                    loc=obj.block.prop_locs["parent"],
-                    notation="parent",
+                    loc=obj.block.prop_locs.get(key, obj.block.loc),
+                    notation=key,
                 )
             )
         if len(specs) > 1:
@@ -632,8 +842,15 @@ class _Lowerer:
             self.note("default-axis", "no axis given: URDF's default +x applies", label, spec.loc, warn=True)
         lower = upper = effort = velocity = None
         limit_loc = spec.loc
-        if spec.notation == "@joint" or spec.notation == "joint_type":
-            if "limits" in p:
+        if not spec.notation.startswith("behavior"):
+            if "limits" in p and isinstance(p["limits"].data, list):
+                lim = p["limits"]
+                limit_loc = lim.loc
+                if len(lim.data) != 2:
+                    raise self.fail(f"limits: expected [min, max], got {_describe(lim)}", label, lim.loc)
+                lower = self.num(lim.data[0], "limits[0]", label) * k
+                upper = self.num(lim.data[1], "limits[1]", label) * k
+            elif "limits" in p:
                 lim = p["limits"]
                 limit_loc = lim.loc
                 if not isinstance(lim.data, dict):
@@ -654,6 +871,12 @@ class _Lowerer:
                 upper = None if hi is None else self.num(hi, "limits.max", label) * k
                 effort = self.num(d["effort"], "limits.effort", label) if "effort" in d else None
                 velocity = self.num(d["velocity"], "limits.velocity", label) if "velocity" in d else None
+            for key in ("effort", "max_effort", "maxTorque", "maxForce", "torque"):
+                if key in p and effort is None:
+                    effort = self.num(p[key], key, label)
+            for key in ("velocity", "max_velocity", "maxVelocity"):
+                if key in p and velocity is None:
+                    velocity = self.num(p[key], key, label)
         else:
             if "lowerLimit" in p:
                 lower = self.num(p["lowerLimit"], "lowerLimit", label) * k
@@ -666,6 +889,15 @@ class _Lowerer:
                     effort = self.num(p[key], key, label)
         if lower is not None and upper is not None and lower > upper:
             raise self.fail("the lower limit is above the upper limit", label, limit_loc)
+        if angular and lower is not None and upper is not None and _looks_like_radians(lower / k, upper / k):
+            self.note(
+                "radian-looking-limits",
+                f"limits [{lower / k:g}, {upper / k:g}] are read in degrees (HoloScript's unit for angles) but look like "
+                f"radians; if radians were meant, write [{math.degrees(lower / k):.4g}, {math.degrees(upper / k):.4g}]",
+                label,
+                limit_loc,
+                warn=True,
+            )
         if jtype is JointType.REVOLUTE and (lower is None or upper is None):
             self.note(
                 "unlimited-revolute",
@@ -679,6 +911,7 @@ class _Lowerer:
             raise self.fail("a prismatic joint needs limits { min, max } (metres)", label, limit_loc)
         damping = self.num(p["damping"], "damping", label) if "damping" in p else None
         friction = self.num(p["friction"], "friction", label) if "friction" in p else None
+        armature = self.num(p["armature"], "armature", label) if "armature" in p else None
         mimic = multiplier = offset = None
         if "mimic" in p:
             m = p["mimic"]
@@ -739,6 +972,7 @@ class _Lowerer:
             multiplier=multiplier,
             offset=offset,
             safety=safety,
+            armature=armature,
             src=spec.loc,
             limit_src=limit_loc,
             display_name=None,
@@ -1071,6 +1305,40 @@ def builder_has_sensor(builder: RobotBuilder, name: str) -> bool:
     return name in builder._sensors
 
 
+def _trait_or_prop_mass(block: Block) -> Value | None:
+    for t in block.traits:
+        if t.name == "physics" and "mass" in t.params:
+            return t.params["mass"]
+    if "mass" in block.props:
+        return block.props["mass"]
+    ph = block.props.get("physics")
+    if ph is not None and isinstance(ph.data, dict) and "mass" in ph.data:
+        return ph.data["mass"]
+    return None
+
+
+def _drop_template_mass(
+    props: dict[str, Value], traits: list[Trait], block: Block
+) -> tuple[dict[str, Value], list[Trait]]:
+    """The object gives its own mass: every mass that only the template gave goes (defaults, not rivals)."""
+    props = dict(props)
+    if "mass" not in block.props:
+        props.pop("mass", None)
+    ph = props.get("physics")
+    own_ph = block.props.get("physics")
+    if ph is not None and isinstance(ph.data, dict) and "mass" in ph.data:
+        if own_ph is None or not isinstance(own_ph.data, dict) or "mass" not in own_ph.data:
+            data = {k: v for k, v in ph.data.items() if k != "mass"}
+            props["physics"] = Value(data, ph.loc, {k: v for k, v in ph.key_locs.items() if k != "mass"})
+    own_trait_mass = any(t.name == "physics" and "mass" in t.params for t in block.traits)
+    out: list[Trait] = []
+    for t in traits:
+        if t.name == "physics" and "mass" in t.params and not own_trait_mass:
+            t = Trait(t.name, {k: v for k, v in t.params.items() if k != "mass"}, t.loc, t.key_locs, t.in_header)
+        out.append(t)
+    return props, out
+
+
 def _merge_props(base: dict[str, Value], over: dict[str, Value]) -> dict[str, Value]:
     out = dict(base)
     for key, value in over.items():
@@ -1097,12 +1365,19 @@ def _merge_traits(base: list[Trait], over: list[Trait]) -> list[Trait]:
         if t.name in over_names:
             mine = next(o for o in over if o.name == t.name)
             params = _merge_props(t.params, mine.params)
-            out.append(Trait(t.name, params, mine.loc, {**t.key_locs, **mine.key_locs}))
+            out.append(Trait(t.name, params, mine.loc, {**t.key_locs, **mine.key_locs}, mine.in_header))
         else:
             out.append(t)
     done = {t.name for t in base}
     out += [t for t in over if t.name == "sensor" or t.name not in done]
     return out
+
+
+def _looks_like_radians(lower: float, upper: float) -> bool:
+    """Both limits within 2π and at least one a multiple of π/2 (±1.57, ±3.14, 6.28)."""
+    if max(abs(lower), abs(upper)) > 2 * math.pi + 1e-3 or (lower == 0 and upper == 0):
+        return False
+    return any(v != 0 and abs(v / (math.pi / 2) - round(v / (math.pi / 2))) < 2e-3 for v in (lower, upper))
 
 
 def _unique(name: str, used: set[str]) -> str:
@@ -1125,6 +1400,8 @@ def _describe(value: Value) -> str:
         return f"a list of {len(d)}"
     if isinstance(d, dict):
         return "an object"
+    if isinstance(d, Expr):
+        return f"an expression ({d.text!r})"
     return "null"
 
 

@@ -201,7 +201,7 @@ class _Parser:
                     what = f"{block.kind} {block.name or ''}".strip()
                     raise ParseError(
                         f"unbalanced braces: {what} opened here is never closed",
-                        loc=block.loc if opener is None else self.loc(opener),
+                        loc=block.loc,
                     )
                 return
             if self.is_punct("}"):
@@ -228,8 +228,6 @@ class _Parser:
             if t.kind is Kind.IDENT:
                 self.block_or_flag(block)
                 continue
-            if t.kind is Kind.OTHER:
-                raise self.error(f"unexpected {t.describe()}")
             # Anything else between items (an operator, a stray bracket group): HoloScript's parser
             # steps over it; so does robodesc, and says where.
             self.stray.append((t.text, self.loc(t)))
@@ -426,6 +424,9 @@ class _Parser:
         first = self.tok
         loc = self.loc(first)
         value = self.unary()
+        while self.tok.kind is Kind.OTHER and self._adjacent(self.pos - 1):
+            self.take()  # a unit glued to a number (15°): kept in the text
+            value = Value(Expr(self._text(start)), loc)
         # Binary operators continue the value on the same line (HoloScript reads one primary and
         # steps over the rest; robodesc keeps the whole expression as text).
         while (
