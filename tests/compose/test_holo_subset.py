@@ -190,7 +190,8 @@ def test_actuator_without_joint_is_an_error() -> None:
     with pytest.raises(ParseError, match="@actuator on an object without a joint"):
         load(
             'composition "C" { object "A" { @physics { type: "static" mass: 1 } }'
-            ' object "B" { @actuator { hardwareInterface: "x" } mass: 1 } }'
+            ' object "B" { @actuator { hardwareInterface: "x" } mass: 1 }'
+            ' object "C" { parent: "B" mass: 1 } }'
         )
 
 

@@ -44,6 +44,9 @@ STAGE = "compose:holo"
 
 MESH_SUFFIXES = (".stl", ".obj", ".dae", ".glb", ".gltf", ".fbx", ".ply", ".usd", ".usda", ".usdc", ".usdz", ".3ds")
 PRIMITIVES = ("box", "cube", "sphere", "cylinder", "cone", "capsule", "plane")
+# HoloScript shapes URDF lacks, and the primitive each is written as (with a finding).
+ROUND_SOLIDS = ("dodecahedron", "icosahedron", "octahedron", "tetrahedron", "icosphere", "geodesic")
+RING_SOLIDS = ("torus", "ring", "disc", "disk", "tube")
 # Primitive shapes HoloScript declares as blocks (`sphere "Ball" { }`), from its PRIMITIVE_SHAPES.
 SHAPE_KINDS = ("cube", "box", "sphere", "cylinder", "cone", "torus", "plane", "capsule", "ring")
 OBJECT_KINDS = ("object", "orb", "entity", "instanced_object", "spatial_agent", "link", "end_effector", *SHAPE_KINDS)
@@ -287,9 +290,17 @@ class _Lowerer:
         ignored: list[str] = []
         for env in envs:
             for key, value in env.props.items():
-                if key == "gravity":
+                if key == "gravity" and isinstance(value.data, (list, dict)):
                     g = self.vec3(value, "environment.gravity", "environment")
                     self.gravity = g
+                elif key == "gravity":
+                    self.note(
+                        "ignored-gravity",
+                        f"gravity {_describe(value)} is no vector: it does not tell which way is up",
+                        "environment",
+                        value.loc,
+                        warn=True,
+                    )
                 else:
                     ignored.append(key)
             for child in env.children:
@@ -395,14 +406,25 @@ class _Lowerer:
         props = dict(block.props)
         traits = list(block.traits)
         behaviors = [c for c in block.children if c.kind == "behavior"]
+        template: Block | None = None
         if block.using is not None:
             template = self.templates.get(block.using)
-            if template is None:
+            if template is None and not _suggest(block.using, self.templates):
+                self.note(
+                    "unknown-template",
+                    f"template {block.using!r} is not defined in this file (HoloScript may import it): "
+                    "its defaults are not applied",
+                    label,
+                    block.using_loc,
+                    warn=True,
+                )
+            elif template is None:
                 raise BrokenReferenceError(
                     f"template {block.using!r} is not defined{_suggest(block.using, self.templates)}",
                     element=label,
                     loc=block.using_loc,
                 )
+        if template is not None:
             self._note_overrides(template, block, label)
             props = _merge_props(template.props, block.props)
             traits = _merge_traits(template.traits, block.traits)
@@ -464,7 +486,15 @@ class _Lowerer:
     def _pose_matrix(self, props: dict[str, Value], label: str, position_keys: tuple[str, ...]) -> Mat:
         xyz: Vec3 = (0.0, 0.0, 0.0)
         for key in position_keys:
-            if key in props:
+            if key in props and isinstance(props[key].data, (str, Expr, bool)) or (key in props and props[key].data is None):
+                self.note(
+                    "ignored-property",
+                    f"{key} {_describe(props[key])} is no [x, y, z]: the origin is used",
+                    label,
+                    props[key].loc,
+                    warn=True,
+                )
+            elif key in props:
                 xyz = self.vec3(props[key], key, label)
         rpy: Vec3 = (0.0, 0.0, 0.0)
         if "rotation" in props:
@@ -580,10 +610,6 @@ class _Lowerer:
                         "ignored-trait", "@trigger volumes are not part of a robot description", obj.label, trait.loc
                     )
         if not joints:
-            for obj in self.objects.values():
-                actuator = obj.trait("actuator")
-                if actuator is not None:
-                    raise self.fail("@actuator on an object without a joint", obj.label, actuator.loc)
             raise self.fail(
                 f"the composition holds no robot: none of its {len(self.objects)} objects declares a joint "
                 '(@joint, @joint_revolute, behavior "RevoluteJoint", joint_type, parent, or a joint block)',
@@ -603,7 +629,14 @@ class _Lowerer:
         bodies: list[_Obj] = []
         root: _Obj | None = None
         for obj in self.objects.values():
-            if obj.trait("grabbable") is not None:
+            if obj.trait("grabbable") is not None and obj.name in joints:
+                self.note(
+                    "grabbable-link",
+                    "@grabbable object declares a joint: it is a robot link (the joint wins over the prop reading)",
+                    obj.label,
+                    obj.block.loc,
+                )
+            elif obj.trait("grabbable") is not None:
                 if obj.name in referenced:
                     raise self.fail("a @grabbable prop cannot carry robot joints", obj.label, obj.block.loc)
                 props.append(self._prop(obj, "grabbable"))
@@ -1002,7 +1035,7 @@ class _Lowerer:
         geom, origin, geom_loc = self._geometry(obj)
         parts: list[Part] = []
         color = self._color(obj)
-        material = self.string(obj.props["material"], "material", label) if "material" in obj.props else None
+        material = self._material(obj)
         if geom is not None:
             parts.append(
                 Part(
@@ -1047,12 +1080,34 @@ class _Lowerer:
         lowered = kind.lower()
         if lowered.endswith(MESH_SUFFIXES) or "/" in kind or "://" in kind:
             return Mesh(uri=kind, scale=scale, src=gval.loc), None, gval.loc
-        if lowered not in PRIMITIVES:
-            raise self.fail(
-                f"unknown geometry {kind!r} (one of {', '.join(PRIMITIVES)}, or a mesh file){_suggest(lowered, PRIMITIVES)}",
+        if lowered in ROUND_SOLIDS:
+            self.note(
+                "substituted-geometry",
+                f"URDF has no {lowered}: written as the sphere of its scale (the closest primitive)",
                 label,
                 gval.loc,
+                warn=True,
             )
+            lowered = "sphere"
+        elif lowered in RING_SOLIDS:
+            self.note(
+                "substituted-geometry",
+                f"URDF has no {lowered}: written as the cylinder of its extents (the closest primitive)",
+                label,
+                gval.loc,
+                warn=True,
+            )
+            lowered = "cylinder"
+        elif lowered not in PRIMITIVES:
+            self.note(
+                "substituted-geometry",
+                f"geometry {kind!r} is no primitive robodesc knows ({', '.join(PRIMITIVES)}) and no mesh file: "
+                "written as the box of its scale",
+                label,
+                gval.loc,
+                warn=True,
+            )
+            lowered = "box"
         up_rot = Pose(rpy=(-math.pi / 2, 0.0, 0.0)) if self.y_up else None
         if lowered in ("box", "cube"):
             return Box(size=(sx, sy, sz), src=gval.loc), None, gval.loc
@@ -1121,10 +1176,32 @@ class _Lowerer:
             raise self.fail(f"scale must be positive, got {list(scale)}", label, value.loc)
         return scale
 
-    def _color(self, obj: _Obj) -> RGBA | None:
-        if "color" not in obj.props:
+    def _material(self, obj: _Obj) -> str | None:
+        value = obj.props.get("material")
+        if value is None:
             return None
-        value = obj.props["color"]
+        if isinstance(value.data, str):
+            return value.data
+        if isinstance(value.data, dict):
+            # material: { preset: "chrome", color: ..., metalness: ... }: the name, and the colour
+            # when the object gives none; the rendering parameters are not part of URDF.
+            for key in ("name", "preset", "type"):
+                if key in value.data and isinstance(value.data[key].data, str):
+                    return str(value.data[key].data)
+            return None
+        self.note("ignored-property", f"material {_describe(value)} ignored", obj.label, value.loc, warn=True)
+        return None
+
+    def _color(self, obj: _Obj) -> RGBA | None:
+        value = obj.props.get("color")
+        material = obj.props.get("material")
+        if value is None and material is not None and isinstance(material.data, dict):
+            value = material.data.get("color") or material.data.get("baseColor")
+        if value is None:
+            return None
+        if isinstance(value.data, Expr):
+            self.note("ignored-property", f"color {_describe(value)} ignored", obj.label, value.loc, warn=True)
+            return None
         try:
             if isinstance(value.data, list):
                 return parse_color([self.num(v, "color", obj.label) for v in value.data])
@@ -1214,9 +1291,14 @@ class _Lowerer:
         for t in obj.traits_named("sensor"):
             p = t.params
             if "type" not in p:
-                raise self.fail(
-                    "@sensor needs a type (camera, depth, lidar, imu, force_torque, contact, gps)", label, t.loc
+                self.note(
+                    "ignored-sensor",
+                    "@sensor without a type (camera, depth, lidar, imu, force_torque, contact, gps) ignored",
+                    label,
+                    t.loc,
+                    warn=True,
                 )
+                continue
             stype = self.string(p["type"], "@sensor.type", label)
             for key in p:
                 if key not in SENSOR_PARAMS:
