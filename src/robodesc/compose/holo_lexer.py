@@ -151,7 +151,7 @@ def tokenize(text: str, file: str) -> list[Token]:
             add(Kind.OTHER, "\\`", start_line, start_col)
             advance(2)
             continue
-        if text.startswith(("\'\'\'", '"""'), i):
+        if text.startswith(("'''", '"""'), i):
             quote3 = text[i : i + 3]
             end = text.find(quote3, i + 3)
             if end < 0:

@@ -363,9 +363,7 @@ class _Lowerer:
                 if block.kind in SHAPE_KINDS and "geometry" not in block.props:
                     block.props["geometry"] = Value(block.kind, block.loc)
                 obj = self._object(block, frame, enclosing, scope)
-                self._walk(
-                    [c for c in block.children if c.kind != "behavior"], obj.world, obj.name, (*scope, obj.name)
-                )
+                self._walk([c for c in block.children if c.kind != "behavior"], obj.world, obj.name, (*scope, obj.name))
             elif block.kind in GROUP_KINDS:
                 label = f"{block.kind} {block.name!r}" if block.name else block.kind
                 for key in block.props:
@@ -380,9 +378,7 @@ class _Lowerer:
                 self.note("ignored-block", "behavior outside an object ignored", f"behavior {block.name!r}", block.loc)
             elif block.kind not in ("template", "environment"):
                 what = f"'{block.kind}' block" + (f" {block.name!r}" if block.name else "")
-                self.note(
-                    "ignored-block", f"{what} ignored: it is not part of a robot description", loc=block.loc
-                )
+                self.note("ignored-block", f"{what} ignored: it is not part of a robot description", loc=block.loc)
 
     def _object(self, block: Block, frame: Mat, enclosing: str | None, scope: tuple[str, ...]) -> _Obj:
         name = block.name or block.kind
@@ -434,7 +430,12 @@ class _Lowerer:
             behaviors = [b for b in template.children if b.kind == "behavior" and b.name not in mine] + behaviors
         if "position" not in props and "joint_origin" in props:
             props["position"] = props["joint_origin"]
-            self.note("joint-origin-as-position", "joint_origin read as the object's position", label, props["joint_origin"].loc)
+            self.note(
+                "joint-origin-as-position",
+                "joint_origin read as the object's position",
+                label,
+                props["joint_origin"].loc,
+            )
         local = self._pose_matrix(props, label, position_keys=("position",))
         obj = _Obj(name, block, props, traits, behaviors, frame @ local, enclosing, len(self.objects))
         self.objects[name] = obj
@@ -486,7 +487,9 @@ class _Lowerer:
     def _pose_matrix(self, props: dict[str, Value], label: str, position_keys: tuple[str, ...]) -> Mat:
         xyz: Vec3 = (0.0, 0.0, 0.0)
         for key in position_keys:
-            if key in props and isinstance(props[key].data, (str, Expr, bool)) or (key in props and props[key].data is None):
+            if (key in props and isinstance(props[key].data, (str, Expr, bool))) or (
+                key in props and props[key].data is None
+            ):
                 self.note(
                     "ignored-property",
                     f"{key} {_describe(props[key])} is no [x, y, z]: the origin is used",
@@ -831,17 +834,17 @@ class _Lowerer:
                 )
             )
         elif ("parent" in obj.props or "joint_parent" in obj.props) and not specs:
-            key = "parent" if "parent" in obj.props else "joint_parent"
-            parent = obj.props[key]
+            pkey = "parent" if "parent" in obj.props else "joint_parent"
+            parent = obj.props[pkey]
             specs.append(
                 _JointSpec(
                     type="fixed",
                     type_loc=parent.loc,
-                    parent=self.string(parent, key, label),
+                    parent=self.string(parent, pkey, label),
                     parent_loc=parent.loc,
                     params={},
-                    loc=obj.block.prop_locs.get(key, obj.block.loc),
-                    notation=key,
+                    loc=obj.block.prop_locs.get(pkey, obj.block.loc),
+                    notation=pkey,
                 )
             )
         if len(specs) > 1:
@@ -879,10 +882,11 @@ class _Lowerer:
             if "limits" in p and isinstance(p["limits"].data, list):
                 lim = p["limits"]
                 limit_loc = lim.loc
-                if len(lim.data) != 2:
+                pair = lim.data if isinstance(lim.data, list) else []
+                if len(pair) != 2:
                     raise self.fail(f"limits: expected [min, max], got {_describe(lim)}", label, lim.loc)
-                lower = self.num(lim.data[0], "limits[0]", label) * k
-                upper = self.num(lim.data[1], "limits[1]", label) * k
+                lower = self.num(pair[0], "limits[0]", label) * k
+                upper = self.num(pair[1], "limits[1]", label) * k
             elif "limits" in p:
                 lim = p["limits"]
                 limit_loc = lim.loc
@@ -1408,10 +1412,10 @@ def _drop_template_mass(
         props.pop("mass", None)
     ph = props.get("physics")
     own_ph = block.props.get("physics")
-    if ph is not None and isinstance(ph.data, dict) and "mass" in ph.data:
-        if own_ph is None or not isinstance(own_ph.data, dict) or "mass" not in own_ph.data:
-            data = {k: v for k, v in ph.data.items() if k != "mass"}
-            props["physics"] = Value(data, ph.loc, {k: v for k, v in ph.key_locs.items() if k != "mass"})
+    own_has = own_ph is not None and isinstance(own_ph.data, dict) and "mass" in own_ph.data
+    if ph is not None and isinstance(ph.data, dict) and "mass" in ph.data and not own_has:
+        data = {k: v for k, v in ph.data.items() if k != "mass"}
+        props["physics"] = Value(data, ph.loc, {k: v for k, v in ph.key_locs.items() if k != "mass"})
     own_trait_mass = any(t.name == "physics" and "mass" in t.params for t in block.traits)
     out: list[Trait] = []
     for t in traits:

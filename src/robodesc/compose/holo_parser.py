@@ -436,7 +436,8 @@ class _Parser:
         ):
             op = self.take()
             value = Value(Expr(self._text(start)), loc)
-            if self.tok.kind is Kind.EOF or (self.tok.kind is Kind.PUNCT and self.tok.text in _VALUE_STOP):
+            nxt: Token = self.toks[self.pos]
+            if nxt.kind is Kind.EOF or (nxt.kind is Kind.PUNCT and nxt.text in _VALUE_STOP):
                 # A type annotation (`array<string>,`) ends with an operator; HoloScript steps over it.
                 break
             if op.text == "?" and not self.tok.newline_before:
@@ -529,10 +530,9 @@ class _Parser:
         """``a.b``, ``f(x)``, ``a[0]``, ``x => ...``: the value becomes an expression."""
         changed = False
         while not self.tok.newline_before or self.is_punct("."):
-            if self.is_punct(".") and self.peek().kind in (Kind.IDENT, Kind.NUMBER):
-                self.take()
-                self.take()
-            elif self.is_op("?.") and self.peek().kind is Kind.IDENT:
+            if (self.is_punct(".") and self.peek().kind in (Kind.IDENT, Kind.NUMBER)) or (
+                self.is_op("?.") and self.peek().kind is Kind.IDENT
+            ):
                 self.take()
                 self.take()
             elif (self.is_punct("(") or self.is_punct("[")) and not self.tok.newline_before:
@@ -592,7 +592,9 @@ class _Parser:
             if self.tok.newline_before and self.tok.kind is Kind.IDENT and self.is_punct(":", self.peek()):
                 raise ParseError("unbalanced brackets: '[' opened here is never closed", loc=loc)
             if self.is_punct("}") or self.is_punct(")"):
-                raise self.error(f"unbalanced brackets: '[' opened at {loc.line}:{loc.column} is closed by '{self.tok.text}'")
+                raise self.error(
+                    f"unbalanced brackets: '[' opened at {loc.line}:{loc.column} is closed by '{self.tok.text}'"
+                )
             items.append(self.value())
             if not (self.is_punct(",") or self.is_punct("]") or self.is_punct(";")) and not self.tok.newline_before:
                 raise self.error(f"expected ',' or ']' in a list, found {self.tok.describe()}")
