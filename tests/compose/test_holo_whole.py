@@ -261,3 +261,48 @@ def test_holoscript_checkout(rel: str, tmp_path: Path) -> None:
     robodesc.compile_to_sdf(path, tmp_path / "r.sdf", missing_mesh="primitive")
     robodesc.compile_to_usd(path, tmp_path / "r.usda", missing_mesh="primitive")
     robodesc.compile_for_isaac_sim(path, tmp_path / "isaac", missing_mesh="primitive")
+
+
+# ---- shapes URDF lacks: the closest primitive, the true shape's inertia ----------------------
+def _trimesh_props(mesh: object, mass: float) -> tuple[np.ndarray, np.ndarray]:
+    props = mesh.mass_properties  # type: ignore[attr-defined]
+    return np.asarray(props.center_mass), np.asarray(props.inertia) * (mass / props.mass)
+
+
+def test_cone_inertia_is_the_cones() -> None:
+    trimesh = pytest.importorskip("trimesh")
+    result = load("""composition "Cone" {
+      object "Base" { @physics { type: "static" mass: 1 } geometry: "box" scale: 0.1 }
+      object "Tip" { @joint(type: "revolute", connectedBody: "Base", axis: [0, 0, 1], limits: [-90, 90])
+                     geometry: "cone" scale: [0.2, 0.4, 0.2] mass: 3 position: [0, 0, 0.5] }
+    }""")
+    inertial = result.robot.link("Tip").inertial
+    assert inertial is not None and inertial.inertia is not None and inertial.origin is not None
+    # trimesh's cone: base at z = 0, apex at z = h; robodesc's frame is the bounding-box middle.
+    center, tensor = _trimesh_props(trimesh.creation.cone(radius=0.1, height=0.4, sections=512), 3.0)
+    assert inertial.origin.xyz[2] == pytest.approx(center[2] - 0.2, abs=1e-4)
+    got = np.diag(inertial.inertia.as_tuple()[:3])
+    assert got == pytest.approx(tensor, rel=1e-3, abs=1e-7)
+    assert "cone-as-cylinder" in codes(result)
+
+
+def test_torus_and_polyhedron_inertia() -> None:
+    trimesh = pytest.importorskip("trimesh")
+    result = load("""composition "Wheels" {
+      object "Base" { @physics { type: "static" mass: 1 } geometry: "box" scale: 0.1 }
+      object "Tyre" { @joint { type: "continuous" connectedBody: "Base" axis: [0, 0, 1] }
+                      geometry: "torus" scale: [0.5, 0.1, 0.5] mass: 2 }
+      object "Gem" { @joint { type: "continuous" connectedBody: "Base" axis: [1, 0, 0] }
+                     geometry: "octahedron" scale: 0.2 mass: 1 }
+    }""")
+    tyre = result.robot.link("Tyre").inertial
+    assert tyre is not None and tyre.inertia is not None
+    # outer diameter 0.5, tube diameter 0.1: centre-line radius 0.2, tube radius 0.05
+    mesh = trimesh.creation.torus(major_radius=0.2, minor_radius=0.05, major_sections=256, minor_sections=128)
+    _, tensor = _trimesh_props(mesh, 2.0)
+    assert np.diag(tyre.inertia.as_tuple()[:3]) == pytest.approx(tensor, rel=2e-3, abs=1e-7)
+    gem = result.robot.link("Gem").inertial
+    assert gem is not None and gem.inertia is not None
+    # a solid regular octahedron of circumradius a: I = m a² / 5
+    assert gem.inertia.ixx == pytest.approx(1.0 * 0.1**2 / 5)
+    assert [f.code for f in result.findings].count("substituted-geometry") == 2

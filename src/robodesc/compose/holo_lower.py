@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from robodesc.compose import solids
 from robodesc.compose.builder import Part, RobotBuilder, joint_type
 from robodesc.compose.colors import ColorError, parse_color
 from robodesc.compose.holo_parser import Block, Document, Expr, Trait, Value, parse
@@ -45,6 +46,7 @@ STAGE = "compose:holo"
 MESH_SUFFIXES = (".stl", ".obj", ".dae", ".glb", ".gltf", ".fbx", ".ply", ".usd", ".usda", ".usdc", ".usdz", ".3ds")
 PRIMITIVES = ("box", "cube", "sphere", "cylinder", "cone", "capsule", "plane")
 # HoloScript shapes URDF lacks, and the primitive each is written as (with a finding).
+POLYHEDRA = solids.POLYHEDRA
 ROUND_SOLIDS = ("dodecahedron", "icosahedron", "octahedron", "tetrahedron", "icosphere", "geodesic")
 RING_SOLIDS = ("torus", "ring", "disc", "disk", "tube")
 # Primitive shapes HoloScript declares as blocks (`sphere "Ball" { }`), from its PRIMITIVE_SHAPES.
@@ -232,6 +234,8 @@ class _Lowerer:
         # Original name -> the unique name of its first object, for names used more than once.
         self.renamed: dict[str, str] = {}
         self.joint_decls: list[tuple[Block, str | None]] = []
+        # Objects drawn as a stand-in primitive whose inertia is another shape's: (kind, a, b).
+        self._solids: dict[str, tuple[str, float, float]] = {}
         self.up = np.eye(4)
         self.y_up = False
         self.gravity: Vec3 | None = None
@@ -1054,6 +1058,19 @@ class _Lowerer:
         else:
             self.note("no-geometry", "object has no geometry: a link without visuals", label, obj.block.loc)
         mass, inertia = self._mass(obj)
+        com: Pose | None = None
+        solid = self._solids.get(obj.name)
+        if solid is not None and mass is not None and inertia is None:
+            kind, a, b = solid
+            props = (
+                solids.cone(mass, a, b)
+                if kind == "cone"
+                else solids.torus(mass, a, b)
+                if kind == "torus"
+                else solids.polyhedron(kind, mass, a)
+            )
+            inertia = Inertia(*props.inertia, src=geom_loc)
+            com = matrix_pose(pose_matrix(origin or Pose()) @ pose_matrix(Pose(xyz=(0.0, 0.0, props.com_z))))
         if mass is None:
             self.note(
                 "no-mass",
@@ -1067,6 +1084,7 @@ class _Lowerer:
             *parts,
             mass=mass,
             inertia=inertia,
+            com=com,
             pose=matrix_pose(obj.world),
             frame="world",
             element=label,
@@ -1084,10 +1102,12 @@ class _Lowerer:
         lowered = kind.lower()
         if lowered.endswith(MESH_SUFFIXES) or "/" in kind or "://" in kind:
             return Mesh(uri=kind, scale=scale, src=gval.loc), None, gval.loc
+        true_kind = lowered
         if lowered in ROUND_SOLIDS:
             self.note(
                 "substituted-geometry",
-                f"URDF has no {lowered}: written as the sphere of its scale (the closest primitive)",
+                f"URDF has no {lowered}: written as the sphere of its scale (the closest primitive)"
+                + ("; its inertia is the polyhedron's" if lowered in POLYHEDRA else ""),
                 label,
                 gval.loc,
                 warn=True,
@@ -1096,7 +1116,8 @@ class _Lowerer:
         elif lowered in RING_SOLIDS:
             self.note(
                 "substituted-geometry",
-                f"URDF has no {lowered}: written as the cylinder of its extents (the closest primitive)",
+                f"URDF has no {lowered}: written as the cylinder of its extents (the closest primitive); "
+                "its inertia is the solid torus's ([outer diameter, tube diameter, outer diameter])",
                 label,
                 gval.loc,
                 warn=True,
@@ -1124,6 +1145,8 @@ class _Lowerer:
                     gval.loc,
                     warn=True,
                 )
+            if true_kind in POLYHEDRA:
+                self._solids[obj.name] = (true_kind, max(scale) / 2.0, 0.0)
             return Sphere(radius=max(scale) / 2.0, src=gval.loc), None, gval.loc
         if lowered == "plane":
             self.note(
@@ -1151,19 +1174,52 @@ class _Lowerer:
         if lowered == "cone":
             self.note(
                 "cone-as-cylinder",
-                "robodesc has no cone shape: written as a cylinder of the same extents",
+                "URDF has no cone: written as a cylinder of the same extents; its inertia and centre of mass "
+                "are the cone's (apex up, as three.js draws it)",
                 label,
                 gval.loc,
                 warn=True,
             )
+        if lowered == "cone":
+            self._solids[obj.name] = ("cone", radius, sy)
+        elif true_kind in RING_SOLIDS:
+            tube = min(sy, radius) / 2.0
+            self._solids[obj.name] = ("torus", radius - tube, tube)
         if lowered == "capsule":
             if sy < 2 * radius:
                 raise self.fail(f"capsule height {sy:g} is less than its diameter {2 * radius:g}", label, gval.loc)
             return Capsule(radius=radius, length=sy - 2 * radius, src=gval.loc), up_rot, gval.loc
         return Cylinder(radius=radius, length=sy, src=gval.loc), up_rot, gval.loc
 
+    def _scale_from_dimensions(self, obj: _Obj) -> Vec3:
+        """``radius``/``height``/``length``/``size`` instead of ``scale`` (HoloScript's Isaac Lab examples)."""
+        label = obj.label
+        p = obj.props
+        if "size" in p:
+            size = p["size"]
+            if isinstance(size.data, float):
+                return (size.data, size.data, size.data)
+            return self.vec3(size, "size", label)
+        radius = self.num(p["radius"], "radius", label) if "radius" in p else None
+        height = None
+        for key in ("height", "length"):
+            if key in p:
+                height = self.num(p[key], key, label)
+                break
+        d = 2.0 * radius if radius is not None else (height or 1.0)
+        h = height if height is not None else d
+        self.note(
+            "dimensions-as-scale",
+            f"radius/height read as the scale [{d:g}, {h:g}, {d:g}] (diameter, height, diameter)",
+            label,
+            obj.block.loc,
+        )
+        return (d, h, d)
+
     def _scale(self, obj: _Obj) -> Vec3:
         label = obj.label
+        if "scale" not in obj.props and any(k in obj.props for k in ("radius", "height", "length", "size")):
+            return self._scale_from_dimensions(obj)
         if "scale" not in obj.props:
             if "geometry" in obj.props:
                 self.note(
