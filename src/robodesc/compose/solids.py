@@ -46,6 +46,7 @@ _PHI = (1.0 + math.sqrt(5.0)) / 2.0
 
 
 def _polyhedron_vertices(kind: str) -> np.ndarray:
+    v: list[tuple[float, float, float]]
     if kind == "tetrahedron":
         v = [(1, 1, 1), (1, -1, -1), (-1, 1, -1), (-1, -1, 1)]
     elif kind == "octahedron":
@@ -63,7 +64,8 @@ def _polyhedron_vertices(kind: str) -> np.ndarray:
     else:
         raise ValueError(kind)
     pts = np.asarray(v, dtype=float)
-    return pts / np.linalg.norm(pts, axis=1, keepdims=True)  # circumradius 1
+    unit: np.ndarray = pts / np.linalg.norm(pts, axis=1, keepdims=True)  # circumradius 1
+    return unit
 
 
 @functools.cache
