@@ -91,23 +91,26 @@ def measure(path: str, rel: str, compile_targets: bool) -> Outcome:
 
 
 def compile_all(path: str) -> dict[str, str]:
-    import robodesc
+    """Compile through the CLI, as a user would (validation on): ``ok`` is exit code 0."""
+    import contextlib
+    import io
+
+    from robodesc.cli import main as cli_main
 
     results: dict[str, str] = {}
-    opts = {"missing_mesh": "primitive"}
     with tempfile.TemporaryDirectory() as tmp:
-        calls = {
-            "urdf": lambda: robodesc.compile_to_urdf(path, os.path.join(tmp, "r.urdf"), **opts),
-            "sdf": lambda: robodesc.compile_to_sdf(path, os.path.join(tmp, "r.sdf"), **opts),
-            "usd": lambda: robodesc.compile_to_usd(path, os.path.join(tmp, "r.usda"), **opts),
-            "isaac": lambda: robodesc.compile_for_isaac_sim(path, os.path.join(tmp, "isaac"), **opts),
-        }
-        for target, call in calls.items():
-            try:
-                call()
-                results[target] = "ok"
-            except Exception as exc:
-                results[target] = f"{type(exc).__name__}: {str(exc).splitlines()[0][:80]}"
+        outputs = {"urdf": "r.urdf", "sdf": "r.sdf", "usd": "r.usda", "isaac": "isaac"}
+        for target, out in outputs.items():
+            args = ["compile", path, "-o", os.path.join(tmp, out), "--missing-mesh", "primitive", "-q"]
+            args += ["--isaac-sim"] if target == "isaac" else ["-t", target]
+            err = io.StringIO()
+            with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+                try:
+                    code = cli_main(args)
+                except SystemExit as exc:  # argparse
+                    code = int(exc.code or 0)
+            last = [line for line in err.getvalue().splitlines() if line.strip()]
+            results[target] = "ok" if code == 0 else f"exit {code}: {(last[-1] if last else '')[:80]}"
     return results
 
 

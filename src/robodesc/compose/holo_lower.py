@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from robodesc.compose import solids
-from robodesc.compose.builder import Part, RobotBuilder, joint_type
+from robodesc.compose.builder import JOINT_TYPES, Part, RobotBuilder, joint_type
 from robodesc.compose.colors import ColorError, parse_color
 from robodesc.compose.holo_parser import Block, Document, Expr, Trait, Value, parse
 from robodesc.compose.meshes import resolve_mesh
@@ -96,6 +96,8 @@ KNOWN_PROPS = frozenset(
         "armature",
         "static",
         "fixed",
+        "mesh",
+        "rigidbody",
     }
 )
 KNOWN_TRAITS = frozenset(
@@ -236,6 +238,8 @@ class _Lowerer:
         self.joint_decls: list[tuple[Block, str | None]] = []
         # Objects drawn as a stand-in primitive whose inertia is another shape's: (kind, a, b).
         self._solids: dict[str, tuple[str, float, float]] = {}
+        # Empty links standing for bodies the file names but does not declare.
+        self._synthetic: set[str] = set()
         self.up = np.eye(4)
         self.y_up = False
         self.gravity: Vec3 | None = None
@@ -432,6 +436,7 @@ class _Lowerer:
                 props, traits = _drop_template_mass(props, traits, block)
             mine = {b.name for b in behaviors}
             behaviors = [b for b in template.children if b.kind == "behavior" and b.name not in mine] + behaviors
+        self._normalize_shape_and_mass(block, props, label)
         if "position" not in props and "joint_origin" in props:
             props["position"] = props["joint_origin"]
             self.note(
@@ -444,6 +449,50 @@ class _Lowerer:
         obj = _Obj(name, block, props, traits, behaviors, frame @ local, enclosing, len(self.objects))
         self.objects[name] = obj
         return obj
+
+    def _normalize_shape_and_mass(self, block: Block, props: dict[str, Value], label: str) -> None:
+        """Other spellings of shape and mass: ``mesh: { type: "cube", width, height, depth }`` or
+        ``mesh: "file.glb"`` for ``geometry``; ``rigidbody: { mass }`` (or a ``rigidbody { }`` block)
+        for ``mass``. Each reading is an info finding."""
+        mesh = props.get("mesh")
+        if "geometry" not in props and mesh is not None:
+            if isinstance(mesh.data, str):
+                props["geometry"] = mesh
+                self.note("mesh-as-geometry", "mesh read as the geometry", label, mesh.loc)
+            elif isinstance(mesh.data, dict) and isinstance(mesh.data.get("type", Value(None, mesh.loc)).data, str):
+                d = mesh.data
+                props["geometry"] = d["type"]
+                if "scale" not in props:
+                    dims = {k: d[k] for k in ("width", "height", "depth", "radius", "size") if k in d}
+                    if "radius" in dims:
+                        r = self.num(dims["radius"], "mesh.radius", label)
+                        h = self.num(dims["height"], "mesh.height", label) if "height" in dims else 2 * r
+                        props["scale"] = Value(
+                            [Value(2 * r, mesh.loc), Value(h, mesh.loc), Value(2 * r, mesh.loc)], mesh.loc
+                        )
+                    elif "size" in dims:
+                        props["scale"] = dims["size"]
+                    elif dims:
+                        w, h, dp = (
+                            self.num(dims[k], f"mesh.{k}", label) if k in dims else 1.0
+                            for k in ("width", "height", "depth")
+                        )
+                        props["scale"] = Value([Value(w, mesh.loc), Value(h, mesh.loc), Value(dp, mesh.loc)], mesh.loc)
+                self.note(
+                    "mesh-as-geometry",
+                    "mesh { type, width, height, depth } read as the geometry and its scale",
+                    label,
+                    mesh.loc,
+                )
+        if _trait_or_prop_mass(block) is None and "mass" not in props:
+            rb = props.get("rigidbody")
+            rb_props = rb.data if rb is not None and isinstance(rb.data, dict) else None
+            if rb_props is None:
+                child = next((c for c in block.children if c.kind == "rigidbody"), None)
+                rb_props = child.props if child is not None else None
+            if rb_props is not None and "mass" in rb_props:
+                props["mass"] = rb_props["mass"]
+                self.note("rigidbody-mass", "rigidbody mass read as the object's mass", label, rb_props["mass"].loc)
 
     def _note_overrides(self, template: Block, block: Block, label: str) -> None:
         """Template values are defaults: say which the object overrides (an info finding)."""
@@ -504,7 +553,15 @@ class _Lowerer:
             elif key in props:
                 xyz = self.vec3(props[key], key, label)
         rpy: Vec3 = (0.0, 0.0, 0.0)
-        if "rotation" in props:
+        if "rotation" in props and not isinstance(props["rotation"].data, (list, dict)):
+            self.note(
+                "ignored-property",
+                f"rotation {_describe(props['rotation'])} is no [roll, pitch, yaw]: no rotation is applied",
+                label,
+                props["rotation"].loc,
+                warn=True,
+            )
+        elif "rotation" in props:
             deg = self.vec3(props["rotation"], "rotation", label)
             if sum(1 for d in deg if d != 0) > 1:
                 self.note(
@@ -577,15 +634,16 @@ class _Lowerer:
             previous_child = child
         return specs
 
-    def _empty_link(self, name: str, parent: str | None, block: Block, why: str) -> None:
+    def _empty_link(self, name: str, parent: str | None, block: Block, why: str, *, place: bool = True) -> None:
         world = self.objects[parent].world if parent in self.objects else self.up
-        if "position" in block.props or "origin" in block.props:
+        if place and ("position" in block.props or "origin" in block.props):
             world = world @ self._pose_matrix(block.props, f"joint {block.name!r}", ("origin", "position"))
         self.objects[name] = _Obj(name, block, {}, [], [], world, parent, len(self.objects))
+        self._synthetic.add(name)
         self.note(
             "empty-link",
             f"{why}: a link {name!r} without shape or mass stands for it",
-            f"joint {block.name!r}",
+            f"joint {block.name!r}" if block.kind in JOINT_KINDS else f"object {block.name!r}",
             block.loc,
             warn=True,
         )
@@ -624,8 +682,20 @@ class _Lowerer:
                 comp.loc,
             )
         referenced = {s.parent for s in joints.values() if s.parent is not None}
-        for spec_owner, spec in joints.items():
-            if spec.parent is not None and spec.parent not in self.objects:
+        for spec_owner, spec in list(joints.items()):
+            real = [n for n in self.objects if n not in self._synthetic]
+            if spec.parent is not None and spec.parent not in self.objects and not _suggest(spec.parent, real):
+                # No object of that name, nor one close to it: the body is declared elsewhere (an
+                # import, a part of the scene HoloScript resolves at run time). An empty link stands for it.
+                owner = self.objects[spec_owner]
+                self._empty_link(
+                    spec.parent,
+                    None,
+                    owner.block,
+                    f"{spec.notation} of object {spec_owner!r} names parent {spec.parent!r}, which is no object of this file",
+                    place=False,
+                )
+            elif spec.parent is not None and spec.parent not in self.objects:
                 raise BrokenReferenceError(
                     f"{spec.notation} parent {spec.parent!r} is not an object of this composition"
                     f"{_suggest(spec.parent, self.objects)}",
@@ -714,6 +784,8 @@ class _Lowerer:
                 how = (
                     "the object it is declared in"
                     if obj.enclosing == parent
+                    else "the base (it stands for a body declared elsewhere)"
+                    if obj.name in self._synthetic
                     else "the most recent robot object declared before it"
                 )
                 self.note(
@@ -758,6 +830,10 @@ class _Lowerer:
     def _inferred_parent(self, obj: _Obj, before: list[str], root: _Obj) -> str:
         if obj.enclosing is not None and obj.enclosing in before:
             return obj.enclosing
+        if obj.name in self._synthetic:
+            # A stand-in for a body declared elsewhere: the base holds it (a chain through the
+            # objects declared before it could close a loop through its own children).
+            return root.name
         return before[-1] if before else root.name
 
     # ---- joints ------------------------------------------------------------------------------
@@ -861,7 +937,20 @@ class _Lowerer:
 
     def _joint(self, builder: RobotBuilder, obj: _Obj, spec: _JointSpec, parent: str, name: str) -> None:
         label = obj.label
-        jtype = joint_type(spec.type, label, spec.type_loc)
+        key = spec.type.strip().lower()
+        if key not in JOINT_TYPES and not _suggest(key, JOINT_TYPES):
+            # spring, d6, distance ...: physics constraints with no URDF joint. HoloScript's own
+            # compiler writes them as fixed without a word; robodesc does the same, and says so.
+            self.note(
+                "unsupported-joint-type",
+                f"joint type {spec.type!r} has no URDF/SDF/USD equivalent: written as a fixed joint; its "
+                "other parameters are dropped",
+                label,
+                spec.type_loc,
+                warn=True,
+            )
+            key = "fixed"
+        jtype = joint_type(key, label, spec.type_loc)
         p = spec.params
         angular = jtype in (JointType.REVOLUTE, JointType.CONTINUOUS)
         # Revolute limits, offsets and soft limits are degrees in HoloScript; prismatic ones metres.
@@ -1058,6 +1147,16 @@ class _Lowerer:
         else:
             self.note("no-geometry", "object has no geometry: a link without visuals", label, obj.block.loc)
         mass, inertia = self._mass(obj)
+        if geom is None and inertia is None and mass is not None:
+            self.note(
+                "mass-without-shape",
+                f"mass {mass:g} kg without a shape or an inertia tensor: no inertia can be computed, the link gets "
+                "no inertial",
+                label,
+                obj.block.loc,
+                warn=True,
+            )
+            mass = None
         com: Pose | None = None
         solid = self._solids.get(obj.name)
         if solid is not None and mass is not None and inertia is None:
