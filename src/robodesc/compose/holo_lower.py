@@ -42,6 +42,8 @@ from robodesc.ir.model import CameraSpec, JointType, RayAxis, RaySpec, Robot, Sa
 from robodesc.ir.transforms import Mat, matrix_pose, pose_matrix
 
 STAGE = "compose:holo"
+# HoloScript's URDF compiler gives every body without a mass this many kilograms.
+HOLOSCRIPT_DEFAULT_MASS = 1.0
 
 MESH_SUFFIXES = (".stl", ".obj", ".dae", ".glb", ".gltf", ".fbx", ".ply", ".usd", ".usda", ".usdc", ".usdz", ".3ds")
 PRIMITIVES = ("box", "cube", "sphere", "cylinder", "cone", "capsule", "plane")
@@ -770,9 +772,9 @@ class _Lowerer:
             fixed_base=self._fixed_base(root),
         )
         body_names = [b.name for b in bodies]
-        for obj in bodies:
-            self._link(builder, obj)
         used_joint_names: set[str] = set()
+        parent_of: dict[str, str] = {}
+        movable: set[str] = set()
         for i, obj in enumerate(bodies):
             if obj is root:
                 continue
@@ -806,10 +808,15 @@ class _Lowerer:
                     raise self.fail("@actuator on an object without a joint", obj.label, actuator.loc)
                 jname = _unique(f"{parent}_to_{obj.name}", used_joint_names)
                 builder.joint(jname, JointType.FIXED, parent, obj.name, src=obj.block.loc)
+                parent_of[obj.name] = parent
             else:
                 jname = _unique(spec.name or f"{obj.name}_joint", used_joint_names)
-                self._joint(builder, obj, spec, parent, jname)
+                if self._joint(builder, obj, spec, parent, jname) is not JointType.FIXED:
+                    movable.add(obj.name)
+                parent_of[obj.name] = parent
             used_joint_names.add(jname)
+        for obj in bodies:
+            self._link(builder, obj, moves=_moves(obj.name, parent_of, movable))
         for obj in bodies:
             self._sensors(builder, obj)
         robot = builder.build()
@@ -935,7 +942,7 @@ class _Lowerer:
             )
         return specs[0] if specs else None
 
-    def _joint(self, builder: RobotBuilder, obj: _Obj, spec: _JointSpec, parent: str, name: str) -> None:
+    def _joint(self, builder: RobotBuilder, obj: _Obj, spec: _JointSpec, parent: str, name: str) -> JointType:
         label = obj.label
         key = spec.type.strip().lower()
         if key not in JOINT_TYPES and not _suggest(key, JOINT_TYPES):
@@ -1125,9 +1132,10 @@ class _Lowerer:
                 name=self.string(a["name"], "@actuator.name", label) if "name" in a else None,
                 src=act.loc,
             )
+        return jtype
 
     # ---- links -------------------------------------------------------------------------------
-    def _link(self, builder: RobotBuilder, obj: _Obj) -> None:
+    def _link(self, builder: RobotBuilder, obj: _Obj, *, moves: bool = False) -> None:
         label = obj.label
         geom, origin, geom_loc = self._geometry(obj)
         parts: list[Part] = []
@@ -1170,6 +1178,20 @@ class _Lowerer:
             )
             inertia = Inertia(*props.inertia, src=geom_loc)
             com = matrix_pose(pose_matrix(origin or Pose()) @ pose_matrix(Pose(xyz=(0.0, 0.0, props.com_z))))
+        if mass is None and moves:
+            # A body that moves needs a mass in every simulator. HoloScript's own URDF compiler gives
+            # 1 kg (and, without a shape, the inertia of a 1 m cube); robodesc does the same, and says so.
+            mass = HOLOSCRIPT_DEFAULT_MASS
+            if geom is None:
+                inertia = Inertia(mass / 6.0, mass / 6.0, mass / 6.0, src=obj.block.loc)
+            self.note(
+                "default-mass",
+                f"moving object has no mass: {mass:g} kg, HoloScript's default"
+                + (", with the inertia of a 1 m cube (it has no shape)" if geom is None else ""),
+                label,
+                obj.block.loc,
+                warn=True,
+            )
         if mass is None:
             self.note(
                 "no-mass",
@@ -1612,6 +1634,17 @@ def _merge_traits(base: list[Trait], over: list[Trait]) -> list[Trait]:
     done = {t.name for t in base}
     out += [t for t in over if t.name == "sensor" or t.name not in done]
     return out
+
+
+def _moves(name: str, parent_of: dict[str, str], movable: set[str]) -> bool:
+    """Whether a movable joint lies between the base and ``name``."""
+    seen: set[str] = set()
+    while name in parent_of and name not in seen:
+        if name in movable:
+            return True
+        seen.add(name)
+        name = parent_of[name]
+    return False
 
 
 def _looks_like_radians(lower: float, upper: float) -> bool:
