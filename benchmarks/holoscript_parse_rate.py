@@ -36,7 +36,7 @@ from robodesc.ir.diagnostics import Findings, RobodescError
 from robodesc.ir.model import JointType
 
 JOINT_RE = re.compile(
-    r"@joint\w*|behavior\s+[\"']\w*Joint[\"']|^\s*joint\s+[\"'\w]|\bjoint_(type|parent)\s*:",
+    r"@joint\w*|behavior\s+[\"']\w*Joint[\"']|^\s*joints?\s+[\"'\w{]|\bjoint_(type|parent)\s*:",
     re.M,
 )
 MARK = "<!-- holoscript-parse-rate -->"

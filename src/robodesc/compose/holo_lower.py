@@ -381,6 +381,8 @@ class _Lowerer:
                         self.note("ignored-property", f"property {key!r} ignored", label, block.prop_locs[key])
                 local = self._pose_matrix(block.props, label, position_keys=("origin", "position"))
                 inner = (*scope, block.name) if block.name else scope
+                if block.kind == "robot":
+                    self._robot_block(block)
                 self._walk(block.children, frame @ local, enclosing, inner)
             elif block.kind in JOINT_KINDS:
                 self.joint_decls.append((block, enclosing))
@@ -389,6 +391,24 @@ class _Lowerer:
             elif block.kind not in ("template", "environment"):
                 what = f"'{block.kind}' block" + (f" {block.name!r}" if block.name else "")
                 self.note("ignored-block", f"{what} ignored: it is not part of a robot description", loc=block.loc)
+
+    def _robot_block(self, block: Block) -> None:
+        """``robot NAME { base_link { mass } joints { hip { type, axis, limits } } }`` (the robotics
+        plugin's Isaac Lab bridge): an unnamed block is a link named by its keyword, and each block
+        inside ``joints`` a joint named by its keyword."""
+        for child in block.children:
+            if child.name is not None or child.kind in (*OBJECT_KINDS, *GROUP_KINDS, *JOINT_KINDS, "template"):
+                continue
+            if child.kind == "joints":
+                for j in child.children:
+                    j.name, j.kind = j.kind, "joint"
+                    j.name_loc = j.loc
+                child.kind = "group"
+                self.note("robot-joints", "each block in 'joints' read as a joint named by its keyword", loc=child.loc)
+            else:
+                child.name, child.kind = child.kind, "link"
+                child.name_loc = child.loc
+                self.note("robot-link", f"block '{child.name}' read as a link of that name", loc=child.loc)
 
     def _object(self, block: Block, frame: Mat, enclosing: str | None, scope: tuple[str, ...]) -> _Obj:
         name = block.name or block.kind
