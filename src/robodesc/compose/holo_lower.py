@@ -843,12 +843,19 @@ class _Lowerer:
         return HoloResult(robot, props, self.findings, self.gravity)
 
     def _is_static(self, obj: _Obj) -> bool:
+        """``@physics { type: "static" }``, or the ``@static`` trait / ``static: true`` / ``fixed: true``."""
+        if obj.trait("static") is not None:
+            return True
+        if any(obj.props.get(k) is not None and obj.props[k].data is True for k in ("static", "fixed")):
+            return True
         t = obj.trait("physics")
         if t is None or "type" not in t.params:
             return False
         return t.params["type"].data == "static"
 
     def _fixed_base(self, root: _Obj) -> bool | None:
+        if self._is_static(root):
+            return True
         t = root.trait("physics")
         if t is None or "type" not in t.params:
             return None
