@@ -29,11 +29,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from robodesc.compose import solids
 from robodesc.compose.builder import JOINT_TYPES, Part, RobotBuilder, joint_type
 from robodesc.compose.colors import ColorError, parse_color
 from robodesc.compose.holo_parser import Block, Document, Expr, Trait, Value, parse
 from robodesc.compose.meshes import resolve_mesh
+from robodesc.compose.solids import POLYHEDRA, cone, polyhedron, torus
 from robodesc.frontends.options import LoadOptions, MissingMesh
 from robodesc.frontends.packages import PackageResolver
 from robodesc.ir.diagnostics import BrokenReferenceError, Findings, ParseError, SourceLoc
@@ -48,7 +48,6 @@ HOLOSCRIPT_DEFAULT_MASS = 1.0
 MESH_SUFFIXES = (".stl", ".obj", ".dae", ".glb", ".gltf", ".fbx", ".ply", ".usd", ".usda", ".usdc", ".usdz", ".3ds")
 PRIMITIVES = ("box", "cube", "sphere", "cylinder", "cone", "capsule", "plane")
 # HoloScript shapes URDF lacks, and the primitive each is written as (with a finding).
-POLYHEDRA = solids.POLYHEDRA
 ROUND_SOLIDS = ("dodecahedron", "icosahedron", "octahedron", "tetrahedron", "icosphere", "geodesic")
 RING_SOLIDS = ("torus", "ring", "disc", "disk", "tube")
 # Primitive shapes HoloScript declares as blocks (`sphere "Ball" { }`), from its PRIMITIVE_SHAPES.
@@ -1197,11 +1196,11 @@ class _Lowerer:
         if solid is not None and mass is not None and inertia is None:
             kind, a, b = solid
             props = (
-                solids.cone(mass, a, b)
+                cone(mass, a, b)
                 if kind == "cone"
-                else solids.torus(mass, a, b)
+                else torus(mass, a, b)
                 if kind == "torus"
-                else solids.polyhedron(kind, mass, a)
+                else polyhedron(kind, mass, a)
             )
             inertia = Inertia(*props.inertia, src=geom_loc)
             com = matrix_pose(pose_matrix(origin or Pose()) @ pose_matrix(Pose(xyz=(0.0, 0.0, props.com_z))))
