@@ -269,8 +269,7 @@ DECLARED = {
     # two hinges; the third joint is a "spring" (no URDF equivalent: fixed, reported)
     "examples/showcase/realistic-forest.refreshed.holo": 2,
 }
-# Compiles that fail validation for a reason outside the .holo frontend (see the report in docs).
-KNOWN_TARGET_FAILURES = {("examples/showcase/realistic-forest.refreshed.holo", "usd")}
+
 
 
 @pytest.mark.skipif(REPO is None, reason="set ROBODESC_HOLOSCRIPT_REPO to a HoloScript checkout")
@@ -289,10 +288,7 @@ def test_holoscript_checkout(rel: str, tmp_path: Path) -> None:
     for target, out in (("urdf", "r.urdf"), ("sdf", "r.sdf"), ("usd", "r.usda"), ("isaac", "isaac")):
         args = ["compile", path, "-o", str(tmp_path / out), "--missing-mesh", "primitive", "-q"]
         args += ["--isaac-sim"] if target == "isaac" else ["-t", target]
-        code = main(args)
-        if (rel, target) in KNOWN_TARGET_FAILURES:
-            continue
-        assert code == 0, (rel, target)
+        assert main(args) == 0, (rel, target)
 
 
 # ---- shapes URDF lacks: the closest primitive, the true shape's inertia ----------------------

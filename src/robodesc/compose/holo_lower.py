@@ -760,11 +760,20 @@ class _Lowerer:
         if not bodies:
             raise self.fail("the composition has no robot objects (only props)", f"composition {name!r}", comp.loc)
         if root is None:
-            candidates = [b for b in bodies if b.name not in joints]
+            # The root of the joint tree the author wrote: the first object a joint hangs from that
+            # hangs from nothing itself (a scene's first object may be its sky); else the first
+            # object without a joint.
+            hubs = [b for b in bodies if b.name not in joints and b.name in referenced]
+            candidates = hubs or [b for b in bodies if b.name not in joints]
             root = candidates[0] if candidates else bodies[0]
+            how = (
+                "the first object a joint names as its parent and that has no joint itself"
+                if hubs
+                else ("the first object without a joint")
+            )
             self.note(
                 "inferred-base",
-                'no @physics { type: "static" } object: the first object without a joint is the base, and it floats',
+                f'no static object (@physics {{ type: "static" }}, @static): {how} is the base, and it floats',
                 root.label,
                 root.block.loc,
                 warn=True,
