@@ -271,7 +271,6 @@ DECLARED = {
 }
 
 
-
 @pytest.mark.skipif(REPO is None, reason="set ROBODESC_HOLOSCRIPT_REPO to a HoloScript checkout")
 @pytest.mark.parametrize("rel", sorted(DECLARED))
 def test_holoscript_checkout(rel: str, tmp_path: Path) -> None:
