@@ -1,14 +1,20 @@
-"""Lower a HoloScript ``.holo`` robot composition to the IR.
+"""Lower a HoloScript ``.holo`` composition (the syntax tree of holo_parser) to the IR.
 
-The rules (docs/compositions.md has the full list, each inference is reported as a finding):
+The rules (docs/compositions.md has the full list; every inference is reported as a finding):
+- Only what describes a robot is read: objects (``object``, ``orb``, ``entity``, shape blocks ...)
+  anywhere in ``composition``/``scene``/group blocks and nested in each other, templates, joint
+  blocks, the environment's gravity. Every other block is skipped with an info finding. A
+  composition in which nothing declares a joint holds no robot, and is refused saying so.
 - Positions are world positions of the composition (metres), rotations roll-pitch-yaw in degrees;
   every link frame sits at its object's world pose, visuals at the link origin, and joint origins
   are the relative transforms between the world poses.
-- The base is the ``@physics { type: "static" }`` object (else the first object; it then floats).
-- An object with a joint (``@joint``, a ``behavior "RevoluteJoint"`` block, or ``joint_type``)
-  hangs from its ``connectedBody``/``parent``; an object without one is fixed to its enclosing
-  object, else to the most recent robot object declared before it.
-- ``@grabbable`` objects, and static objects nothing connects to, are props, not links.
+- Joints in every spelling HoloScript uses: ``@joint { }`` / ``@joint(...)``, ``@joint_revolute``
+  & co. with ``joint_*`` properties, ``behavior "RevoluteJoint"``, ``joint_type``/``parent``,
+  ``joint "Name" { parent, child }`` blocks and ``robot { joints { } }``. Angles are degrees.
+- The base is the first static object (else the root of the joint tree; it then floats). An object
+  without a joint is fixed to its enclosing object, else to the most recent robot object before it.
+- Templates are defaults the object overrides; a name used twice gets a unique link name.
+- ``@grabbable`` objects without a joint, and static objects nothing connects to, are props.
 
 >>> result = load_holo_text('''composition "Pendulum" {
 ...   object "Base" { @physics { type: "static" mass: 1 } geometry: "box" scale: 0.1 position: [0, 0, 1] }
