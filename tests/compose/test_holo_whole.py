@@ -271,13 +271,81 @@ DECLARED = {
 }
 
 
+R, P = JointType.REVOLUTE, JointType.PRISMATIC
+X, Y, Z = (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)
+PI = 3.14159  # as the examples write it (read in degrees, as HoloScript's unit says; reported)
+
+# The joints as written in each example (type, axis in the object's frame, limits in degrees for
+# revolute and metres for prismatic), read off the files by hand.
+WRITTEN: dict[str, dict[str, tuple[JointType, tuple[float, float, float], float, float]]] = {
+    "benchmarks/cross-compilation/compositions/15-robotics.holo": {
+        "J1_joint": (R, Y, -PI, PI),  # behavior: { axis } over the template's behavior block
+        "J2_joint": (R, X, -PI, PI),
+    },
+    "benchmarks/scenarios/03-robotics-sim/robotics-sim.holo": {
+        "Shoulder_joint": (R, Y, -180, 180),
+        "UpperArm_joint": (R, Z, -90, 90),
+        "Forearm_joint": (R, Z, -135, 135),
+        "Wrist_joint": (R, Y, -180, 180),
+        "WristPitch_joint": (R, Z, -90, 90),
+        "Gripper_joint": (R, Y, -180, 180),
+    },
+    "examples/domain-starters/robotics/robotics-starter.holo": {
+        "J1_joint": (R, Y, -PI, PI),
+        "J2_joint": (R, X, -1.5708, 1.5708),
+        "J3_joint": (R, X, -2.3562, 0),
+    },
+    "examples/robotics/isaac-sim-robot-arm.holo": {
+        "ShoulderJoint_joint": (R, Z, -180, 180),
+        "ElbowJoint_joint": (R, Y, -135, 135),
+    },
+    "examples/robotics/two-dof-robot-arm.holo": {
+        "ShoulderJoint_joint": (R, Z, -180, 180),
+        "ElbowJoint_joint": (R, Y, -135, 135),
+    },
+    "examples/showcase/multi-domain.holo": {
+        "ShoulderYaw": (R, Y, -170, 170),
+        "ShoulderPitch": (R, Z, -90, 90),
+        "ElbowFlex": (R, Z, 0, 150),
+    },
+    "examples/specialized/robotics/robot-arm-simulation.holo": {
+        "Shoulder_joint": (R, Y, -PI, PI),
+        "Elbow_joint": (R, X, -PI, 0),
+        "Wrist_joint": (R, X, -PI, PI),
+        "Wrist2_joint": (R, Y, -PI, PI),
+        "Wrist3_joint": (R, Z, -6.28318, 6.28318),
+        "GripperFinger1_joint": (P, X, -0.05, 0.05),
+        "GripperFinger2_joint": (P, (-1.0, 0.0, 0.0), -0.05, 0.05),
+    },
+    "packages/plugins/robotics-plugin/examples/isaac-lab-sim-to-real.holo": {
+        "joint1_joint": (R, Z, -3.14, 3.14),
+        "joint2_joint": (R, Y, -1.57, 1.57),
+        # link1's @joint_revolute writes neither axis nor limits: continuous about +x, reported.
+    },
+    "packages/plugins/robotics-plugin/examples/isaac-lab-sim-to-real-bridge.holo": {
+        "FL_hip": (R, Y, -1.57, 1.57),
+        "FL_knee": (R, X, -2.5, 2.5),
+    },
+    "examples/showcase/realistic-forest.refreshed.holo": {
+        "BridgePlank1_joint": (R, X, -15, 15),
+        "BridgePlank2_joint": (R, X, -15, 15),
+    },
+}
+
+
 @pytest.mark.skipif(REPO is None, reason="set ROBODESC_HOLOSCRIPT_REPO to a HoloScript checkout")
 @pytest.mark.parametrize("rel", sorted(DECLARED))
 def test_holoscript_checkout(rel: str, tmp_path: Path) -> None:
     assert REPO is not None
     path = os.path.join(REPO, rel)
     result = load_holo(path, LoadOptions(missing_mesh=MissingMesh.PRIMITIVE), Findings())
-    assert len(movable(result.robot)) == DECLARED[rel]
+    got = movable(result.robot)
+    assert len(got) == DECLARED[rel]
+    for joint, (jtype, axis, lower, upper) in WRITTEN[rel].items():
+        k = math.pi / 180 if jtype is R else 1.0
+        assert got[joint][0] is jtype, joint
+        assert got[joint][1] == pytest.approx(axis), joint
+        assert (got[joint][2], got[joint][3]) == pytest.approx((lower * k, upper * k)), joint
     for j in result.robot.joints:
         if j.type in (JointType.REVOLUTE, JointType.PRISMATIC):
             assert j.axis is not None and j.limit is not None and j.limit.lower is not None

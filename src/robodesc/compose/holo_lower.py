@@ -105,6 +105,7 @@ KNOWN_PROPS = frozenset(
         "fixed",
         "mesh",
         "rigidbody",
+        "behavior",
     }
 )
 KNOWN_TRAITS = frozenset(
@@ -931,18 +932,31 @@ class _Lowerer:
                     name=self._text(obj.props.get("joint_name"), "joint_name", label),
                 )
             )
+        joint_behaviors = [b for b in obj.behaviors if b.name in BEHAVIOR_JOINTS]
+        override = obj.props.get("behavior")
         for b in obj.behaviors:
             if b.name not in BEHAVIOR_JOINTS:
                 self.note("ignored-behavior", f"behavior {b.name!r} ignored", label, b.loc)
                 continue
-            parent = b.props.get("connectedBody") or b.props.get("parent") or obj.props.get("parent")
+            params = b.props
+            if override is not None and isinstance(override.data, dict) and len(joint_behaviors) == 1:
+                # `behavior: { axis: [0, 1, 0] }` on an object using a template whose behavior block
+                # is the joint: the object's values win, key by key, as template values do.
+                params = {**b.props, **override.data}
+                self.note(
+                    "template-override",
+                    f"behavior: {{ {', '.join(override.data)} }} overrides behavior {b.name!r} of its template",
+                    label,
+                    override.loc,
+                )
+            parent = params.get("connectedBody") or params.get("parent") or obj.props.get("parent")
             specs.append(
                 _JointSpec(
                     type=BEHAVIOR_JOINTS[b.name],
                     type_loc=b.name_loc,
                     parent=self._text(parent, "parent", label),
                     parent_loc=None if parent is None else parent.loc,
-                    params=b.props,
+                    params=params,
                     loc=b.loc,
                     notation=f'behavior "{b.name}"',
                 )
