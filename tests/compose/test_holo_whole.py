@@ -245,6 +245,12 @@ def test_deep_nesting_is_one_clear_error() -> None:
     blocks = 'object "A" { ' * 100_000 + "}" * 100_000
     with pytest.raises(ParseError, match="nesting deeper than"):
         parse(blocks, "deep.holo")
+    # Prefix operators, arrow functions and conditionals nest too: read in a loop or counted.
+    for value in ("- " * 100_000 + "1", "!" * 100_000 + "x", "new " * 100_000 + "x"):
+        assert isinstance(parse('object "A" { x: ' + value + " }", "deep.holo").body.children[0].props["x"].data, Expr)
+    for value in ("x => " * 100_000 + "1", "a ? " * 100_000 + "1"):
+        with pytest.raises(ParseError, match="nesting deeper than"):
+            parse('object "A" { x: ' + value + " }", "deep.holo")
     # Braces that are not entries are code: skipped by iterative bracket matching, no recursion.
     braces = "{" * 100_000 + "}" * 100_000
     doc = parse('object "A" { x: ' + braces + " }", "deep.holo")

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 from robodesc.compose.holo_lexer import Kind, Token, tokenize
 from robodesc.ir.diagnostics import ParseError, SourceLoc
 
-MAX_DEPTH = 200
+MAX_DEPTH = 100
 
 # Blocks whose body is code (statements), not declarations: HoloScript parses them as statements
 # or skips them; robodesc skips them.
@@ -150,6 +150,7 @@ class _Parser:
         self.pos = 0
         self.file = file
         self.depth = 0
+        self.deepest = 0
         self.skipped: list[Skipped] = []
         self.duplicates: list[tuple[str, SourceLoc]] = []
         self.stray: list[tuple[str, SourceLoc]] = []
@@ -186,8 +187,9 @@ class _Parser:
 
     def enter(self, tok: Token) -> None:
         self.depth += 1
+        self.deepest = max(self.deepest, self.depth)
         if self.depth > MAX_DEPTH:
-            raise self.error(f"nesting deeper than {MAX_DEPTH} levels (blocks, lists or objects)", tok)
+            raise self.error(f"nesting deeper than {MAX_DEPTH} levels (blocks, values, lists or objects)", tok)
 
     def leave(self) -> None:
         self.depth -= 1
@@ -420,6 +422,8 @@ class _Parser:
 
     # ---- values ----------------------------------------------------------------------------
     def value(self) -> Value:
+        # Values nest through lists, objects, arrow functions and conditionals: count them all.
+        self.enter(self.tok)
         start = self.pos
         first = self.tok
         loc = self.loc(first)
@@ -448,6 +452,7 @@ class _Parser:
             else:
                 self.unary()
             value = Value(Expr(self._text(start)), loc)
+        self.leave()
         return value
 
     def unary(self) -> Value:
@@ -457,12 +462,22 @@ class _Parser:
             self.take()
             number = self.number(-1.0 if t.text == "-" else 1.0)
             return self.postfix(Value(number, loc), self.pos - 2)
-        if t.kind is Kind.OP and t.text in ("-", "+", "!", "~", "..."):
-            start = self.pos
+        start = self.pos
+        prefixed = False
+        # Prefix operators and keywords (`- x`, `!!x`, `new f()`, `await g()`), read in a loop.
+        while (self.tok.kind is Kind.OP and self.tok.text in ("-", "+", "!", "~", "...")) or (
+            self.tok.kind is Kind.IDENT
+            and self.tok.text in ("new", "await", "typeof")
+            and not self.peek().newline_before
+            and self.peek().kind in (Kind.IDENT, Kind.PUNCT, Kind.OP, Kind.NUMBER, Kind.STRING)
+            and not (self.peek().kind is Kind.PUNCT and self.peek().text in _VALUE_STOP)
+        ):
             self.take()
-            self.unary()
+            prefixed = True
+        inner = self.primary()
+        if prefixed:
             return Value(Expr(self._text(start)), loc)
-        return self.primary()
+        return inner
 
     def primary(self) -> Value:
         t = self.tok
@@ -481,17 +496,14 @@ class _Parser:
                 return Value(False, loc)
             if t.text in ("null", "undefined", "none"):
                 return Value(None, loc)
-            if t.text in ("function", "new", "await", "typeof") and not self.tok.newline_before:
-                if t.text == "function":
-                    while not self.is_punct("{") and self.tok.kind is not Kind.EOF and not self.is_punct("}"):
-                        if self.tok.kind is Kind.PUNCT and self.tok.text in "([":
-                            self.skip_balanced()
-                        else:
-                            self.take()
-                    if self.is_punct("{"):
+            if t.text == "function" and not self.tok.newline_before:
+                while not self.is_punct("{") and self.tok.kind is not Kind.EOF and not self.is_punct("}"):
+                    if self.tok.kind is Kind.PUNCT and self.tok.text in "([":
                         self.skip_balanced()
-                    return Value(Expr(self._text(start)), loc)
-                self.unary()
+                    else:
+                        self.take()
+                if self.is_punct("{"):
+                    self.skip_balanced()
                 return Value(Expr(self._text(start)), loc)
             return self.postfix(Value(t.text, loc, bare=True), start)
         if self.is_punct("@"):
