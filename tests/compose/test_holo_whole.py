@@ -407,3 +407,29 @@ def test_torus_and_polyhedron_inertia() -> None:
     # a solid regular octahedron of circumradius a: I = m a² / 5
     assert gem.inertia.ixx == pytest.approx(1.0 * 0.1**2 / 5)
     assert [f.code for f in result.findings].count("substituted-geometry") == 2
+
+
+def test_lexer_constructs_from_holoscript_examples() -> None:
+    text = """# a comment line, as some examples write them
+composition "Lex" {
+  @2d_canvas(title: "x")
+  note: 'spans
+two lines'
+  shader: '''code with 'quotes' and { braces'''
+  tint: #1a2b3c
+  angle: 15°
+  big: 1e-3
+  mask: 0xff
+  when: a /* a comment
+  over lines */ size: 2
+}"""
+    comp = parse(text, "t.holo").body.children[0]
+    props = {k: v.data for k, v in comp.props.items()}
+    assert [t.name for t in comp.traits] == ["2d_canvas"]
+    assert props["note"] == "spans\ntwo lines"
+    assert props["shader"] == "code with 'quotes' and { braces"
+    assert props["tint"] == "#1a2b3c"
+    assert props["angle"] == Expr("15 °")
+    assert props["big"] == pytest.approx(1e-3) and props["mask"] == 255.0
+    assert props["when"] == "a" and props["size"] == 2.0
+    assert comp.prop_locs["size"].line == 12 and comp.prop_locs["size"].column == 17

@@ -136,6 +136,8 @@ def tokenize(text: str, file: str) -> list[Token]:
             end = text.find("*/", i + 2)
             if end < 0:
                 raise ParseError("unterminated /* comment", loc=SourceLoc(file, *start))
+            if "\n" in text[i:end]:
+                newline = True  # a comment over several lines ends the line as a line break does
             advance(end + 2 - i)
             continue
         if ch == "#" and newline and (i + 1 >= n or text[i + 1] in " \t\r\n#!"):
