@@ -180,14 +180,18 @@ def test_y_up_composition_is_rotated_to_z_up() -> None:
 
 def test_mass_contradiction_is_an_error() -> None:
     with pytest.raises(ParseError, match=r"^t\.holo:2:69: object 'A': physics\.mass 3 contradicts @physics\.mass 2"):
-        load('composition "C" {\n  object "A" { @physics { type: "static" mass: 2 } physics: { mass: 3 } }\n}')
+        load(
+            'composition "C" {\n  object "A" { @physics { type: "static" mass: 2 } physics: { mass: 3 } }\n'
+            '  object "B" { parent: "A" mass: 1 }\n}'
+        )
 
 
 def test_actuator_without_joint_is_an_error() -> None:
     with pytest.raises(ParseError, match="@actuator on an object without a joint"):
         load(
             'composition "C" { object "A" { @physics { type: "static" mass: 1 } }'
-            ' object "B" { @actuator { hardwareInterface: "x" } mass: 1 } }'
+            ' object "B" { @actuator { hardwareInterface: "x" } mass: 1 }'
+            ' object "C" { parent: "B" mass: 1 } }'
         )
 
 

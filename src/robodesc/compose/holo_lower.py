@@ -1,14 +1,20 @@
-"""Lower a HoloScript ``.holo`` robot composition to the IR.
+"""Lower a HoloScript ``.holo`` composition (the syntax tree of holo_parser) to the IR.
 
-The rules (docs/compositions.md has the full list, each inference is reported as a finding):
+The rules (docs/compositions.md has the full list; every inference is reported as a finding):
+- Only what describes a robot is read: objects (``object``, ``orb``, ``entity``, shape blocks ...)
+  anywhere in ``composition``/``scene``/group blocks and nested in each other, templates, joint
+  blocks, the environment's gravity. Every other block is skipped with an info finding. A
+  composition in which nothing declares a joint holds no robot, and is refused saying so.
 - Positions are world positions of the composition (metres), rotations roll-pitch-yaw in degrees;
   every link frame sits at its object's world pose, visuals at the link origin, and joint origins
   are the relative transforms between the world poses.
-- The base is the ``@physics { type: "static" }`` object (else the first object; it then floats).
-- An object with a joint (``@joint``, a ``behavior "RevoluteJoint"`` block, or ``joint_type``)
-  hangs from its ``connectedBody``/``parent``; an object without one is fixed to its enclosing
-  object, else to the most recent robot object declared before it.
-- ``@grabbable`` objects, and static objects nothing connects to, are props, not links.
+- Joints in every spelling HoloScript uses: ``@joint { }`` / ``@joint(...)``, ``@joint_revolute``
+  & co. with ``joint_*`` properties, ``behavior "RevoluteJoint"``, ``joint_type``/``parent``,
+  ``joint "Name" { parent, child }`` blocks and ``robot { joints { } }``. Angles are degrees.
+- The base is the first static object (else the root of the joint tree; it then floats). An object
+  without a joint is fixed to its enclosing object, else to the most recent robot object before it.
+- Templates are defaults the object overrides; a name used twice gets a unique link name.
+- ``@grabbable`` objects without a joint, and static objects nothing connects to, are props.
 
 >>> result = load_holo_text('''composition "Pendulum" {
 ...   object "Base" { @physics { type: "static" mass: 1 } geometry: "box" scale: 0.1 position: [0, 0, 1] }
@@ -29,10 +35,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from robodesc.compose.builder import Part, RobotBuilder, joint_type
+from robodesc.compose.builder import JOINT_TYPES, Part, RobotBuilder, joint_type
 from robodesc.compose.colors import ColorError, parse_color
-from robodesc.compose.holo_parser import Block, Document, Trait, Value, parse
+from robodesc.compose.holo_parser import Block, Document, Expr, Trait, Value, parse
 from robodesc.compose.meshes import resolve_mesh
+from robodesc.compose.solids import POLYHEDRA, cone, polyhedron, torus
 from robodesc.frontends.options import LoadOptions, MissingMesh
 from robodesc.frontends.packages import PackageResolver
 from robodesc.ir.diagnostics import BrokenReferenceError, Findings, ParseError, SourceLoc
@@ -41,11 +48,31 @@ from robodesc.ir.model import CameraSpec, JointType, RayAxis, RaySpec, Robot, Sa
 from robodesc.ir.transforms import Mat, matrix_pose, pose_matrix
 
 STAGE = "compose:holo"
+# HoloScript's URDF compiler gives every body without a mass this many kilograms.
+HOLOSCRIPT_DEFAULT_MASS = 1.0
 
 MESH_SUFFIXES = (".stl", ".obj", ".dae", ".glb", ".gltf", ".fbx", ".ply", ".usd", ".usda", ".usdc", ".usdz", ".3ds")
 PRIMITIVES = ("box", "cube", "sphere", "cylinder", "cone", "capsule", "plane")
-OBJECT_KINDS = ("object", "orb")
-GROUP_KINDS = ("spatial_group", "group")
+# HoloScript shapes URDF lacks, and the primitive each is written as (with a finding).
+ROUND_SOLIDS = ("dodecahedron", "icosahedron", "octahedron", "tetrahedron", "icosphere", "geodesic")
+RING_SOLIDS = ("torus", "ring", "disc", "disk", "tube")
+# Primitive shapes HoloScript declares as blocks (`sphere "Ball" { }`), from its PRIMITIVE_SHAPES.
+SHAPE_KINDS = ("cube", "box", "sphere", "cylinder", "cone", "torus", "plane", "capsule", "ring")
+OBJECT_KINDS = ("object", "orb", "entity", "instanced_object", "spatial_agent", "link", "end_effector", *SHAPE_KINDS)
+# Blocks that only hold objects: their pose (if any) composes into their children's.
+GROUP_KINDS = ("spatial_group", "group", "scene", "composition", "robot", "spawn_group", "zone")
+JOINT_KINDS = ("joint",)
+# Trait spellings of a joint: @joint_revolute ... (HoloScript's own URDF compiler reads only @joint).
+JOINT_TRAITS = {
+    "joint_revolute": "revolute",
+    "joint_hinge": "revolute",
+    "joint_continuous": "continuous",
+    "joint_prismatic": "prismatic",
+    "joint_slider": "prismatic",
+    "joint_fixed": "fixed",
+    "joint_ball": "spherical",
+    "joint_spherical": "spherical",
+}
 KNOWN_PROPS = frozenset(
     {
         "geometry",
@@ -61,9 +88,29 @@ KNOWN_PROPS = frozenset(
         "axis",
         "limits",
         "joint_name",
+        "radius",
+        "height",
+        "length",
+        "size",
+        "joint_parent",
+        "joint_axis",
+        "joint_limits",
+        "joint_effort",
+        "joint_origin",
+        "joint_friction",
+        "joint_damping",
+        "max_velocity",
+        "armature",
+        "static",
+        "fixed",
+        "mesh",
+        "rigidbody",
+        "behavior",
     }
 )
-KNOWN_TRAITS = frozenset({"physics", "rigid", "collidable", "trigger", "grabbable", "joint", "sensor", "actuator"})
+KNOWN_TRAITS = frozenset(
+    {"physics", "rigid", "collidable", "trigger", "grabbable", "joint", "sensor", "actuator", "static", *JOINT_TRAITS}
+)
 BEHAVIOR_JOINTS: dict[str, str] = {
     "RevoluteJoint": "revolute",
     "HingeJoint": "revolute",
@@ -194,6 +241,13 @@ class _Lowerer:
         self.findings = findings
         self.templates: dict[str, Block] = {}
         self.objects: dict[str, _Obj] = {}
+        # Original name -> the unique name of its first object, for names used more than once.
+        self.renamed: dict[str, str] = {}
+        self.joint_decls: list[tuple[Block, str | None]] = []
+        # Objects drawn as a stand-in primitive whose inertia is another shape's: (kind, a, b).
+        self._solids: dict[str, tuple[str, float, float]] = {}
+        # Empty links standing for bodies the file names but does not declare.
+        self._synthetic: set[str] = set()
         self.up = np.eye(4)
         self.y_up = False
         self.gravity: Vec3 | None = None
@@ -214,23 +268,37 @@ class _Lowerer:
     # ---- top level ---------------------------------------------------------------------------
     def run(self) -> HoloResult:
         comps = [b for b in self.doc.body.children if b.kind == "composition"]
-        if len(comps) > 1:
-            raise self.fail("one composition per file", f"composition {comps[1].name!r}", comps[1].loc)
-        comp = comps[0] if comps else self.doc.body
-        name = (comp.name if comps else None) or os.path.splitext(os.path.basename(self.file))[0]
+        comp = comps[0] if len(comps) == 1 else self.doc.body
+        name = (comp.name if len(comps) == 1 else None) or os.path.splitext(os.path.basename(self.file))[0]
         for key, loc in self.doc.duplicate_keys:
             self.note("duplicate-key", f"key {key!r} is given twice; the last one counts", loc=loc, warn=True)
         for skipped in self.doc.skipped:
             self.note(
                 "ignored-block",
-                f"'{skipped.kind}' block ignored: it is not part of a robot description",
+                f"'{skipped.kind}' {'block' if skipped.why == 'code' else 'statement'} ignored: "
+                "it is not part of a robot description",
                 loc=skipped.loc,
             )
+        if self.doc.stray:
+            text, loc = self.doc.stray[0]
+            self.note(
+                "ignored-syntax",
+                f"{len(self.doc.stray)} stray token(s) between declarations stepped over, as HoloScript's parser "
+                f"does (the first: {text[:20]!r})",
+                loc=loc,
+                warn=True,
+            )
+        for key, loc in self.doc.equals_props:
+            self.note("equals-property", f"'{key} = ...' read as '{key}: ...' (HoloScript's reading)", loc=loc)
         self._environment(comp)
         self._collect_templates(comp)
-        self._walk(comp.children, self.up, None)
-        if not self.objects:
-            raise self.fail("the composition has no objects", f"composition {name!r}", comp.loc)
+        self._walk(comp.children if comp is not self.doc.body else self.doc.body.children, self.up, None, ())
+        if not self.objects and not self.joint_decls:
+            raise self.fail(
+                "the composition holds no robot: it declares no objects and no joints",
+                f"composition {name!r}",
+                comp.loc,
+            )
         return self._build(name, comp)
 
     def _environment(self, comp: Block) -> None:
@@ -238,9 +306,17 @@ class _Lowerer:
         ignored: list[str] = []
         for env in envs:
             for key, value in env.props.items():
-                if key == "gravity":
+                if key == "gravity" and isinstance(value.data, (list, dict)):
                     g = self.vec3(value, "environment.gravity", "environment")
                     self.gravity = g
+                elif key == "gravity":
+                    self.note(
+                        "ignored-gravity",
+                        f"gravity {_describe(value)} is no vector: it does not tell which way is up",
+                        "environment",
+                        value.loc,
+                        warn=True,
+                    )
                 else:
                     ignored.append(key)
             for child in env.children:
@@ -297,47 +373,171 @@ class _Lowerer:
             elif child.kind in GROUP_KINDS:
                 self._collect_templates(child)
 
-    def _walk(self, blocks: Iterable[Block], frame: Mat, enclosing: str | None) -> None:
+    def _walk(self, blocks: Iterable[Block], frame: Mat, enclosing: str | None, scope: tuple[str, ...]) -> None:
         for block in blocks:
-            if block.kind in OBJECT_KINDS:
-                obj = self._object(block, frame, enclosing)
-                self._walk([c for c in block.children if c.kind in (*OBJECT_KINDS, *GROUP_KINDS)], obj.world, obj.name)
+            if block.kind in OBJECT_KINDS and block.kind not in ("composition",):
+                if block.kind in SHAPE_KINDS and "geometry" not in block.props:
+                    block.props["geometry"] = Value(block.kind, block.loc)
+                obj = self._object(block, frame, enclosing, scope)
+                self._walk([c for c in block.children if c.kind != "behavior"], obj.world, obj.name, (*scope, obj.name))
             elif block.kind in GROUP_KINDS:
-                label = f"{block.kind} {block.name!r}"
+                label = f"{block.kind} {block.name!r}" if block.name else block.kind
                 for key in block.props:
                     if key not in ("origin", "position", "rotation"):
                         self.note("ignored-property", f"property {key!r} ignored", label, block.prop_locs[key])
                 local = self._pose_matrix(block.props, label, position_keys=("origin", "position"))
-                self._walk(block.children, frame @ local, enclosing)
+                inner = (*scope, block.name) if block.name else scope
+                if block.kind == "robot":
+                    self._robot_block(block)
+                self._walk(block.children, frame @ local, enclosing, inner)
+            elif block.kind in JOINT_KINDS:
+                self.joint_decls.append((block, enclosing))
             elif block.kind == "behavior":
                 self.note("ignored-block", "behavior outside an object ignored", f"behavior {block.name!r}", block.loc)
+            elif block.kind not in ("template", "environment"):
+                what = f"'{block.kind}' block" + (f" {block.name!r}" if block.name else "")
+                self.note("ignored-block", f"{what} ignored: it is not part of a robot description", loc=block.loc)
 
-    def _object(self, block: Block, frame: Mat, enclosing: str | None) -> _Obj:
+    def _robot_block(self, block: Block) -> None:
+        """``robot NAME { base_link { mass } joints { hip { type, axis, limits } } }`` (the robotics
+        plugin's Isaac Lab bridge): an unnamed block is a link named by its keyword, and each block
+        inside ``joints`` a joint named by its keyword."""
+        for child in block.children:
+            if child.name is not None or child.kind in (*OBJECT_KINDS, *GROUP_KINDS, *JOINT_KINDS, "template"):
+                continue
+            if child.kind == "joints":
+                for j in child.children:
+                    j.name, j.kind = j.kind, "joint"
+                    j.name_loc = j.loc
+                child.kind = "group"
+                self.note("robot-joints", "each block in 'joints' read as a joint named by its keyword", loc=child.loc)
+            else:
+                child.name, child.kind = child.kind, "link"
+                child.name_loc = child.loc
+                self.note("robot-link", f"block '{child.name}' read as a link of that name", loc=child.loc)
+
+    def _object(self, block: Block, frame: Mat, enclosing: str | None, scope: tuple[str, ...]) -> _Obj:
+        name = block.name or block.kind
         if not block.name:
-            raise self.fail("an object needs a name", block.kind, block.loc)
-        label = f"object {block.name!r}"
-        if block.name in self.objects:
-            first = self.objects[block.name].block
-            raise self.fail(f"duplicate object name {block.name!r} (first at {first.name_loc})", label, block.name_loc)
+            self.note("unnamed-object", f"unnamed {block.kind} block named {name!r}", block.kind, block.loc)
+        if name in self.objects or name in self.renamed:
+            # HoloScript allows the same name twice; links need unique names.
+            unique = _unique(f"{scope[-1]}_{name}" if scope else name, set(self.objects) | set(self.renamed))
+            first = self.objects[self.renamed.get(name, name)].block
+            self.note(
+                "renamed-duplicate",
+                f"object name {name!r} is used again (first at {first.name_loc}): this one's link is named {unique!r}"
+                f"; references to {name!r} mean the first",
+                f"object {name!r}",
+                block.name_loc,
+                warn=True,
+            )
+            self.renamed.setdefault(name, name)
+            name = unique
+        label = f"object {name!r}"
         props = dict(block.props)
         traits = list(block.traits)
         behaviors = [c for c in block.children if c.kind == "behavior"]
+        template: Block | None = None
         if block.using is not None:
             template = self.templates.get(block.using)
-            if template is None:
+            if template is None and not _suggest(block.using, self.templates):
+                self.note(
+                    "unknown-template",
+                    f"template {block.using!r} is not defined in this file (HoloScript may import it): "
+                    "its defaults are not applied",
+                    label,
+                    block.using_loc,
+                    warn=True,
+                )
+            elif template is None:
                 raise BrokenReferenceError(
                     f"template {block.using!r} is not defined{_suggest(block.using, self.templates)}",
                     element=label,
                     loc=block.using_loc,
                 )
+        if template is not None:
+            self._note_overrides(template, block, label)
             props = _merge_props(template.props, block.props)
             traits = _merge_traits(template.traits, block.traits)
+            if _trait_or_prop_mass(template) is not None and _trait_or_prop_mass(block) is not None:
+                props, traits = _drop_template_mass(props, traits, block)
             mine = {b.name for b in behaviors}
             behaviors = [b for b in template.children if b.kind == "behavior" and b.name not in mine] + behaviors
+        self._normalize_shape_and_mass(block, props, label)
+        if "position" not in props and "joint_origin" in props:
+            props["position"] = props["joint_origin"]
+            self.note(
+                "joint-origin-as-position",
+                "joint_origin read as the object's position",
+                label,
+                props["joint_origin"].loc,
+            )
         local = self._pose_matrix(props, label, position_keys=("position",))
-        obj = _Obj(block.name, block, props, traits, behaviors, frame @ local, enclosing, len(self.objects))
-        self.objects[block.name] = obj
+        obj = _Obj(name, block, props, traits, behaviors, frame @ local, enclosing, len(self.objects))
+        self.objects[name] = obj
         return obj
+
+    def _normalize_shape_and_mass(self, block: Block, props: dict[str, Value], label: str) -> None:
+        """Other spellings of shape and mass: ``mesh: { type: "cube", width, height, depth }`` or
+        ``mesh: "file.glb"`` for ``geometry``; ``rigidbody: { mass }`` (or a ``rigidbody { }`` block)
+        for ``mass``. Each reading is an info finding."""
+        mesh = props.get("mesh")
+        if "geometry" not in props and mesh is not None:
+            if isinstance(mesh.data, str):
+                props["geometry"] = mesh
+                self.note("mesh-as-geometry", "mesh read as the geometry", label, mesh.loc)
+            elif isinstance(mesh.data, dict) and isinstance(mesh.data.get("type", Value(None, mesh.loc)).data, str):
+                d = mesh.data
+                props["geometry"] = d["type"]
+                if "scale" not in props:
+                    dims = {k: d[k] for k in ("width", "height", "depth", "radius", "size") if k in d}
+                    if "radius" in dims:
+                        r = self.num(dims["radius"], "mesh.radius", label)
+                        h = self.num(dims["height"], "mesh.height", label) if "height" in dims else 2 * r
+                        props["scale"] = Value(
+                            [Value(2 * r, mesh.loc), Value(h, mesh.loc), Value(2 * r, mesh.loc)], mesh.loc
+                        )
+                    elif "size" in dims:
+                        props["scale"] = dims["size"]
+                    elif dims:
+                        w, h, dp = (
+                            self.num(dims[k], f"mesh.{k}", label) if k in dims else 1.0
+                            for k in ("width", "height", "depth")
+                        )
+                        props["scale"] = Value([Value(w, mesh.loc), Value(h, mesh.loc), Value(dp, mesh.loc)], mesh.loc)
+                self.note(
+                    "mesh-as-geometry",
+                    "mesh { type, width, height, depth } read as the geometry and its scale",
+                    label,
+                    mesh.loc,
+                )
+        if _trait_or_prop_mass(block) is None and "mass" not in props:
+            rb = props.get("rigidbody")
+            rb_props = rb.data if rb is not None and isinstance(rb.data, dict) else None
+            if rb_props is None:
+                child = next((c for c in block.children if c.kind == "rigidbody"), None)
+                rb_props = child.props if child is not None else None
+            if rb_props is not None and "mass" in rb_props:
+                props["mass"] = rb_props["mass"]
+                self.note("rigidbody-mass", "rigidbody mass read as the object's mass", label, rb_props["mass"].loc)
+
+    def _note_overrides(self, template: Block, block: Block, label: str) -> None:
+        """Template values are defaults: say which the object overrides (an info finding)."""
+        over: list[str] = [k for k in block.props if k in template.props]
+        tmass = _trait_or_prop_mass(template)
+        omass = _trait_or_prop_mass(block)
+        if tmass is not None and omass is not None and "mass" not in over:
+            over.append("mass")
+        names = {t.name for t in template.traits}
+        over += [f"@{t.name}" for t in block.traits if t.name in names and t.params and t.name != "sensor"]
+        if over:
+            self.note(
+                "template-override",
+                f"overrides template {template.name!r} defaults: {', '.join(sorted(set(over)))}",
+                label,
+                block.name_loc,
+            )
 
     # ---- values ------------------------------------------------------------------------------
     def num(self, value: Value, path: str, element: str) -> float:
@@ -368,10 +568,28 @@ class _Lowerer:
     def _pose_matrix(self, props: dict[str, Value], label: str, position_keys: tuple[str, ...]) -> Mat:
         xyz: Vec3 = (0.0, 0.0, 0.0)
         for key in position_keys:
-            if key in props:
+            if (key in props and isinstance(props[key].data, (str, Expr, bool))) or (
+                key in props and props[key].data is None
+            ):
+                self.note(
+                    "ignored-property",
+                    f"{key} {_describe(props[key])} is no [x, y, z]: the origin is used",
+                    label,
+                    props[key].loc,
+                    warn=True,
+                )
+            elif key in props:
                 xyz = self.vec3(props[key], key, label)
         rpy: Vec3 = (0.0, 0.0, 0.0)
-        if "rotation" in props:
+        if "rotation" in props and not isinstance(props["rotation"].data, (list, dict)):
+            self.note(
+                "ignored-property",
+                f"rotation {_describe(props['rotation'])} is no [roll, pitch, yaw]: no rotation is applied",
+                label,
+                props["rotation"].loc,
+                warn=True,
+            )
+        elif "rotation" in props:
             deg = self.vec3(props["rotation"], "rotation", label)
             if sum(1 for d in deg if d != 0) > 1:
                 self.note(
@@ -385,11 +603,93 @@ class _Lowerer:
         return pose_matrix(Pose(xyz=xyz, rpy=rpy))
 
     # ---- building ----------------------------------------------------------------------------
+    def _joint_blocks(self) -> dict[str, _JointSpec]:
+        """``joint "Name" [@joint_revolute] { type, axis, limits, parent, child }`` declarations.
+
+        A declaration naming an object as ``child`` is that object's joint. Without a child, the
+        joint moves a new, empty link ``<Name>_link``; a parent that is no object becomes an empty
+        link of that name. Each of these is reported."""
+        specs: dict[str, _JointSpec] = {}
+        previous_child: str | None = None
+        for block, enclosing in self.joint_decls:
+            jname = block.name or f"joint_{len(specs) + 1}"
+            label = f"joint {jname!r}"
+            p = {k[6:] if k.startswith("joint_") else k: v for k, v in block.props.items()}
+            for t in block.traits:
+                p.update(t.params)
+            jtype_text = next((JOINT_TRAITS[t.name] for t in block.traits if t.name in JOINT_TRAITS), None)
+            type_value = p.get("type") or p.get("jointType")
+            if type_value is not None:
+                jtype_text = self.string(type_value, "type", label)
+            if jtype_text is None:
+                raise self.fail("a joint needs a type (type: revolute, or @joint_revolute)", label, block.loc)
+            parent_value = p.get("parent") or p.get("connectedBody")
+            parent = self._text(parent_value, "parent", label)
+            if parent is None:
+                parent = previous_child or enclosing
+                if parent is not None:
+                    self.note(
+                        "inferred-parent",
+                        f"the joint names no parent: it hangs from {parent!r}, "
+                        + ("the link the previous joint moves" if parent == previous_child else "its enclosing object"),
+                        label,
+                        block.loc,
+                    )
+            if parent is not None and parent not in self.objects:
+                self._empty_link(parent, None, block, f"{label} names parent {parent!r}, which is no object")
+            child = self._text(p.get("child"), "child", label)
+            if child is None:
+                child = _unique(f"{jname}_link", set(self.objects))
+                self._empty_link(child, parent, block, f"{label} names no child object")
+            elif child not in self.objects:
+                raise BrokenReferenceError(
+                    f"joint child {child!r} is not an object of this composition{_suggest(child, self.objects)}",
+                    element=label,
+                    loc=p["child"].loc,
+                )
+            if child in specs:
+                raise self.fail(f"object {child!r} has two joints", label, block.loc)
+            specs[child] = _JointSpec(
+                type=jtype_text,
+                type_loc=block.loc if type_value is None else type_value.loc,
+                parent=parent,
+                parent_loc=None if parent_value is None else parent_value.loc,
+                params=p,
+                loc=block.loc,
+                notation="joint block",
+                name=jname,
+            )
+            previous_child = child
+        return specs
+
+    def _empty_link(self, name: str, parent: str | None, block: Block, why: str, *, place: bool = True) -> None:
+        world = self.objects[parent].world if parent in self.objects else self.up
+        if place and ("position" in block.props or "origin" in block.props):
+            world = world @ self._pose_matrix(block.props, f"joint {block.name!r}", ("origin", "position"))
+        self.objects[name] = _Obj(name, block, {}, [], [], world, parent, len(self.objects))
+        self._synthetic.add(name)
+        self.note(
+            "empty-link",
+            f"{why}: a link {name!r} without shape or mass stands for it",
+            f"joint {block.name!r}" if block.kind in JOINT_KINDS else f"object {block.name!r}",
+            block.loc,
+            warn=True,
+        )
+
     def _build(self, name: str, comp: Block) -> HoloResult:
         props: list[HoloProp] = []
         joints: dict[str, _JointSpec] = {}
+        declared = self._joint_blocks()
         for obj in self.objects.values():
-            spec = self._joint_spec(obj)
+            spec = self._joint_spec(obj) if obj.block.kind not in JOINT_KINDS else None
+            if obj.name in declared:
+                if spec is not None:
+                    raise self.fail(
+                        f"joint given twice ({spec.notation} and a joint block at {declared[obj.name].loc})",
+                        obj.label,
+                        spec.loc,
+                    )
+                spec = declared[obj.name]
             if spec is not None:
                 joints[obj.name] = spec
             for key in obj.props:
@@ -402,9 +702,28 @@ class _Lowerer:
                     self.note(
                         "ignored-trait", "@trigger volumes are not part of a robot description", obj.label, trait.loc
                     )
+        if not joints:
+            raise self.fail(
+                f"the composition holds no robot: none of its {len(self.objects)} objects declares a joint "
+                '(@joint, @joint_revolute, behavior "RevoluteJoint", joint_type, parent, or a joint block)',
+                f"composition {name!r}",
+                comp.loc,
+            )
         referenced = {s.parent for s in joints.values() if s.parent is not None}
-        for spec_owner, spec in joints.items():
-            if spec.parent is not None and spec.parent not in self.objects:
+        for spec_owner, spec in list(joints.items()):
+            real = [n for n in self.objects if n not in self._synthetic]
+            if spec.parent is not None and spec.parent not in self.objects and not _suggest(spec.parent, real):
+                # No object of that name, nor one close to it: the body is declared elsewhere (an
+                # import, a part of the scene HoloScript resolves at run time). An empty link stands for it.
+                owner = self.objects[spec_owner]
+                self._empty_link(
+                    spec.parent,
+                    None,
+                    owner.block,
+                    f"{spec.notation} of object {spec_owner!r} names parent {spec.parent!r}, which is no object of this file",
+                    place=False,
+                )
+            elif spec.parent is not None and spec.parent not in self.objects:
                 raise BrokenReferenceError(
                     f"{spec.notation} parent {spec.parent!r} is not an object of this composition"
                     f"{_suggest(spec.parent, self.objects)}",
@@ -415,7 +734,14 @@ class _Lowerer:
         bodies: list[_Obj] = []
         root: _Obj | None = None
         for obj in self.objects.values():
-            if obj.trait("grabbable") is not None:
+            if obj.trait("grabbable") is not None and obj.name in joints:
+                self.note(
+                    "grabbable-link",
+                    "@grabbable object declares a joint: it is a robot link (the joint wins over the prop reading)",
+                    obj.label,
+                    obj.block.loc,
+                )
+            elif obj.trait("grabbable") is not None:
                 if obj.name in referenced:
                     raise self.fail("a @grabbable prop cannot carry robot joints", obj.label, obj.block.loc)
                 props.append(self._prop(obj, "grabbable"))
@@ -441,11 +767,20 @@ class _Lowerer:
         if not bodies:
             raise self.fail("the composition has no robot objects (only props)", f"composition {name!r}", comp.loc)
         if root is None:
-            candidates = [b for b in bodies if b.name not in joints]
+            # The root of the joint tree the author wrote: the first object a joint hangs from that
+            # hangs from nothing itself (a scene's first object may be its sky); else the first
+            # object without a joint.
+            hubs = [b for b in bodies if b.name not in joints and b.name in referenced]
+            candidates = hubs or [b for b in bodies if b.name not in joints]
             root = candidates[0] if candidates else bodies[0]
+            how = (
+                "the first object a joint names as its parent and that has no joint itself"
+                if hubs
+                else ("the first object without a joint")
+            )
             self.note(
                 "inferred-base",
-                'no @physics { type: "static" } object: the first object without a joint is the base, and it floats',
+                f'no static object (@physics {{ type: "static" }}, @static): {how} is the base, and it floats',
                 root.label,
                 root.block.loc,
                 warn=True,
@@ -472,9 +807,9 @@ class _Lowerer:
             fixed_base=self._fixed_base(root),
         )
         body_names = [b.name for b in bodies]
-        for obj in bodies:
-            self._link(builder, obj)
         used_joint_names: set[str] = set()
+        parent_of: dict[str, str] = {}
+        movable: set[str] = set()
         for i, obj in enumerate(bodies):
             if obj is root:
                 continue
@@ -486,6 +821,8 @@ class _Lowerer:
                 how = (
                     "the object it is declared in"
                     if obj.enclosing == parent
+                    else "the base (it stands for a body declared elsewhere)"
+                    if obj.name in self._synthetic
                     else "the most recent robot object declared before it"
                 )
                 self.note(
@@ -506,22 +843,34 @@ class _Lowerer:
                     raise self.fail("@actuator on an object without a joint", obj.label, actuator.loc)
                 jname = _unique(f"{parent}_to_{obj.name}", used_joint_names)
                 builder.joint(jname, JointType.FIXED, parent, obj.name, src=obj.block.loc)
+                parent_of[obj.name] = parent
             else:
                 jname = _unique(spec.name or f"{obj.name}_joint", used_joint_names)
-                self._joint(builder, obj, spec, parent, jname)
+                if self._joint(builder, obj, spec, parent, jname) is not JointType.FIXED:
+                    movable.add(obj.name)
+                parent_of[obj.name] = parent
             used_joint_names.add(jname)
+        for obj in bodies:
+            self._link(builder, obj, moves=_moves(obj.name, parent_of, movable))
         for obj in bodies:
             self._sensors(builder, obj)
         robot = builder.build()
         return HoloResult(robot, props, self.findings, self.gravity)
 
     def _is_static(self, obj: _Obj) -> bool:
+        """``@physics { type: "static" }``, or the ``@static`` trait / ``static: true`` / ``fixed: true``."""
+        if obj.trait("static") is not None:
+            return True
+        if any(obj.props.get(k) is not None and obj.props[k].data is True for k in ("static", "fixed")):
+            return True
         t = obj.trait("physics")
         if t is None or "type" not in t.params:
             return False
         return t.params["type"].data == "static"
 
     def _fixed_base(self, root: _Obj) -> bool | None:
+        if self._is_static(root):
+            return True
         t = root.trait("physics")
         if t is None or "type" not in t.params:
             return None
@@ -530,15 +879,24 @@ class _Lowerer:
     def _inferred_parent(self, obj: _Obj, before: list[str], root: _Obj) -> str:
         if obj.enclosing is not None and obj.enclosing in before:
             return obj.enclosing
+        if obj.name in self._synthetic:
+            # A stand-in for a body declared elsewhere: the base holds it (a chain through the
+            # objects declared before it could close a loop through its own children).
+            return root.name
         return before[-1] if before else root.name
 
     # ---- joints ------------------------------------------------------------------------------
+    def _text(self, value: Value | None, path: str, label: str) -> str | None:
+        if value is None:
+            return None
+        return self.string(value, path, label)
+
     def _joint_spec(self, obj: _Obj) -> _JointSpec | None:
         specs: list[_JointSpec] = []
         label = obj.label
         for t in obj.traits_named("joint"):
             p = t.params
-            key = "jointType" if "jointType" in p else "type" if "type" in p else None
+            key = next((k for k in ("jointType", "type", "_arg0") if k in p), None)
             if key is None:
                 raise self.fail(
                     "@joint needs jointType (revolute, continuous, prismatic, fixed, ball ...)", label, t.loc
@@ -548,57 +906,87 @@ class _Lowerer:
                 _JointSpec(
                     type=self.string(p[key], f"@joint.{key}", label),
                     type_loc=p[key].loc,
-                    parent=None if parent is None else self.string(parent, "@joint.connectedBody", label),
+                    parent=self._text(parent, "@joint.connectedBody", label),
                     parent_loc=None if parent is None else parent.loc,
                     params=p,
                     loc=t.loc,
                     notation="@joint",
-                    name=self.string(p["name"], "@joint.name", label) if "name" in p else None,
+                    name=self._text(p.get("name"), "@joint.name", label),
                 )
             )
+        for t in obj.traits:
+            if t.name not in JOINT_TRAITS:
+                continue
+            # @joint_revolute with joint_* properties (HoloScript's Isaac Lab examples).
+            p = {**{k[6:] if k.startswith("joint_") else k: v for k, v in obj.props.items()}, **t.params}
+            parent = p.get("parent") or p.get("connectedBody")
+            specs.append(
+                _JointSpec(
+                    type=JOINT_TRAITS[t.name],
+                    type_loc=t.loc,
+                    parent=self._text(parent, "joint_parent", label),
+                    parent_loc=None if parent is None else parent.loc,
+                    params=p,
+                    loc=t.loc,
+                    notation=f"@{t.name}",
+                    name=self._text(obj.props.get("joint_name"), "joint_name", label),
+                )
+            )
+        joint_behaviors = [b for b in obj.behaviors if b.name in BEHAVIOR_JOINTS]
+        override = obj.props.get("behavior")
         for b in obj.behaviors:
             if b.name not in BEHAVIOR_JOINTS:
                 self.note("ignored-behavior", f"behavior {b.name!r} ignored", label, b.loc)
                 continue
-            parent = b.props.get("connectedBody") or b.props.get("parent") or obj.props.get("parent")
+            params = b.props
+            if override is not None and isinstance(override.data, dict) and len(joint_behaviors) == 1:
+                # `behavior: { axis: [0, 1, 0] }` on an object using a template whose behavior block
+                # is the joint: the object's values win, key by key, as template values do.
+                params = {**b.props, **override.data}
+                self.note(
+                    "template-override",
+                    f"behavior: {{ {', '.join(override.data)} }} overrides behavior {b.name!r} of its template",
+                    label,
+                    override.loc,
+                )
+            parent = params.get("connectedBody") or params.get("parent") or obj.props.get("parent")
             specs.append(
                 _JointSpec(
                     type=BEHAVIOR_JOINTS[b.name],
                     type_loc=b.name_loc,
-                    parent=None if parent is None else self.string(parent, "parent", label),
+                    parent=self._text(parent, "parent", label),
                     parent_loc=None if parent is None else parent.loc,
-                    params=b.props,
+                    params=params,
                     loc=b.loc,
                     notation=f'behavior "{b.name}"',
                 )
             )
         if "joint_type" in obj.props:
-            parent = obj.props.get("parent")
+            parent = obj.props.get("parent") or obj.props.get("joint_parent")
             specs.append(
                 _JointSpec(
                     type=self.string(obj.props["joint_type"], "joint_type", label),
                     type_loc=obj.props["joint_type"].loc,
-                    parent=None if parent is None else self.string(parent, "parent", label),
+                    parent=self._text(parent, "parent", label),
                     parent_loc=None if parent is None else parent.loc,
                     params={k: v for k, v in obj.props.items() if k in ("axis", "limits")},
-                    loc=obj.block.prop_locs["joint_type"],
+                    loc=obj.block.prop_locs.get("joint_type", obj.block.loc),
                     notation="joint_type",
-                    name=self.string(obj.props["joint_name"], "joint_name", label)
-                    if "joint_name" in obj.props
-                    else None,
+                    name=self._text(obj.props.get("joint_name"), "joint_name", label),
                 )
             )
-        elif "parent" in obj.props and not specs:
-            parent = obj.props["parent"]
+        elif ("parent" in obj.props or "joint_parent" in obj.props) and not specs:
+            pkey = "parent" if "parent" in obj.props else "joint_parent"
+            parent = obj.props[pkey]
             specs.append(
                 _JointSpec(
                     type="fixed",
                     type_loc=parent.loc,
-                    parent=self.string(parent, "parent", label),
+                    parent=self.string(parent, pkey, label),
                     parent_loc=parent.loc,
                     params={},
-                    loc=obj.block.prop_locs["parent"],
-                    notation="parent",
+                    loc=obj.block.prop_locs.get(pkey, obj.block.loc),
+                    notation=pkey,
                 )
             )
         if len(specs) > 1:
@@ -609,9 +997,22 @@ class _Lowerer:
             )
         return specs[0] if specs else None
 
-    def _joint(self, builder: RobotBuilder, obj: _Obj, spec: _JointSpec, parent: str, name: str) -> None:
+    def _joint(self, builder: RobotBuilder, obj: _Obj, spec: _JointSpec, parent: str, name: str) -> JointType:
         label = obj.label
-        jtype = joint_type(spec.type, label, spec.type_loc)
+        key = spec.type.strip().lower()
+        if key not in JOINT_TYPES and not _suggest(key, JOINT_TYPES):
+            # spring, d6, distance ...: physics constraints with no URDF joint. HoloScript's own
+            # compiler writes them as fixed without a word; robodesc does the same, and says so.
+            self.note(
+                "unsupported-joint-type",
+                f"joint type {spec.type!r} has no URDF/SDF/USD equivalent: written as a fixed joint; its "
+                "other parameters are dropped",
+                label,
+                spec.type_loc,
+                warn=True,
+            )
+            key = "fixed"
+        jtype = joint_type(key, label, spec.type_loc)
         p = spec.params
         angular = jtype in (JointType.REVOLUTE, JointType.CONTINUOUS)
         # Revolute limits, offsets and soft limits are degrees in HoloScript; prismatic ones metres.
@@ -632,8 +1033,16 @@ class _Lowerer:
             self.note("default-axis", "no axis given: URDF's default +x applies", label, spec.loc, warn=True)
         lower = upper = effort = velocity = None
         limit_loc = spec.loc
-        if spec.notation == "@joint" or spec.notation == "joint_type":
-            if "limits" in p:
+        if not spec.notation.startswith("behavior"):
+            if "limits" in p and isinstance(p["limits"].data, list):
+                lim = p["limits"]
+                limit_loc = lim.loc
+                pair = lim.data if isinstance(lim.data, list) else []
+                if len(pair) != 2:
+                    raise self.fail(f"limits: expected [min, max], got {_describe(lim)}", label, lim.loc)
+                lower = self.num(pair[0], "limits[0]", label) * k
+                upper = self.num(pair[1], "limits[1]", label) * k
+            elif "limits" in p:
                 lim = p["limits"]
                 limit_loc = lim.loc
                 if not isinstance(lim.data, dict):
@@ -654,6 +1063,12 @@ class _Lowerer:
                 upper = None if hi is None else self.num(hi, "limits.max", label) * k
                 effort = self.num(d["effort"], "limits.effort", label) if "effort" in d else None
                 velocity = self.num(d["velocity"], "limits.velocity", label) if "velocity" in d else None
+            for key in ("effort", "max_effort", "maxTorque", "maxForce", "torque"):
+                if key in p and effort is None:
+                    effort = self.num(p[key], key, label)
+            for key in ("velocity", "max_velocity", "maxVelocity"):
+                if key in p and velocity is None:
+                    velocity = self.num(p[key], key, label)
         else:
             if "lowerLimit" in p:
                 lower = self.num(p["lowerLimit"], "lowerLimit", label) * k
@@ -666,6 +1081,15 @@ class _Lowerer:
                     effort = self.num(p[key], key, label)
         if lower is not None and upper is not None and lower > upper:
             raise self.fail("the lower limit is above the upper limit", label, limit_loc)
+        if angular and lower is not None and upper is not None and _looks_like_radians(lower / k, upper / k):
+            self.note(
+                "radian-looking-limits",
+                f"limits [{lower / k:g}, {upper / k:g}] are read in degrees (HoloScript's unit for angles) but look like "
+                f"radians; if radians were meant, write [{math.degrees(lower / k):.4g}, {math.degrees(upper / k):.4g}]",
+                label,
+                limit_loc,
+                warn=True,
+            )
         if jtype is JointType.REVOLUTE and (lower is None or upper is None):
             self.note(
                 "unlimited-revolute",
@@ -679,6 +1103,7 @@ class _Lowerer:
             raise self.fail("a prismatic joint needs limits { min, max } (metres)", label, limit_loc)
         damping = self.num(p["damping"], "damping", label) if "damping" in p else None
         friction = self.num(p["friction"], "friction", label) if "friction" in p else None
+        armature = self.num(p["armature"], "armature", label) if "armature" in p else None
         mimic = multiplier = offset = None
         if "mimic" in p:
             m = p["mimic"]
@@ -739,6 +1164,7 @@ class _Lowerer:
             multiplier=multiplier,
             offset=offset,
             safety=safety,
+            armature=armature,
             src=spec.loc,
             limit_src=limit_loc,
             display_name=None,
@@ -761,14 +1187,15 @@ class _Lowerer:
                 name=self.string(a["name"], "@actuator.name", label) if "name" in a else None,
                 src=act.loc,
             )
+        return jtype
 
     # ---- links -------------------------------------------------------------------------------
-    def _link(self, builder: RobotBuilder, obj: _Obj) -> None:
+    def _link(self, builder: RobotBuilder, obj: _Obj, *, moves: bool = False) -> None:
         label = obj.label
         geom, origin, geom_loc = self._geometry(obj)
         parts: list[Part] = []
         color = self._color(obj)
-        material = self.string(obj.props["material"], "material", label) if "material" in obj.props else None
+        material = self._material(obj)
         if geom is not None:
             parts.append(
                 Part(
@@ -783,6 +1210,43 @@ class _Lowerer:
         else:
             self.note("no-geometry", "object has no geometry: a link without visuals", label, obj.block.loc)
         mass, inertia = self._mass(obj)
+        if geom is None and inertia is None and mass is not None:
+            self.note(
+                "mass-without-shape",
+                f"mass {mass:g} kg without a shape or an inertia tensor: no inertia can be computed, the link gets "
+                "no inertial",
+                label,
+                obj.block.loc,
+                warn=True,
+            )
+            mass = None
+        com: Pose | None = None
+        solid = self._solids.get(obj.name)
+        if solid is not None and mass is not None and inertia is None:
+            kind, a, b = solid
+            props = (
+                cone(mass, a, b)
+                if kind == "cone"
+                else torus(mass, a, b)
+                if kind == "torus"
+                else polyhedron(kind, mass, a)
+            )
+            inertia = Inertia(*props.inertia, src=geom_loc)
+            com = matrix_pose(pose_matrix(origin or Pose()) @ pose_matrix(Pose(xyz=(0.0, 0.0, props.com_z))))
+        if mass is None and moves:
+            # A body that moves needs a mass in every simulator. HoloScript's own URDF compiler gives
+            # 1 kg (and, without a shape, the inertia of a 1 m cube); robodesc does the same, and says so.
+            mass = HOLOSCRIPT_DEFAULT_MASS
+            if geom is None:
+                inertia = Inertia(mass / 6.0, mass / 6.0, mass / 6.0, src=obj.block.loc)
+            self.note(
+                "default-mass",
+                f"moving object has no mass: {mass:g} kg, HoloScript's default"
+                + (", with the inertia of a 1 m cube (it has no shape)" if geom is None else ""),
+                label,
+                obj.block.loc,
+                warn=True,
+            )
         if mass is None:
             self.note(
                 "no-mass",
@@ -796,6 +1260,7 @@ class _Lowerer:
             *parts,
             mass=mass,
             inertia=inertia,
+            com=com,
             pose=matrix_pose(obj.world),
             frame="world",
             element=label,
@@ -813,12 +1278,37 @@ class _Lowerer:
         lowered = kind.lower()
         if lowered.endswith(MESH_SUFFIXES) or "/" in kind or "://" in kind:
             return Mesh(uri=kind, scale=scale, src=gval.loc), None, gval.loc
-        if lowered not in PRIMITIVES:
-            raise self.fail(
-                f"unknown geometry {kind!r} (one of {', '.join(PRIMITIVES)}, or a mesh file){_suggest(lowered, PRIMITIVES)}",
+        true_kind = lowered
+        if lowered in ROUND_SOLIDS:
+            self.note(
+                "substituted-geometry",
+                f"URDF has no {lowered}: written as the sphere of its scale (the closest primitive)"
+                + ("; its inertia is the polyhedron's" if lowered in POLYHEDRA else ""),
                 label,
                 gval.loc,
+                warn=True,
             )
+            lowered = "sphere"
+        elif lowered in RING_SOLIDS:
+            self.note(
+                "substituted-geometry",
+                f"URDF has no {lowered}: written as the cylinder of its extents (the closest primitive); "
+                "its inertia is the solid torus's ([outer diameter, tube diameter, outer diameter])",
+                label,
+                gval.loc,
+                warn=True,
+            )
+            lowered = "cylinder"
+        elif lowered not in PRIMITIVES:
+            self.note(
+                "substituted-geometry",
+                f"geometry {kind!r} is no primitive robodesc knows ({', '.join(PRIMITIVES)}) and no mesh file: "
+                "written as the box of its scale",
+                label,
+                gval.loc,
+                warn=True,
+            )
+            lowered = "box"
         up_rot = Pose(rpy=(-math.pi / 2, 0.0, 0.0)) if self.y_up else None
         if lowered in ("box", "cube"):
             return Box(size=(sx, sy, sz), src=gval.loc), None, gval.loc
@@ -831,6 +1321,8 @@ class _Lowerer:
                     gval.loc,
                     warn=True,
                 )
+            if true_kind in POLYHEDRA:
+                self._solids[obj.name] = (true_kind, max(scale) / 2.0, 0.0)
             return Sphere(radius=max(scale) / 2.0, src=gval.loc), None, gval.loc
         if lowered == "plane":
             self.note(
@@ -858,19 +1350,52 @@ class _Lowerer:
         if lowered == "cone":
             self.note(
                 "cone-as-cylinder",
-                "robodesc has no cone shape: written as a cylinder of the same extents",
+                "URDF has no cone: written as a cylinder of the same extents; its inertia and centre of mass "
+                "are the cone's (apex up, as three.js draws it)",
                 label,
                 gval.loc,
                 warn=True,
             )
+        if lowered == "cone":
+            self._solids[obj.name] = ("cone", radius, sy)
+        elif true_kind in RING_SOLIDS:
+            tube = min(sy, radius) / 2.0
+            self._solids[obj.name] = ("torus", radius - tube, tube)
         if lowered == "capsule":
             if sy < 2 * radius:
                 raise self.fail(f"capsule height {sy:g} is less than its diameter {2 * radius:g}", label, gval.loc)
             return Capsule(radius=radius, length=sy - 2 * radius, src=gval.loc), up_rot, gval.loc
         return Cylinder(radius=radius, length=sy, src=gval.loc), up_rot, gval.loc
 
+    def _scale_from_dimensions(self, obj: _Obj) -> Vec3:
+        """``radius``/``height``/``length``/``size`` instead of ``scale`` (HoloScript's Isaac Lab examples)."""
+        label = obj.label
+        p = obj.props
+        if "size" in p:
+            size = p["size"]
+            if isinstance(size.data, float):
+                return (size.data, size.data, size.data)
+            return self.vec3(size, "size", label)
+        radius = self.num(p["radius"], "radius", label) if "radius" in p else None
+        height = None
+        for key in ("height", "length"):
+            if key in p:
+                height = self.num(p[key], key, label)
+                break
+        d = 2.0 * radius if radius is not None else (height or 1.0)
+        h = height if height is not None else d
+        self.note(
+            "dimensions-as-scale",
+            f"radius/height read as the scale [{d:g}, {h:g}, {d:g}] (diameter, height, diameter)",
+            label,
+            obj.block.loc,
+        )
+        return (d, h, d)
+
     def _scale(self, obj: _Obj) -> Vec3:
         label = obj.label
+        if "scale" not in obj.props and any(k in obj.props for k in ("radius", "height", "length", "size")):
+            return self._scale_from_dimensions(obj)
         if "scale" not in obj.props:
             if "geometry" in obj.props:
                 self.note(
@@ -887,10 +1412,32 @@ class _Lowerer:
             raise self.fail(f"scale must be positive, got {list(scale)}", label, value.loc)
         return scale
 
-    def _color(self, obj: _Obj) -> RGBA | None:
-        if "color" not in obj.props:
+    def _material(self, obj: _Obj) -> str | None:
+        value = obj.props.get("material")
+        if value is None:
             return None
-        value = obj.props["color"]
+        if isinstance(value.data, str):
+            return value.data
+        if isinstance(value.data, dict):
+            # material: { preset: "chrome", color: ..., metalness: ... }: the name, and the colour
+            # when the object gives none; the rendering parameters are not part of URDF.
+            for key in ("name", "preset", "type"):
+                if key in value.data and isinstance(value.data[key].data, str):
+                    return str(value.data[key].data)
+            return None
+        self.note("ignored-property", f"material {_describe(value)} ignored", obj.label, value.loc, warn=True)
+        return None
+
+    def _color(self, obj: _Obj) -> RGBA | None:
+        value = obj.props.get("color")
+        material = obj.props.get("material")
+        if value is None and material is not None and isinstance(material.data, dict):
+            value = material.data.get("color") or material.data.get("baseColor")
+        if value is None:
+            return None
+        if isinstance(value.data, Expr):
+            self.note("ignored-property", f"color {_describe(value)} ignored", obj.label, value.loc, warn=True)
+            return None
         try:
             if isinstance(value.data, list):
                 return parse_color([self.num(v, "color", obj.label) for v in value.data])
@@ -980,9 +1527,14 @@ class _Lowerer:
         for t in obj.traits_named("sensor"):
             p = t.params
             if "type" not in p:
-                raise self.fail(
-                    "@sensor needs a type (camera, depth, lidar, imu, force_torque, contact, gps)", label, t.loc
+                self.note(
+                    "ignored-sensor",
+                    "@sensor without a type (camera, depth, lidar, imu, force_torque, contact, gps) ignored",
+                    label,
+                    t.loc,
+                    warn=True,
                 )
+                continue
             stype = self.string(p["type"], "@sensor.type", label)
             for key in p:
                 if key not in SENSOR_PARAMS:
@@ -1071,6 +1623,40 @@ def builder_has_sensor(builder: RobotBuilder, name: str) -> bool:
     return name in builder._sensors
 
 
+def _trait_or_prop_mass(block: Block) -> Value | None:
+    for t in block.traits:
+        if t.name == "physics" and "mass" in t.params:
+            return t.params["mass"]
+    if "mass" in block.props:
+        return block.props["mass"]
+    ph = block.props.get("physics")
+    if ph is not None and isinstance(ph.data, dict) and "mass" in ph.data:
+        return ph.data["mass"]
+    return None
+
+
+def _drop_template_mass(
+    props: dict[str, Value], traits: list[Trait], block: Block
+) -> tuple[dict[str, Value], list[Trait]]:
+    """The object gives its own mass: every mass that only the template gave goes (defaults, not rivals)."""
+    props = dict(props)
+    if "mass" not in block.props:
+        props.pop("mass", None)
+    ph = props.get("physics")
+    own_ph = block.props.get("physics")
+    own_has = own_ph is not None and isinstance(own_ph.data, dict) and "mass" in own_ph.data
+    if ph is not None and isinstance(ph.data, dict) and "mass" in ph.data and not own_has:
+        data = {k: v for k, v in ph.data.items() if k != "mass"}
+        props["physics"] = Value(data, ph.loc, {k: v for k, v in ph.key_locs.items() if k != "mass"})
+    own_trait_mass = any(t.name == "physics" and "mass" in t.params for t in block.traits)
+    out: list[Trait] = []
+    for t in traits:
+        if t.name == "physics" and "mass" in t.params and not own_trait_mass:
+            t = Trait(t.name, {k: v for k, v in t.params.items() if k != "mass"}, t.loc, t.key_locs, t.in_header)
+        out.append(t)
+    return props, out
+
+
 def _merge_props(base: dict[str, Value], over: dict[str, Value]) -> dict[str, Value]:
     out = dict(base)
     for key, value in over.items():
@@ -1097,12 +1683,30 @@ def _merge_traits(base: list[Trait], over: list[Trait]) -> list[Trait]:
         if t.name in over_names:
             mine = next(o for o in over if o.name == t.name)
             params = _merge_props(t.params, mine.params)
-            out.append(Trait(t.name, params, mine.loc, {**t.key_locs, **mine.key_locs}))
+            out.append(Trait(t.name, params, mine.loc, {**t.key_locs, **mine.key_locs}, mine.in_header))
         else:
             out.append(t)
     done = {t.name for t in base}
     out += [t for t in over if t.name == "sensor" or t.name not in done]
     return out
+
+
+def _moves(name: str, parent_of: dict[str, str], movable: set[str]) -> bool:
+    """Whether a movable joint lies between the base and ``name``."""
+    seen: set[str] = set()
+    while name in parent_of and name not in seen:
+        if name in movable:
+            return True
+        seen.add(name)
+        name = parent_of[name]
+    return False
+
+
+def _looks_like_radians(lower: float, upper: float) -> bool:
+    """Both limits within 2π and at least one a multiple of π/2 (±1.57, ±3.14, 6.28)."""
+    if max(abs(lower), abs(upper)) > 2 * math.pi + 1e-3 or (lower == 0 and upper == 0):
+        return False
+    return any(v != 0 and abs(v / (math.pi / 2) - round(v / (math.pi / 2))) < 2e-3 for v in (lower, upper))
 
 
 def _unique(name: str, used: set[str]) -> str:
@@ -1125,6 +1729,8 @@ def _describe(value: Value) -> str:
         return f"a list of {len(d)}"
     if isinstance(d, dict):
         return "an object"
+    if isinstance(d, Expr):
+        return f"an expression ({d.text!r})"
     return "null"
 
 
