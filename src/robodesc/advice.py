@@ -84,6 +84,13 @@ ADVICE: dict[str, Advice] = {
     "undefined-material": Advice("every consumer draws the link in its default colour", "define the material"),
     "unnamed-robot": Advice("robodesc names it 'robot'", "name the <robot>"),
     "repeated-element": Advice("urdfdom and pybullet use the first one, as robodesc does", "edit the source"),
+    "undeclared-prefix": Advice(
+        "urdfdom and pybullet ignore namespaces; libxml2-based tools refuse the file", "declare the prefix (xmlns:...)"
+    ),
+    "world-link": Advice(
+        "Gazebo and Drake read 'world' as the ground; urdfdom refuses an undeclared link",
+        'declare <link name="world"/>',
+    ),
     "validation": Advice(
         "the consumer named in the message refused or changed this element of the source; robodesc wrote it "
         "as the source has it",

@@ -139,6 +139,10 @@ def verify_source(robot: Robot, options: CompileOptions, findings: Findings, rep
     result = verify(robot)
     # Dropped elements are warnings; --strict refuses them with every other warning at the end.
     errors = drop_dangling(robot, result.errors, findings)
+    if _world_link(robot, errors, findings):
+        # A root link "world" was added: the tree is whole now, verify it again.
+        result = verify(robot)
+        errors = drop_dangling(robot, result.errors, findings)
     structural = [f for f in errors if f.code not in PHYSICAL_CODES]
     physical = [f for f in errors if f.code in PHYSICAL_CODES]
     findings.extend([f for f in result.items if f.severity is not Severity.ERROR])
@@ -163,6 +167,28 @@ def verify_source(robot: Robot, options: CompileOptions, findings: Findings, rep
 # element is dropped (with a warning) and the rest of the robot is compiled as written.
 _LABEL = re.compile(r"^(\w+) '(.*)'$")
 _SHAPE = re.compile(r"^link '(.*)' (visual|collision) (\d+)$")
+
+
+def _world_link(robot: Robot, errors: list[Finding], findings: Findings) -> bool:
+    """Joints whose parent is an undeclared link ``world``: Gazebo and Drake read it as the world
+    (the robot welded or jointed to the ground), urdfdom refuses it. Add that link, empty, as the
+    root, and say so."""
+    world_joints = [f for f in errors if f.code == "dangling-link" and f.message.startswith("parent link 'world' ")]
+    if not world_joints or any(link.name == "world" for link in robot.links):
+        return False
+    from robodesc.ir.model import Link
+
+    robot.links.insert(0, Link(name="world", src=world_joints[0].loc))
+    findings.add(
+        Severity.WARNING,
+        "world-link",
+        "parent link 'world' is not declared: added as an empty root link, as Gazebo and Drake read it "
+        "(urdfdom refuses the file)",
+        element=world_joints[0].element,
+        loc=world_joints[0].loc,
+        stage="verify",
+    )
+    return True
 
 
 def drop_dangling(robot: Robot, errors: list[Finding], findings: Findings) -> list[Finding]:

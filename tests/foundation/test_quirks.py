@@ -27,6 +27,8 @@ CASES = {
     "zero_size.urdf": ("zero-size-shape", "zero_size.urdf:4"),
     "folder_package/urdf/folder_package.urdf": ("package-by-folder", "folder_package.urdf:4"),
     "limit_without_bounds.urdf": ("limit-unbounded", "limit_without_bounds.urdf:7"),
+    "undeclared_prefix.urdf": ("undeclared-prefix", "undeclared_prefix.urdf:2"),
+    "world_parent.urdf": ("world-link", "world_parent.urdf:8"),
 }
 
 
@@ -49,7 +51,7 @@ def test_quirk_is_read_with_a_warning(
     assert any(line.startswith("warning:") and where in line for line in err.splitlines()), err
     result = robodesc.compile_to_urdf(str(src), tmp_path / "api.urdf", validate=False)
     assert code_name in {f.code for f in result.findings}
-    assert [link.name for link in result.robot.links] == ["base", "arm"]
+    assert [link.name for link in result.robot.links if link.name != "world"] == ["base", "arm"]
     # --strict: the same warning refuses the compile, and nothing is written.
     strict = tmp_path / "strict.urdf"
     assert main(["compile", str(src), "-o", str(strict), "--strict"]) == 2

@@ -69,6 +69,10 @@ def parse_xml(data: bytes | str, file: str | None, findings: Findings | None = N
     try:
         root = etree.fromstring(raw, _parser())
     except etree.XMLSyntaxError as exc:
+        if "Namespace prefix" in str(exc.msg):
+            declared = _declare_prefixes(raw, file, findings)
+            if declared is not None:
+                return parse_xml(declared, file, findings)
         end = _root_end(raw, exc) if "Extra content at the end" in str(exc.msg) else None
         if end is None:
             raise _syntax_error(exc, file) from None
@@ -88,6 +92,35 @@ def parse_xml(data: bytes | str, file: str | None, findings: Findings | None = N
     if root is None:
         raise ParseError("empty document", loc=SourceLoc(file))
     return root
+
+
+_PREFIXED = re.compile(rb"""(?:<|\s)([A-Za-z_][\w.-]*):[A-Za-z_][\w.-]*(?=[\s=/>])""")
+_XMLNS = re.compile(rb"""xmlns:([A-Za-z_][\w.-]*)\s*=""")
+_ROOT_START = re.compile(rb"<([A-Za-z_][\w.:-]*)")
+
+
+def _declare_prefixes(raw: bytes, file: str | None, findings: Findings | None) -> bytes | None:
+    """Declare namespace prefixes the file uses without declaring them (``<drake:acceleration>``):
+    urdfdom and pybullet ignore namespaces, libxml2 refuses. The elements stay unknown elements,
+    kept verbatim. Returns None when there is nothing to declare."""
+    used = {m.group(1) for m in _PREFIXED.finditer(raw)} - {m.group(1) for m in _XMLNS.finditer(raw)}
+    used -= {b"xml", b"xmlns"}
+    if not used:
+        return None
+    start = _ROOT_START.search(raw, _PROLOG_NOISE.match(raw).end() if _PROLOG_NOISE.match(raw) else 0)
+    if start is None:
+        return None
+    names = sorted(p.decode("ascii", "replace") for p in used)
+    decls = b"".join(b' xmlns:%s="urn:robodesc:undeclared:%s"' % (p, p) for p in sorted(used))
+    if findings is not None:
+        findings.warn(
+            "undeclared-prefix",
+            f"namespace prefix(es) {', '.join(names)} used without a declaration; declared for reading "
+            "(urdfdom and pybullet ignore namespaces)",
+            loc=SourceLoc(file, raw.count(b"\n", 0, start.start()) + 1),
+            stage=STAGE,
+        )
+    return raw[: start.end()] + decls + raw[start.end() :]
 
 
 def _syntax_error(exc: etree.XMLSyntaxError, file: str | None) -> ParseError:
