@@ -107,7 +107,8 @@ def _declare_prefixes(raw: bytes, file: str | None, findings: Findings | None) -
     used -= {b"xml", b"xmlns"}
     if not used:
         return None
-    start = _ROOT_START.search(raw, _PROLOG_NOISE.match(raw).end() if _PROLOG_NOISE.match(raw) else 0)
+    prolog = _PROLOG_NOISE.match(raw)
+    start = _ROOT_START.search(raw, prolog.end() if prolog is not None else 0)
     if start is None:
         return None
     names = sorted(p.decode("ascii", "replace") for p in used)
