@@ -142,3 +142,29 @@ def test_unknown_api_option_names_the_closest() -> None:
 def test_bad_cli_usage_exits_2(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["compile", "x.urdf", "--package", "nodir"]) == 2
     assert "expected NAME=VALUE" in capsys.readouterr().err
+
+
+def test_a_consumer_refusing_a_source_defect_is_a_warning(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # A massless link on a revolute joint: MuJoCo refuses to compile the model. robodesc wrote
+    # what the source says, so the run succeeds and the refusal is listed as a warning.
+    src = tmp_path / "massless.urdf"
+    src.write_text(
+        '<robot name="r">\n'
+        '  <link name="base"><inertial><mass value="1"/>'
+        '<inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>\n'
+        '  <link name="arm"/>\n'
+        '  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>\n'
+        '    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>\n'
+        "</robot>\n"
+    )
+    out = tmp_path / "o.urdf"
+    assert main(["compile", str(src), "-o", str(out), "--json"]) == 0
+    import json
+
+    doc = json.loads(capsys.readouterr().out)
+    assert out.exists() and doc["ok"]
+    refused = [c for c in doc["validation"]["checks"] if "a defect of the source" in c["message"]]
+    assert refused and refused[0]["status"] == "warn"
+    assert "source defect" in doc["summary"]["validation"]
+    assert main(["compile", str(src), "-o", str(tmp_path / "s.urdf"), "--strict"]) == 2
+    assert not (tmp_path / "s.urdf").exists()
