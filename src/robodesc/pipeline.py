@@ -483,21 +483,25 @@ class Staging:
         self._payloads = (payloads, backup)
 
     def set_aside(self, name: str) -> str | None:
-        """Move ``name`` out of the staged folder while a target rewrites the folder."""
+        """Keep a copy (hard links) of ``name`` of the staged folder while a target rewrites the
+        folder as a whole; the target still reads the original (the USD reads the copied meshes)."""
         assert self.path is not None
         here = os.path.join(self.path, name)
         if not os.path.isdir(here):
             return None
         aside = tempfile.mkdtemp(prefix=".robodesc-aside-", dir=os.path.dirname(self.path))
         os.rmdir(aside)
-        os.replace(here, aside)
+        shutil.copytree(here, aside, copy_function=_link_or_copy)
         self._aside.append(aside)
         return aside
 
     def put_back(self, aside: str, name: str) -> None:
         assert self.path is not None
         os.makedirs(self.path, exist_ok=True)
-        os.replace(aside, os.path.join(self.path, name))
+        here = os.path.join(self.path, name)
+        if os.path.isdir(here):
+            shutil.rmtree(here)
+        os.replace(aside, here)
         self._aside.remove(aside)
 
     def final_path(self, path: str) -> str:
@@ -542,6 +546,13 @@ class Staging:
             if backup is not None:
                 os.replace(backup, payloads)
             self._payloads = None
+
+
+def _link_or_copy(src: str, dst: str) -> None:
+    try:
+        os.link(src, dst)
+    except OSError:
+        shutil.copy2(src, dst)
 
 
 def _folder_mode() -> int:

@@ -259,3 +259,14 @@ def test_usd_banner_never_shown(tmp_path: Path) -> None:
     )
     assert proc.returncode == 0, proc.stderr
     assert "PXR_WORK_THREAD_LIMIT" not in proc.stderr + proc.stdout
+
+
+def test_copy_meshes_into_a_folder_output(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "isaac"
+    assert main(["compile", ARM, "--isaac-sim", "--copy-meshes", "-o", str(out)]) == 0
+    err = capsys.readouterr().err
+    assert "could not be read" not in err  # the USD read the copied meshes
+    copied = out / "meshes" / "finger.stl"
+    assert copied.is_file() and stat.S_IMODE(copied.stat().st_mode) & 0o044 == 0o044
+    assert 'filename="meshes/finger.stl"' in (out / "gripper_arm.urdf").read_text()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["isaac"]  # no staging left behind
