@@ -27,9 +27,9 @@ from robodesc.ir.model import Robot
 from robodesc.options import build_options
 from robodesc.pipeline import (
     CompileResult,
-    ValidationFailedError,
     Progress,
     Source,
+    ValidationFailedError,
     compile_robot,
     load_source,
     target_options_class,
