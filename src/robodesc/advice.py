@@ -43,6 +43,7 @@ ADVICE: dict[str, Advice] = {
         "urdfdom (ROS) refuses the file; pybullet, Drake and the Isaac importer read the first numbers",
         "edit the source",
     ),
+    "comma-vector": Advice("urdfdom (ROS) refuses the file; pybullet reads commas as separators", "edit the source"),
     "extra-shapes": Advice("urdfdom, pybullet and the Isaac importer use the first shape only", "edit the source"),
     "unmodelled-geometry": Advice(
         "urdfdom refuses the file; pybullet reads planes; the URDF output keeps the element, SDF and USD leave it out",

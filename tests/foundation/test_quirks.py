@@ -29,6 +29,7 @@ CASES = {
     "limit_without_bounds.urdf": ("limit-unbounded", "limit_without_bounds.urdf:7"),
     "undeclared_prefix.urdf": ("undeclared-prefix", "undeclared_prefix.urdf:2"),
     "world_parent.urdf": ("world-link", "world_parent.urdf:8"),
+    "comma_vector.urdf": ("comma-vector", "comma_vector.urdf:11"),
 }
 
 

@@ -236,6 +236,17 @@ class UrdfReader:
         if raw is None:
             return None
         parts = raw.split()
+        if "," in raw:
+            # pybullet reads "0.07, 0, -0.69"; urdfdom refuses it.
+            parts = raw.replace(",", " ").split()
+            self.findings.warn(
+                "comma-vector",
+                f"<{_tag(el)} {attr}={raw!r}>: numbers separated by commas; read as spaces, as pybullet does "
+                "(urdfdom refuses them)",
+                element=element,
+                loc=self._loc(el),
+                stage=STAGE,
+            )
         try:
             values = tuple(float(p) for p in parts)
         except ValueError:
