@@ -164,10 +164,21 @@ def main() -> int:
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--timeout", type=float, default=600)
     ap.add_argument("--json", help="write every row here")
+    ap.add_argument(
+        "--compare",
+        nargs=2,
+        metavar=("BEFORE.json", "AFTER.json"),
+        help="print a before/after table from two --json files (AFTER may be several files joined by commas)",
+    )
     ap.add_argument("--worker", help=argparse.SUPPRESS)
     ap.add_argument("--package", action="append", default=[], help=argparse.SUPPRESS)
     args = ap.parse_args()
     targets = args.targets.split(",")
+    if args.compare:
+        before = _read(args.compare[0])
+        after = [row for name in args.compare[1].split(",") for row in _read(name)]
+        print_compare(before, after, targets)
+        return 0
     if args.worker:
         print(json.dumps(worker(args.worker, args.package, targets)))
         return 0
@@ -197,13 +208,44 @@ def main() -> int:
     return 0
 
 
+def _read(path: str) -> list[dict[str, Any]]:
+    with open(path, encoding="utf-8") as handle:
+        rows: list[dict[str, Any]] = json.load(handle)
+    return rows
+
+
+def print_compare(before: list[dict[str, Any]], after: list[dict[str, Any]], targets: list[str]) -> None:
+    """Robots with at least one link, per collection: exit-0 counts before -> after, per target.
+    Only robots present in both runs are counted."""
+    key = {(r["collection"], r["name"]): r for r in after}
+    by_coll: dict[str, list[tuple[dict[str, Any], dict[str, Any]]]] = defaultdict(list)
+    for r in before:
+        if (r["collection"], r["name"]) in key and (r["links"] is None or r["links"] > 0):
+            by_coll[r["collection"]].append((r, key[(r["collection"], r["name"])]))
+    print("| collection | robots | " + " | ".join(f"{t} before → after" for t in targets) + " |")
+    print("|---|---:|" + "---:|" * len(targets))
+    totals: Counter[str] = Counter()
+    n_all = 0
+    for coll, pairs in sorted(by_coll.items()):
+        n_all += len(pairs)
+        cells = []
+        for t in targets:
+            b = sum(1 for x, _ in pairs if x["targets"][t]["exit"] == 0)
+            a = sum(1 for _, y in pairs if y["targets"][t]["exit"] == 0)
+            totals[t + "b"] += b
+            totals[t + "a"] += a
+            cells.append(f"{b} → {a}")
+        print(f"| {coll} | {len(pairs)} | " + " | ".join(cells) + " |")
+    print(f"| **all** | {n_all} | " + " | ".join(f"{totals[t + 'b']} → {totals[t + 'a']}" for t in targets) + " |")
+
+
 def print_summary(results: list[dict[str, Any]], targets: list[str]) -> None:
     by_coll: dict[str, list[dict[str, Any]]] = defaultdict(list)
     for r in results:
         by_coll[r["collection"]].append(r)
     print("| collection | robots | " + " | ".join(targets) + " |")
     print("|---|---|" + "---|" * len(targets))
-    total = Counter()
+    total: Counter[str] = Counter()
     denom = 0
     for coll, rows in sorted(by_coll.items()):
         eligible = [r for r in rows if r["links"] is None or r["links"] > 0]
