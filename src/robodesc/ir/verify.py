@@ -14,7 +14,7 @@ from collections import Counter
 from collections.abc import Mapping
 
 from robodesc.ir.diagnostics import Findings, Severity, SourceLoc, VerificationError
-from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Inertial, Mesh, Sphere
+from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Inertial, Mesh, Pose, Sphere
 from robodesc.ir.model import Joint, JointType, Robot
 from robodesc.ir.principal import inertia_problem
 
@@ -360,7 +360,44 @@ def _joint(joint: Joint, out: Findings) -> None:
                 )
 
 
+# What every number in the IR must satisfy. Beyond these no target carries the value faithfully:
+# USD stores masses, inertias, limits and local joint frames as float32 (at most 3.4e38, and
+# limits become degrees there), and the passes square and multiply lengths and masses (inertia
+# from geometry, lumping, principal axes) in doubles, whose products must not overflow to inf or
+# underflow to 0. The bounds sit far outside any real robot (the largest number in the corpora is
+# a 1e16 "unbounded" joint limit).
+LIMIT = 1e30  # any float
+MAX_LENGTH = 1e6  # m: positions, shape sizes, mesh scale factors
+MIN_SIZE = 1e-9  # m: the smallest non-zero shape size or mesh scale factor
+MAX_MASS = 1e12  # kg
+MAX_INT = 2**31 - 1  # counts (camera pixels, ray samples): USD and SDF store int32
+AXIS_NORM = (1e-9, 1e9)  # a joint axis is normalised; its length must survive squaring
+
+
+# (owner type, field) -> (smallest non-zero magnitude, largest magnitude, unit). Fields not listed
+# get (0, LIMIT). Looked up once per dataclass type, not per value.
+_BOUNDS: dict[tuple[type, str], tuple[float, float, str]] = {
+    (Pose, "xyz"): (0.0, MAX_LENGTH, " m"),
+    (Box, "size"): (MIN_SIZE, MAX_LENGTH, " m"),
+    (Sphere, "radius"): (MIN_SIZE, MAX_LENGTH, " m"),
+    (Cylinder, "radius"): (MIN_SIZE, MAX_LENGTH, " m"),
+    (Cylinder, "length"): (MIN_SIZE, MAX_LENGTH, " m"),
+    (Capsule, "radius"): (MIN_SIZE, MAX_LENGTH, " m"),
+    (Capsule, "length"): (MIN_SIZE, MAX_LENGTH, " m"),
+    (Mesh, "scale"): (MIN_SIZE, MAX_LENGTH, ""),
+    (Inertial, "mass"): (0.0, MAX_MASS, " kg"),
+}
+_DEFAULT_BOUNDS = (0.0, LIMIT, "")
+
+# A value out of bounds: (field path, location, value, bounds).
+_Bad = tuple[str, SourceLoc | None, float, tuple[float, float, str]]
+
+
 def _numbers(robot: Robot, out: Findings) -> None:
+    """Every number finite and within the bounds above, named by element, field and file:line.
+
+    One pass over the whole IR, linear in its size: it runs on every robot, before and after the
+    passes, whichever frontend (URDF, xacro, a composition) built it."""
     groups: list[tuple[str, list[object]]] = [
         ("link", list(robot.links)),
         ("joint", list(robot.joints)),
@@ -372,40 +409,83 @@ def _numbers(robot: Robot, out: Findings) -> None:
     ]
     for kind, nodes in groups:
         for node in nodes:
-            bad: list[tuple[str, SourceLoc | None, float]] = []
-            _nonfinite(node, getattr(node, "src", None), "", bad)
-            for path, loc, value in bad:
-                _err(out, "non-finite", f"{path.lstrip('.')} is {value}", f"{kind} {getattr(node, 'name', '')!r}", loc)
+            bad: list[_Bad] = []
+            _scan(node, getattr(node, "src", None), "", _DEFAULT_BOUNDS, bad)
+            for path, loc, value, bounds in bad:
+                element = f"{kind} {getattr(node, 'name', '')!r}"
+                field_path = path.lstrip(".")
+                if isinstance(value, float) and not math.isfinite(value):
+                    _err(out, "non-finite", f"{field_path} is {value}", element, loc)
+                else:
+                    _err(out, "out-of-range", _range_message(field_path, value, bounds), element, loc)
+        for node in nodes:
+            axis = getattr(node, "axis", None)
+            if axis is not None and any(axis) and all(math.isfinite(a) for a in axis):
+                norm = math.hypot(*axis)
+                if not AXIS_NORM[0] <= norm <= AXIS_NORM[1]:
+                    _err(
+                        out,
+                        "out-of-range",
+                        f"axis length is {norm:g}; it must lie between {AXIS_NORM[0]:g} and {AXIS_NORM[1]:g} "
+                        "(the axis is normalised, and its squares must stay finite and non-zero)",
+                        f"{kind} {getattr(node, 'name', '')!r}",
+                        getattr(node, "src", None),
+                    )
 
 
-_FIELDS: dict[type, tuple[str, ...]] = {}
+def _range_message(path: str, value: float, bounds: tuple[float, float, str]) -> str:
+    low, high, unit = bounds
+    if isinstance(value, int):
+        return f"{path} is {value}, beyond {MAX_INT} (targets store it as a 32-bit integer)"
+    if abs(value) > high:
+        why = "no robot is that large" if unit == " m" else "no target represents it faithfully"
+        return f"{path} is {value:g}{unit}, beyond ±{high:g}{unit} ({why})"
+    return (
+        f"{path} is {value:g}{unit}; a non-zero size must be at least {low:g}{unit} "
+        "(smaller ones vanish when squared or converted to float32)"
+    )
 
 
-def _fields(cls: type) -> tuple[str, ...]:
+_FIELDS: dict[type, tuple[tuple[str, tuple[float, float, str]], ...]] = {}
+
+
+def _fields(cls: type) -> tuple[tuple[str, tuple[float, float, str]], ...]:
     names = _FIELDS.get(cls)
     if names is None:
-        names = tuple(f.name for f in dataclasses.fields(cls) if f.name not in ("src", "extensions", "extra_attrs"))
+        names = tuple(
+            (f.name, _BOUNDS.get((cls, f.name), _DEFAULT_BOUNDS))
+            for f in dataclasses.fields(cls)
+            if f.name not in ("src", "extensions", "extra_attrs")
+        )
         _FIELDS[cls] = names
     return names
 
 
-def _nonfinite(obj: object, loc: SourceLoc | None, path: str, bad: list[tuple[str, SourceLoc | None, float]]) -> None:
-    """Collect every non-finite float under ``obj`` with its path. Hot on large robots: no generators,
-    and only containers that can hold floats are entered."""
+def _scan(obj: object, loc: SourceLoc | None, path: str, bounds: tuple[float, float, str], bad: list[_Bad]) -> None:
+    """Collect every number under ``obj`` outside ``bounds`` (NaN and infinities included) with its
+    path. Hot on large robots: no generators, one chained comparison per float, and only containers
+    that can hold numbers are entered."""
+    low, high = bounds[0], bounds[1]
     if isinstance(obj, float):
-        if not math.isfinite(obj):
-            bad.append((path, loc, obj))
+        if not (-high <= obj <= high) or (low and 0.0 < abs(obj) < low):
+            bad.append((path, loc, obj, bounds))
     elif isinstance(obj, tuple | list):
         for i, item in enumerate(obj):
             if isinstance(item, float):
-                if not math.isfinite(item):
-                    bad.append((f"{path}[{i}]", loc, item))
-            elif not isinstance(item, str | int):
-                _nonfinite(item, loc, f"{path}[{i}]", bad)
+                if not (-high <= item <= high) or (low and 0.0 < abs(item) < low):
+                    bad.append((f"{path}[{i}]", loc, item, bounds))
+            elif isinstance(item, int) and not isinstance(item, bool):
+                if not -MAX_INT <= item <= MAX_INT:
+                    bad.append((f"{path}[{i}]", loc, item, bounds))
+            elif not isinstance(item, str):
+                _scan(item, loc, f"{path}[{i}]", bounds, bad)
+    elif isinstance(obj, int) and not isinstance(obj, bool):
+        if not -MAX_INT <= obj <= MAX_INT:
+            bad.append((path, loc, obj, bounds))
     elif dataclasses.is_dataclass(obj) and not isinstance(obj, type):
         here = getattr(obj, "src", None) or loc
-        for name in _fields(type(obj)):
+        for name, field_bounds in _fields(type(obj)):
             value = getattr(obj, name)
-            if value is None or isinstance(value, str | bool | int | enum.Enum):
+            if value is None or isinstance(value, str | bool | enum.Enum):
                 continue
-            _nonfinite(value, here, f"{path}.{name}", bad)
+            _scan(value, here, f"{path}.{name}", field_bounds, bad)
