@@ -359,7 +359,7 @@ def run_case(case: int, seed: int, root: Path, time_limit: int = TIME_LIMIT) -> 
     except _Timeout:
         outcome.status, outcome.detail = "hang", f"no answer within {time_limit} s: robodesc {' '.join(argv)}"
         return outcome
-    except BaseException as exc:  # noqa: BLE001 - anything escaping main() is the finding
+    except BaseException as exc:  # anything escaping main() is the finding
         outcome.status = "crash"
         outcome.detail = "".join(traceback.format_exception(exc))[-3000:]
         return outcome

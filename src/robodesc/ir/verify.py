@@ -10,6 +10,7 @@ from __future__ import annotations
 import dataclasses
 import enum
 import math
+import re
 from collections import Counter
 from collections.abc import Mapping
 
@@ -39,6 +40,7 @@ def verify(robot: Robot) -> Findings:
     _tree(robot, out)
     _references(robot, out)
     _numbers(robot, out)
+    _robot_strings(robot, out)
     for link in robot.links:
         label = f"link {link.name!r}"
         if link.inertial is not None:
@@ -389,8 +391,13 @@ _BOUNDS: dict[tuple[type, str], tuple[float, float, str]] = {
 }
 _DEFAULT_BOUNDS = (0.0, LIMIT, "")
 
-# A value out of bounds: (field path, location, value, bounds).
-_Bad = tuple[str, SourceLoc | None, float, tuple[float, float, str]]
+# A value out of bounds: (field path, location, value, bounds); a string with a character no
+# target can carry has bounds None.
+_Bad = tuple[str, SourceLoc | None, float | str, tuple[float, float, str] | None]
+
+# Characters XML 1.0 cannot carry (every target is XML or USD text/crate read back through XML
+# tooling): C0 controls but tab, newline and carriage return; surrogates; U+FFFE, U+FFFF.
+_NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
 
 def _numbers(robot: Robot, out: Findings) -> None:
@@ -413,8 +420,10 @@ def _numbers(robot: Robot, out: Findings) -> None:
             _scan(node, getattr(node, "src", None), "", _DEFAULT_BOUNDS, bad)
             for path, loc, value, bounds in bad:
                 element = f"{kind} {getattr(node, 'name', '')!r}"
-                field_path = path.lstrip(".")
-                if isinstance(value, float) and not math.isfinite(value):
+                field_path = path.lstrip(".") or "name"
+                if isinstance(value, str) or bounds is None:
+                    _err(out, "bad-character", _character_message(field_path, str(value)), element, loc)
+                elif isinstance(value, float) and not math.isfinite(value):
                     _err(out, "non-finite", f"{field_path} is {value}", element, loc)
                 else:
                     _err(out, "out-of-range", _range_message(field_path, value, bounds), element, loc)
@@ -431,6 +440,17 @@ def _numbers(robot: Robot, out: Findings) -> None:
                         f"{kind} {getattr(node, 'name', '')!r}",
                         getattr(node, "src", None),
                     )
+
+
+def _character_message(path: str, value: str) -> str:
+    found = _NOT_XML.search(value)
+    code = f"U+{ord(found.group(0)):04X}" if found else "a control character"
+    return f"{path} contains {code}, a character XML cannot carry; remove it"
+
+
+def _robot_strings(robot: Robot, out: Findings) -> None:
+    if _NOT_XML.search(robot.name):
+        _err(out, "bad-character", _character_message("name", robot.name), f"robot {robot.name!r}", robot.src)
 
 
 def _range_message(path: str, value: float, bounds: tuple[float, float, str]) -> str:
@@ -455,7 +475,7 @@ def _fields(cls: type) -> tuple[tuple[str, tuple[float, float, str]], ...]:
         names = tuple(
             (f.name, _BOUNDS.get((cls, f.name), _DEFAULT_BOUNDS))
             for f in dataclasses.fields(cls)
-            if f.name not in ("src", "extensions", "extra_attrs")
+            if f.name not in ("src", "extensions")
         )
         _FIELDS[cls] = names
     return names
@@ -466,7 +486,10 @@ def _scan(obj: object, loc: SourceLoc | None, path: str, bounds: tuple[float, fl
     path. Hot on large robots: no generators, one chained comparison per float, and only containers
     that can hold numbers are entered."""
     low, high = bounds[0], bounds[1]
-    if isinstance(obj, float):
+    if isinstance(obj, str):
+        if _NOT_XML.search(obj):
+            bad.append((path, loc, obj, None))
+    elif isinstance(obj, float):
         if not (-high <= obj <= high) or (low and 0.0 < abs(obj) < low):
             bad.append((path, loc, obj, bounds))
     elif isinstance(obj, tuple | list):
@@ -477,7 +500,7 @@ def _scan(obj: object, loc: SourceLoc | None, path: str, bounds: tuple[float, fl
             elif isinstance(item, int) and not isinstance(item, bool):
                 if not -MAX_INT <= item <= MAX_INT:
                     bad.append((f"{path}[{i}]", loc, item, bounds))
-            elif not isinstance(item, str):
+            else:
                 _scan(item, loc, f"{path}[{i}]", bounds, bad)
     elif isinstance(obj, int) and not isinstance(obj, bool):
         if not -MAX_INT <= obj <= MAX_INT:
@@ -486,6 +509,10 @@ def _scan(obj: object, loc: SourceLoc | None, path: str, bounds: tuple[float, fl
         here = getattr(obj, "src", None) or loc
         for name, field_bounds in _fields(type(obj)):
             value = getattr(obj, name)
-            if value is None or isinstance(value, str | bool | enum.Enum):
+            if value is None or isinstance(value, bool | enum.Enum):
                 continue
             _scan(value, here, f"{path}.{name}", field_bounds, bad)
+    elif isinstance(obj, dict):  # extra_attrs and the like: keys and values are written out
+        for key, value in obj.items():
+            _scan(key, loc, f"{path}[{key!r}]", bounds, bad)
+            _scan(value, loc, f"{path}[{key!r}]", bounds, bad)
