@@ -37,7 +37,7 @@ def _check_depth(text: str, file: str) -> None:
                 mark = event.start_mark
                 raise ParseError(
                     f"YAML nested more than {MAX_DEPTH} levels deep; refused",
-                    loc=SourceLoc(file, mark.line + 1, mark.column + 1),
+                    loc=SourceLoc(file, mark.line + 1, mark.column + 1) if mark is not None else SourceLoc(file),
                 )
         elif isinstance(event, yaml.CollectionEndEvent):
             depth -= 1

@@ -56,8 +56,8 @@ def allowed_roots(robot: Robot) -> list[str]:
     if robot.source_file:
         roots.append(os.path.dirname(os.path.abspath(robot.source_file)))
     for link in robot.links:
-        for item in [*link.visuals, *link.collisions]:  # type: ignore[list-item]
-            geom = item.geometry
+        geometries = [v.geometry for v in link.visuals] + [c.geometry for c in link.collisions]
+        for geom in geometries:
             if isinstance(geom, Mesh) and geom.package is not None and geom.path is not None:
                 inner = os.path.normpath(geom.package[1]) if geom.package[1] else ""
                 path = os.path.normpath(geom.path)
