@@ -24,6 +24,7 @@ CASES: dict[str, tuple[list[str], str, str]] = {
     "huge_axis.urdf": (["-t", "urdf"], "out.urdf", "axis length is 1.41421e+200"),
     "deep.yaml": (["-t", "sdf"], "out.sdf", "YAML nested more than 100 levels deep"),
     "control_chars.yaml": (["-t", "sdf"], "out.sdf", "contains U+0001, a character XML cannot carry"),
+    "composition_overflow.yaml": (["-t", "usd"], "out.usda", "cylinder radius is 1e+200 m, beyond ±1e+06 m"),
     "xacro_power.urdf.xacro": (["-t", "urdf"], "out.urdf", "integer power 9 ** 387420489"),
     "xacro_doubling.urdf.xacro": (["-t", "urdf"], "out.urdf", "property 'p15'"),
     "xacro_python.urdf.xacro": (["-t", "urdf"], "out.urdf", "the 'python' namespace is not available"),

@@ -442,6 +442,24 @@ def _numbers(robot: Robot, out: Findings) -> None:
                     )
 
 
+def value_problems(obj: object) -> list[str]:
+    """The number-range and character problems of one IR value (a shape, a pose, an inertial), as
+    the verifier words them; for frontends that compute with a value before the verifier runs (a
+    composition derives inertia from shape sizes)."""
+    bad: list[_Bad] = []
+    _scan(obj, None, "", _DEFAULT_BOUNDS, bad)
+    out: list[str] = []
+    for path, _loc, value, bounds in bad:
+        field_path = path.lstrip(".") or "value"
+        if isinstance(value, str) or bounds is None:
+            out.append(_character_message(field_path, str(value)))
+        elif isinstance(value, float) and not math.isfinite(value):
+            out.append(f"{field_path} is {value}")
+        else:
+            out.append(_range_message(field_path, value, bounds))
+    return out
+
+
 def _character_message(path: str, value: str) -> str:
     found = _NOT_XML.search(value)
     code = f"U+{ord(found.group(0)):04X}" if found else "a control character"
@@ -482,37 +500,54 @@ def _fields(cls: type) -> tuple[tuple[str, tuple[float, float, str]], ...]:
 
 
 def _scan(obj: object, loc: SourceLoc | None, path: str, bounds: tuple[float, float, str], bad: list[_Bad]) -> None:
-    """Collect every number under ``obj`` outside ``bounds`` (NaN and infinities included) with its
-    path. Hot on large robots: no generators, one chained comparison per float, and only containers
-    that can hold numbers are entered."""
-    low, high = bounds[0], bounds[1]
-    if isinstance(obj, str):
+    """Collect every number under ``obj`` outside ``bounds`` (NaN and infinities included), and every
+    string with a character XML cannot carry, with its path. Hot on large robots (it visits every
+    value of the IR, twice per compile): the fields of a dataclass are checked in place by exact
+    type, one chained comparison per float, and a path string is built only for containers entered
+    and for offending values."""
+    if type(obj) is float:
+        if not (-bounds[1] <= obj <= bounds[1]) or (bounds[0] and 0.0 < abs(obj) < bounds[0]):
+            bad.append((path, loc, obj, bounds))
+    elif type(obj) is str:
         if _NOT_XML.search(obj):
             bad.append((path, loc, obj, None))
-    elif isinstance(obj, float):
-        if not (-high <= obj <= high) or (low and 0.0 < abs(obj) < low):
-            bad.append((path, loc, obj, bounds))
-    elif isinstance(obj, tuple | list):
+    elif type(obj) is tuple or type(obj) is list:
+        low, high = bounds[0], bounds[1]
         for i, item in enumerate(obj):
-            if isinstance(item, float):
+            if type(item) is float:
                 if not (-high <= item <= high) or (low and 0.0 < abs(item) < low):
                     bad.append((f"{path}[{i}]", loc, item, bounds))
-            elif isinstance(item, int) and not isinstance(item, bool):
+            elif type(item) is int:
                 if not -MAX_INT <= item <= MAX_INT:
                     bad.append((f"{path}[{i}]", loc, item, bounds))
-            else:
+            elif type(item) is not bool:
                 _scan(item, loc, f"{path}[{i}]", bounds, bad)
-    elif isinstance(obj, int) and not isinstance(obj, bool):
+    elif type(obj) is int:
         if not -MAX_INT <= obj <= MAX_INT:
             bad.append((path, loc, obj, bounds))
+    elif type(obj) is dict:
+        for key, value in obj.items():
+            _scan(key, loc, f"{path}[{key!r}]", bounds, bad)
+            _scan(value, loc, f"{path}[{key!r}]", bounds, bad)
+    elif type(obj) is bool or obj is None or isinstance(obj, enum.Enum):
+        return
     elif dataclasses.is_dataclass(obj) and not isinstance(obj, type):
         here = getattr(obj, "src", None) or loc
         for name, field_bounds in _fields(type(obj)):
             value = getattr(obj, name)
-            if value is None or isinstance(value, bool | enum.Enum):
-                continue
-            _scan(value, here, f"{path}.{name}", field_bounds, bad)
-    elif isinstance(obj, dict):  # extra_attrs and the like: keys and values are written out
-        for key, value in obj.items():
-            _scan(key, loc, f"{path}[{key!r}]", bounds, bad)
-            _scan(value, loc, f"{path}[{key!r}]", bounds, bad)
+            if type(value) is float:
+                if not (-field_bounds[1] <= value <= field_bounds[1]) or (
+                    field_bounds[0] and 0.0 < abs(value) < field_bounds[0]
+                ):
+                    bad.append((f"{path}.{name}", here, value, field_bounds))
+            elif type(value) is str:
+                if _NOT_XML.search(value):
+                    bad.append((f"{path}.{name}", here, value, None))
+            elif value is not None and type(value) is not bool:
+                _scan(value, here, f"{path}.{name}", field_bounds, bad)
+    elif isinstance(obj, int):  # an int subclass that is no bool or enum
+        _scan(int(obj), loc, path, bounds, bad)
+    elif isinstance(obj, float):
+        _scan(float(obj), loc, path, bounds, bad)
+    elif isinstance(obj, str):
+        _scan(str(obj), loc, path, bounds, bad)
