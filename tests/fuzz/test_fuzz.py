@@ -18,12 +18,6 @@ CASES = int(os.environ.get("ROBODESC_FUZZ_CASES", "300"))
 SEED = int(os.environ.get("ROBODESC_FUZZ_SEED", "17"))
 
 
-def _known_elsewhere(o: Outcome) -> bool:
-    """Deep nesting in ``.holo`` reaches the recursive-descent parser's recursion limit; the .holo
-    parser rewrite (issue 18) makes it depth-limited. Until that lands these are tolerated here."""
-    return o.seed_file.endswith(".holo") and "deep-nesting" in o.mutations and "RecursionError" in o.detail
-
-
 @pytest.fixture(scope="module")
 def outcomes(tmp_path_factory: pytest.TempPathFactory) -> list[Outcome]:
     root = tmp_path_factory.mktemp("fuzz")
@@ -31,7 +25,7 @@ def outcomes(tmp_path_factory: pytest.TempPathFactory) -> list[Outcome]:
 
 
 def test_fuzz_no_crash_hang_or_bad_output(outcomes: list[Outcome]) -> None:
-    bad = [o for o in outcomes if o.status in ("crash", "hang", "bad-output") and not _known_elsewhere(o)]
+    bad = [o for o in outcomes if o.status in ("crash", "hang", "bad-output")]
     assert not bad, summary(bad)
 
 
