@@ -34,6 +34,8 @@ class CompileOptions:
     missing_mesh: MissingMesh = MissingMesh.ERROR
     strict: bool = False
     invalid_inertia: InvalidInertia = InvalidInertia.ERROR
+    trust_xacro: bool = False
+    allowed_env: tuple[str, ...] = ()
     # ---- passes ------------------------------------------------------------------------------
     preset: str | None = None
     passes: dict[str, Any] = field(default_factory=dict)
@@ -48,6 +50,8 @@ class CompileOptions:
             xacro_args=dict(self.xacro_args),
             missing_mesh=self.missing_mesh,
             strict=self.strict,
+            trust_xacro=self.trust_xacro,
+            allowed_env=tuple(self.allowed_env),
         )
 
 
