@@ -58,6 +58,20 @@ def _add_package_and_arg(g: argparse._ActionsContainer) -> None:
     g.add_argument(
         "--arg", metavar="NAME=VALUE", action="append", type=_key_value, default=[], help="xacro argument (repeatable)"
     )
+    g.add_argument(
+        "--env",
+        metavar="NAME",
+        action="append",
+        default=[],
+        help="let xacro's $(env NAME) / $(optenv NAME) read this environment variable (repeatable); "
+        "no other variable is read",
+    )
+    g.add_argument(
+        "--trust-xacro",
+        action="store_true",
+        help="expand xacro with upstream's Python evaluation: expressions may run code, read any file "
+        "and the whole environment. Only for files you trust (docs/security.md)",
+    )
 
 
 def _add_input_options(p: argparse.ArgumentParser) -> None:
@@ -357,6 +371,8 @@ def _common_options(args: argparse.Namespace) -> dict[str, Any]:
         "missing_mesh": args.missing_mesh,
         "invalid_inertia": args.invalid_inertia,
         "strict": args.strict,
+        "trust_xacro": args.trust_xacro,
+        "allowed_env": tuple(args.env),
     }
 
 
@@ -801,7 +817,9 @@ def _cmd_expand(args: argparse.Namespace) -> int:
 
     findings = Findings()
     resolver = PackageResolver(explicit=dict(args.package), input_file=args.input)
-    text = expand_xacro(args.input, dict(args.arg), resolver, findings)
+    text = expand_xacro(
+        args.input, dict(args.arg), resolver, findings, trust=args.trust_xacro, allowed_env=tuple(args.env)
+    )
     for f in findings:
         print(_render(f), file=sys.stderr)
     sys.stdout.write(text + "\n")

@@ -37,6 +37,8 @@ class CompileOptions:
     # Every warning is an error (exit 2, nothing written), for pipelines that want no surprises.
     strict: bool = False
     invalid_inertia: InvalidInertia = InvalidInertia.WARN
+    trust_xacro: bool = False
+    allowed_env: tuple[str, ...] = ()
     # ---- passes ------------------------------------------------------------------------------
     preset: str | None = None
     passes: dict[str, Any] = field(default_factory=dict)
@@ -51,6 +53,8 @@ class CompileOptions:
             xacro_args=dict(self.xacro_args),
             missing_mesh=self.missing_mesh,
             strict=self.strict,
+            trust_xacro=self.trust_xacro,
+            allowed_env=tuple(self.allowed_env),
         )
 
 

@@ -103,7 +103,10 @@ def test_env_substitution_in_plain_urdf(tmp_path: Path, monkeypatch: pytest.Monk
     elsewhere.mkdir()
     shutil.copy(quirks / "meshes" / "finger.stl", elsewhere / "finger.stl")
     monkeypatch.setenv("ROBODESC_QUIRK_MESHES", str(elsewhere))
+    # Only variables the user names are read (docs/security.md): without --env the default is used.
     robot = robodesc.load(str(quirks / "env_substitution.urdf"))
+    assert getattr(robot.link_map()["base"].visuals[0].geometry, "path", None) == str(quirks / "meshes" / "finger.stl")
+    robot = robodesc.load(str(quirks / "env_substitution.urdf"), allowed_env=("ROBODESC_QUIRK_MESHES",))
     assert getattr(robot.link_map()["base"].visuals[0].geometry, "path", None) == str(elsewhere / "finger.stl")
 
 

@@ -89,6 +89,7 @@ def test_copy_meshes_collision_free_names_and_conversion(tmp_path: Path) -> None
     box.export(src2 / "shell.dae")
     (src1 / "skin.png").write_bytes(b"\x89PNG fake")
     robot = chain("a", "b", "c")
+    robot.source_file = str(tmp_path / "robot.urdf")  # files are copied only from the input's folder (and packages)
     robot.links[0].visuals = [
         Visual(Mesh("package://x/part.stl", path=str(src1 / "part.stl"), package=("x", "part.stl")))
     ]

@@ -58,7 +58,7 @@ from robodesc.ir.model import (
 )
 from robodesc.ir.principal import inertia_problem
 from robodesc.ir.transforms import Mat, matrix_pose, pose_matrix
-from robodesc.ir.verify import check
+from robodesc.ir.verify import check, value_problems
 
 STAGE = "compose"
 
@@ -688,6 +688,11 @@ class RobotBuilder:
         part_masses: list[float | None] = []
         volumes: list[float | None] = []
         for part, geom, _ in parts:
+            problems = value_problems(geom)  # sizes beyond the verifier's bounds overflow volume()
+            if problems:
+                raise ParseError(
+                    f"{type(geom).__name__.lower()} {problems[0]}", element=label, loc=part.src or spec.src
+                )
             vol = volume(geom)
             if vol is None and isinstance(geom, Mesh) and geom.path is not None:
                 raw = mesh_volume(geom.path)

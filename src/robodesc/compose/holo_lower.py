@@ -173,11 +173,9 @@ class HoloResult:
 
 
 def load_holo(path: str, options: LoadOptions | None = None, findings: Findings | None = None) -> HoloResult:
-    try:
-        with open(path, encoding="utf-8") as handle:
-            text = handle.read()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ParseError(f"cannot read file: {exc}", loc=SourceLoc(path)) from None
+    from robodesc.frontends.xml_safety import read_text  # regular files only: a named pipe must not hang
+
+    text = read_text(path)
     return load_holo_text(text, path, options, findings)
 
 

@@ -95,11 +95,9 @@ USE_KEYS = ("template", "prefix", "suffix", "mirror", "overrides")
 
 def load_yaml(path: str, options: LoadOptions, findings: Findings) -> Robot:
     """The frontend registered for ``.yaml``/``.yml``."""
-    try:
-        with open(path, encoding="utf-8") as handle:
-            text = handle.read()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ParseError(f"cannot read file: {exc}", loc=SourceLoc(path)) from None
+    from robodesc.frontends.xml_safety import read_text  # regular files only: a named pipe must not hang
+
+    text = read_text(path)
     return load_yaml_text(text, path, options, findings)
 
 

@@ -22,8 +22,30 @@ MERGE_TAG = "tag:yaml.org,2002:merge"
 NODE_BUDGET = 2_000_000
 
 
+# Nesting depth of YAML collections. PyYAML's composer is recursive (a few hundred levels reach
+# Python's recursion limit); its parser is a state machine, so the depth is checked on the parser's
+# events first. Compositions nest five or six levels deep.
+MAX_DEPTH = 100
+
+
+def _check_depth(text: str, file: str) -> None:
+    depth = 0
+    for event in yaml.parse(text, Loader=yaml.SafeLoader):
+        if isinstance(event, yaml.CollectionStartEvent):
+            depth += 1
+            if depth > MAX_DEPTH:
+                mark = event.start_mark
+                raise ParseError(
+                    f"YAML nested more than {MAX_DEPTH} levels deep; refused",
+                    loc=SourceLoc(file, mark.line + 1, mark.column + 1) if mark is not None else SourceLoc(file),
+                )
+        elif isinstance(event, yaml.CollectionEndEvent):
+            depth -= 1
+
+
 def compose_text(text: str, file: str) -> Node | None:
     try:
+        _check_depth(text, file)
         return yaml.compose(text, Loader=yaml.SafeLoader)
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark

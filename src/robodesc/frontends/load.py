@@ -32,7 +32,9 @@ def _load_urdf(path: str, options: LoadOptions, findings: Findings) -> Robot:
 
 def _load_xacro(path: str, options: LoadOptions, findings: Findings) -> Robot:
     resolver = PackageResolver(explicit=dict(options.package_paths), input_file=path)
-    text = expand_xacro(path, options.xacro_args, resolver, findings)
+    text = expand_xacro(
+        path, options.xacro_args, resolver, findings, trust=options.trust_xacro, allowed_env=options.allowed_env
+    )
     return read_urdf_string(
         text,
         file=f"{path} (expanded)",

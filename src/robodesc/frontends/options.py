@@ -23,3 +23,8 @@ class LoadOptions:
     missing_mesh: MissingMesh = MissingMesh.ERROR
     # Treat unknown elements as errors instead of keeping them with a warning.
     strict: bool = False
+    # Expand xacro with upstream's Python evaluation (code, any file, the whole environment) instead
+    # of robodesc's sandbox: only for files the user trusts (docs/security.md).
+    trust_xacro: bool = False
+    # Environment variables xacro's $(env NAME) / $(optenv NAME) may read; others are refused.
+    allowed_env: tuple[str, ...] = ()

@@ -168,16 +168,14 @@ class UrdfReader:
 
     def _env_value(self, match: re.Match[str], el: etree._Element) -> str:
         kind, var, default = match.group(1), match.group(2), match.group(3)
-        value = self.resolver.environ.get(var)
+        # As in xacro (docs/security.md): only the variables the user names with --env are read.
+        allowed = self.options.trust_xacro or var in self.options.allowed_env
+        value = self.resolver.environ.get(var) if allowed else None
         if value is None and kind == "optenv":
             value = (default or "").strip()
         if value is None:
-            self.findings.warn(
-                "env-unset",
-                f"{match.group(0)} names an unset environment variable; left as written",
-                loc=self._loc(el),
-                stage=STAGE,
-            )
+            why = "names an unset environment variable" if allowed else f"was not read (--env {var} allows it)"
+            self.findings.warn("env-unset", f"{match.group(0)} {why}; left as written", loc=self._loc(el), stage=STAGE)
             return match.group(0)
         self.findings.info(
             "env-substituted",

@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import codecs
 import contextlib
+import os
 import re
+import stat
 
 from lxml import etree
 
@@ -191,14 +193,62 @@ def _root_end(raw: bytes, exc: etree.XMLSyntaxError) -> int | None:
     return len(head) if head.endswith(b">") else None
 
 
-def read_file(path: str) -> bytes:
+def read_file(path: str, limit: int = MAX_BYTES) -> bytes:
+    """The bytes of the regular file ``path`` (at most ``limit`` + 1 of them, so callers can refuse
+    larger files). A named pipe, device or socket is refused without blocking on it: the file is
+    opened non-blocking and checked with ``fstat`` on the open descriptor, so a swap between check
+    and open cannot slip a pipe in."""
     try:
-        with open(path, "rb") as handle:
-            data = handle.read(MAX_BYTES + 1)
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
     except FileNotFoundError:
         raise ParseError("file not found", loc=SourceLoc(path)) from None
     except IsADirectoryError:
         raise ParseError("is a directory, not a file", loc=SourceLoc(path)) from None
     except OSError as exc:
         raise ParseError(f"cannot read: {exc.strerror}", loc=SourceLoc(path)) from None
-    return data
+    try:
+        mode = os.fstat(fd).st_mode
+        if stat.S_ISDIR(mode):
+            raise ParseError("is a directory, not a file", loc=SourceLoc(path))
+        if not stat.S_ISREG(mode):
+            raise ParseError(
+                f"is a {_kind(mode)}, not a regular file; robodesc reads only regular files", loc=SourceLoc(path)
+            )
+        os.set_blocking(fd, True)
+        with os.fdopen(fd, "rb") as handle:
+            fd = -1
+            return handle.read(limit + 1)
+    except OSError as exc:
+        raise ParseError(f"cannot read: {exc.strerror}", loc=SourceLoc(path)) from None
+    finally:
+        if fd >= 0:
+            os.close(fd)
+
+
+def read_text(path: str, limit: int = MAX_BYTES) -> str:
+    """:func:`read_file` for UTF-8 text formats (YAML, ``.holo``), refusing files above ``limit``."""
+    data = read_file(path, limit)
+    if len(data) > limit:
+        raise ParseError(f"file is larger than {limit // 2**20} MiB; refused", loc=SourceLoc(path))
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ParseError(f"not UTF-8 text (byte {exc.start})", loc=SourceLoc(path)) from None
+
+
+def is_regular_file(path: str) -> bool:
+    """``os.path.isfile`` under its proper name: true for regular files (after symlinks) only."""
+    try:
+        return stat.S_ISREG(os.stat(path).st_mode)
+    except (OSError, ValueError):
+        return False
+
+
+def _kind(mode: int) -> str:
+    if stat.S_ISFIFO(mode):
+        return "named pipe"
+    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+        return "device"
+    if stat.S_ISSOCK(mode):
+        return "socket"
+    return "special file"

@@ -10,10 +10,12 @@ from __future__ import annotations
 import dataclasses
 import enum
 import math
+import re
 from collections import Counter
+from collections.abc import Mapping
 
 from robodesc.ir.diagnostics import Findings, Severity, SourceLoc, VerificationError
-from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Inertial, Mesh, Sphere
+from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Inertial, Mesh, Pose, Sphere
 from robodesc.ir.model import Joint, JointType, Robot
 from robodesc.ir.principal import inertia_problem
 
@@ -38,6 +40,7 @@ def verify(robot: Robot) -> Findings:
     _tree(robot, out)
     _references(robot, out)
     _numbers(robot, out)
+    _robot_strings(robot, out)
     for link in robot.links:
         label = f"link {link.name!r}"
         if link.inertial is not None:
@@ -99,25 +102,7 @@ def _tree(robot: Robot, out: Findings) -> None:
             )
         else:
             parents[joint.child] = joint
-    # Cycles: walk up from every link; a walk that revisits a link is a cycle.
-    reported: set[str] = set()
-    for start in links:
-        seen: list[str] = []
-        cur = start
-        while cur in parents and cur not in seen:
-            seen.append(cur)
-            cur = parents[cur].parent
-        if cur in seen and not reported.intersection(seen):
-            cycle = seen[seen.index(cur) :]
-            reported.update(cycle)
-            # Name the cycle parent-to-child, starting from the link declared first.
-            order = list(links)
-            down = list(reversed(cycle))
-            start_at = min(range(len(down)), key=lambda i: order.index(down[i]))
-            down = down[start_at:] + down[:start_at]
-            joint = parents[down[0]]
-            chain = " -> ".join([*down, down[0]])
-            _err(out, "cycle", f"joints form a cycle: {chain}", f"joint {joint.name!r}", joint.src)
+    reported = _cycles(links, parents, out)
     roots = [link for link in robot.links if link.name not in parents]
     if len(roots) == 0 and not reported:
         _err(out, "no-root", "no root link: every link is some joint's child", f"robot {robot.name!r}", robot.src)
@@ -130,6 +115,41 @@ def _tree(robot: Robot, out: Findings) -> None:
             f"robot {robot.name!r}",
             roots[1].src,
         )
+
+
+def _cycles(links: Mapping[str, object], parents: dict[str, Joint], out: Findings) -> set[str]:
+    """Report every parent-joint cycle once; return the links on cycles.
+
+    Each link is walked up at most once over the whole robot (a walk stops at a link an earlier walk
+    finished), so this is linear in the number of links: a 50,000-link chain must not cost
+    50,000 walks of 50,000 steps."""
+    reported: set[str] = set()
+    done: set[str] = set()
+    order: dict[str, int] | None = None
+    for start in links:
+        if start in done:
+            continue
+        on_path: dict[str, int] = {}
+        path: list[str] = []
+        cur = start
+        while cur in parents and cur not in done and cur not in on_path:
+            on_path[cur] = len(path)
+            path.append(cur)
+            cur = parents[cur].parent
+        if cur in on_path:
+            cycle = path[on_path[cur] :]
+            reported.update(cycle)
+            if order is None:
+                order = {name: i for i, name in enumerate(links)}
+            # Name the cycle parent-to-child, starting from the link declared first.
+            down = list(reversed(cycle))
+            start_at = min(range(len(down)), key=lambda i: order.get(down[i], len(order)))
+            down = down[start_at:] + down[:start_at]
+            joint = parents[down[0]]
+            chain = " -> ".join([*down, down[0]])
+            _err(out, "cycle", f"joints form a cycle: {chain}", f"joint {joint.name!r}", joint.src)
+        done.update(path)
+    return reported
 
 
 def _references(robot: Robot, out: Findings) -> None:
@@ -234,24 +254,37 @@ def _references(robot: Robot, out: Findings) -> None:
 
 
 def _mimic_chains(robot: Robot, out: Findings) -> None:
+    """Report every cycle of mimic references once, at the joint declared first on it.
+
+    Like :func:`_cycles`, every joint is followed at most once in total, so long hostile mimic
+    chains cost linear time."""
     joints = robot.joint_map()
+    order = {joint.name: i for i, joint in enumerate(robot.joints)}
+    done: set[str] = set()
     for joint in robot.joints:
-        seen = [joint.name]
-        cur = joint
-        while cur.mimic is not None and cur.mimic.joint in joints:
-            nxt = joints[cur.mimic.joint]
-            if nxt.name in seen:
-                if nxt.name == joint.name and len(seen) > 1:
-                    _err(
-                        out,
-                        "mimic-cycle",
-                        "mimic joints form a cycle: " + " -> ".join([*seen, nxt.name]),
-                        f"joint {joint.name!r}",
-                        joint.src,
-                    )
-                break
-            seen.append(nxt.name)
-            cur = nxt
+        if joint.name in done:
+            continue
+        on_path: dict[str, int] = {}
+        path: list[Joint] = []
+        cur: Joint | None = joint
+        while cur is not None and cur.name not in done and cur.name not in on_path:
+            on_path[cur.name] = len(path)
+            path.append(cur)
+            cur = joints.get(cur.mimic.joint) if cur.mimic is not None else None
+        if cur is not None and cur.name in on_path:
+            cycle = path[on_path[cur.name] :]
+            if len(cycle) > 1:  # a joint mimicking itself is reported by _references
+                first = min(range(len(cycle)), key=lambda i: order[cycle[i].name])
+                names = [j.name for j in cycle[first:] + cycle[:first]]
+                head = cycle[first]
+                _err(
+                    out,
+                    "mimic-cycle",
+                    "mimic joints form a cycle: " + " -> ".join([*names, names[0]]),
+                    f"joint {head.name!r}",
+                    head.src,
+                )
+        done.update(on_path)
 
 
 def _inertial(inertial: Inertial, label: str, src: SourceLoc | None, out: Findings) -> None:
@@ -329,7 +362,49 @@ def _joint(joint: Joint, out: Findings) -> None:
                 )
 
 
+# What every number in the IR must satisfy. Beyond these no target carries the value faithfully:
+# USD stores masses, inertias, limits and local joint frames as float32 (at most 3.4e38, and
+# limits become degrees there), and the passes square and multiply lengths and masses (inertia
+# from geometry, lumping, principal axes) in doubles, whose products must not overflow to inf or
+# underflow to 0. The bounds sit far outside any real robot (the largest number in the corpora is
+# a 1e16 "unbounded" joint limit).
+LIMIT = 1e30  # any float
+MAX_LENGTH = 1e6  # m: positions, shape sizes, mesh scale factors
+MIN_SIZE = 1e-9  # m: the smallest non-zero shape size or mesh scale factor
+MAX_MASS = 1e12  # kg
+MAX_INT = 2**31 - 1  # counts (camera pixels, ray samples): USD and SDF store int32
+AXIS_NORM = (1e-9, 1e9)  # a joint axis is normalised; its length must survive squaring
+
+
+# (owner type, field) -> (smallest non-zero magnitude, largest magnitude, unit). Fields not listed
+# get (0, LIMIT). Looked up once per dataclass type, not per value.
+_BOUNDS: dict[tuple[type, str], tuple[float, float, str]] = {
+    (Pose, "xyz"): (0.0, MAX_LENGTH, " m"),
+    (Box, "size"): (MIN_SIZE, MAX_LENGTH, " m"),
+    (Sphere, "radius"): (MIN_SIZE, MAX_LENGTH, " m"),
+    (Cylinder, "radius"): (MIN_SIZE, MAX_LENGTH, " m"),
+    (Cylinder, "length"): (MIN_SIZE, MAX_LENGTH, " m"),
+    (Capsule, "radius"): (MIN_SIZE, MAX_LENGTH, " m"),
+    (Capsule, "length"): (MIN_SIZE, MAX_LENGTH, " m"),
+    (Mesh, "scale"): (MIN_SIZE, MAX_LENGTH, ""),
+    (Inertial, "mass"): (0.0, MAX_MASS, " kg"),
+}
+_DEFAULT_BOUNDS = (0.0, LIMIT, "")
+
+# A value out of bounds: (field path, location, value, bounds); a string with a character no
+# target can carry has bounds None.
+_Bad = tuple[str, SourceLoc | None, float | str, tuple[float, float, str] | None]
+
+# Characters XML 1.0 cannot carry (every target is XML or USD text/crate read back through XML
+# tooling): C0 controls but tab, newline and carriage return; surrogates; U+FFFE, U+FFFF.
+_NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
+
+
 def _numbers(robot: Robot, out: Findings) -> None:
+    """Every number finite and within the bounds above, named by element, field and file:line.
+
+    One pass over the whole IR, linear in its size: it runs on every robot, before and after the
+    passes, whichever frontend (URDF, xacro, a composition) built it."""
     groups: list[tuple[str, list[object]]] = [
         ("link", list(robot.links)),
         ("joint", list(robot.joints)),
@@ -341,40 +416,138 @@ def _numbers(robot: Robot, out: Findings) -> None:
     ]
     for kind, nodes in groups:
         for node in nodes:
-            bad: list[tuple[str, SourceLoc | None, float]] = []
-            _nonfinite(node, getattr(node, "src", None), "", bad)
-            for path, loc, value in bad:
-                _err(out, "non-finite", f"{path.lstrip('.')} is {value}", f"{kind} {getattr(node, 'name', '')!r}", loc)
+            bad: list[_Bad] = []
+            _scan(node, getattr(node, "src", None), "", _DEFAULT_BOUNDS, bad)
+            for path, loc, value, bounds in bad:
+                element = f"{kind} {getattr(node, 'name', '')!r}"
+                field_path = path.lstrip(".") or "name"
+                if isinstance(value, str) or bounds is None:
+                    _err(out, "bad-character", _character_message(field_path, str(value)), element, loc)
+                elif isinstance(value, float) and not math.isfinite(value):
+                    _err(out, "non-finite", f"{field_path} is {value}", element, loc)
+                else:
+                    _err(out, "out-of-range", _range_message(field_path, value, bounds), element, loc)
+        for node in nodes:
+            axis = getattr(node, "axis", None)
+            if axis is not None and any(axis) and all(math.isfinite(a) for a in axis):
+                norm = math.hypot(*axis)
+                if not AXIS_NORM[0] <= norm <= AXIS_NORM[1]:
+                    _err(
+                        out,
+                        "out-of-range",
+                        f"axis length is {norm:g}; it must lie between {AXIS_NORM[0]:g} and {AXIS_NORM[1]:g} "
+                        "(the axis is normalised, and its squares must stay finite and non-zero)",
+                        f"{kind} {getattr(node, 'name', '')!r}",
+                        getattr(node, "src", None),
+                    )
 
 
-_FIELDS: dict[type, tuple[str, ...]] = {}
+def value_problems(obj: object) -> list[str]:
+    """The number-range and character problems of one IR value (a shape, a pose, an inertial), as
+    the verifier words them; for frontends that compute with a value before the verifier runs (a
+    composition derives inertia from shape sizes)."""
+    bad: list[_Bad] = []
+    _scan(obj, None, "", _DEFAULT_BOUNDS, bad)
+    out: list[str] = []
+    for path, _loc, value, bounds in bad:
+        field_path = path.lstrip(".") or "value"
+        if isinstance(value, str) or bounds is None:
+            out.append(_character_message(field_path, str(value)))
+        elif isinstance(value, float) and not math.isfinite(value):
+            out.append(f"{field_path} is {value}")
+        else:
+            out.append(_range_message(field_path, value, bounds))
+    return out
 
 
-def _fields(cls: type) -> tuple[str, ...]:
+def _character_message(path: str, value: str) -> str:
+    found = _NOT_XML.search(value)
+    code = f"U+{ord(found.group(0)):04X}" if found else "a control character"
+    return f"{path} contains {code}, a character XML cannot carry; remove it"
+
+
+def _robot_strings(robot: Robot, out: Findings) -> None:
+    if _NOT_XML.search(robot.name):
+        _err(out, "bad-character", _character_message("name", robot.name), f"robot {robot.name!r}", robot.src)
+
+
+def _range_message(path: str, value: float, bounds: tuple[float, float, str]) -> str:
+    low, high, unit = bounds
+    if isinstance(value, int):
+        return f"{path} is {value}, beyond {MAX_INT} (targets store it as a 32-bit integer)"
+    if abs(value) > high:
+        why = "no robot is that large" if unit == " m" else "no target represents it faithfully"
+        return f"{path} is {value:g}{unit}, beyond ±{high:g}{unit} ({why})"
+    return (
+        f"{path} is {value:g}{unit}; a non-zero size must be at least {low:g}{unit} "
+        "(smaller ones vanish when squared or converted to float32)"
+    )
+
+
+_FIELDS: dict[type, tuple[tuple[str, tuple[float, float, str]], ...]] = {}
+
+
+def _fields(cls: type) -> tuple[tuple[str, tuple[float, float, str]], ...]:
     names = _FIELDS.get(cls)
     if names is None:
-        names = tuple(f.name for f in dataclasses.fields(cls) if f.name not in ("src", "extensions", "extra_attrs"))
+        names = tuple(
+            (f.name, _BOUNDS.get((cls, f.name), _DEFAULT_BOUNDS))
+            for f in dataclasses.fields(cls)
+            if f.name not in ("src", "extensions")
+        )
         _FIELDS[cls] = names
     return names
 
 
-def _nonfinite(obj: object, loc: SourceLoc | None, path: str, bad: list[tuple[str, SourceLoc | None, float]]) -> None:
-    """Collect every non-finite float under ``obj`` with its path. Hot on large robots: no generators,
-    and only containers that can hold floats are entered."""
-    if isinstance(obj, float):
-        if not math.isfinite(obj):
-            bad.append((path, loc, obj))
-    elif isinstance(obj, tuple | list):
+def _scan(obj: object, loc: SourceLoc | None, path: str, bounds: tuple[float, float, str], bad: list[_Bad]) -> None:
+    """Collect every number under ``obj`` outside ``bounds`` (NaN and infinities included), and every
+    string with a character XML cannot carry, with its path. Hot on large robots (it visits every
+    value of the IR, twice per compile): the fields of a dataclass are checked in place by exact
+    type, one chained comparison per float, and a path string is built only for containers entered
+    and for offending values."""
+    if type(obj) is float:
+        if not (-bounds[1] <= obj <= bounds[1]) or (bounds[0] and 0.0 < abs(obj) < bounds[0]):
+            bad.append((path, loc, obj, bounds))
+    elif type(obj) is str:
+        if _NOT_XML.search(obj):
+            bad.append((path, loc, obj, None))
+    elif type(obj) is tuple or type(obj) is list:
+        low, high = bounds[0], bounds[1]
         for i, item in enumerate(obj):
-            if isinstance(item, float):
-                if not math.isfinite(item):
-                    bad.append((f"{path}[{i}]", loc, item))
-            elif not isinstance(item, str | int):
-                _nonfinite(item, loc, f"{path}[{i}]", bad)
+            if type(item) is float:
+                if not (-high <= item <= high) or (low and 0.0 < abs(item) < low):
+                    bad.append((f"{path}[{i}]", loc, item, bounds))
+            elif type(item) is int:
+                if not -MAX_INT <= item <= MAX_INT:
+                    bad.append((f"{path}[{i}]", loc, item, bounds))
+            elif type(item) is not bool:
+                _scan(item, loc, f"{path}[{i}]", bounds, bad)
+    elif type(obj) is int:
+        if not -MAX_INT <= obj <= MAX_INT:
+            bad.append((path, loc, obj, bounds))
+    elif type(obj) is dict:
+        for key, value in obj.items():
+            _scan(key, loc, f"{path}[{key!r}]", bounds, bad)
+            _scan(value, loc, f"{path}[{key!r}]", bounds, bad)
+    elif type(obj) is bool or obj is None or isinstance(obj, enum.Enum):
+        return
     elif dataclasses.is_dataclass(obj) and not isinstance(obj, type):
         here = getattr(obj, "src", None) or loc
-        for name in _fields(type(obj)):
+        for name, field_bounds in _fields(type(obj)):
             value = getattr(obj, name)
-            if value is None or isinstance(value, str | bool | int | enum.Enum):
-                continue
-            _nonfinite(value, here, f"{path}.{name}", bad)
+            if type(value) is float:
+                if not (-field_bounds[1] <= value <= field_bounds[1]) or (
+                    field_bounds[0] and 0.0 < abs(value) < field_bounds[0]
+                ):
+                    bad.append((f"{path}.{name}", here, value, field_bounds))
+            elif type(value) is str:
+                if _NOT_XML.search(value):
+                    bad.append((f"{path}.{name}", here, value, None))
+            elif value is not None and type(value) is not bool:
+                _scan(value, here, f"{path}.{name}", field_bounds, bad)
+    elif isinstance(obj, int):  # an int subclass that is no bool or enum
+        _scan(int(obj), loc, path, bounds, bad)
+    elif isinstance(obj, float):
+        _scan(float(obj), loc, path, bounds, bad)
+    elif isinstance(obj, str):
+        _scan(str(obj), loc, path, bounds, bad)

@@ -51,6 +51,10 @@ IDENTITY: Matrix = ((1.0, 0.0, 0.0, 0.0), (0.0, 1.0, 0.0, 0.0), (0.0, 0.0, 1.0, 
 
 # Deep node trees are legal but a reference cycle is not: stop well before Python's recursion limit.
 _MAX_DEPTH = 200
+# Instancing multiplies: a node that instances another twice, 30 levels deep, stays within the depth
+# limit and asks for 2^30 copies. The walk counts what it produces and stops at these.
+MAX_INSTANCED_CORNERS = 3 * 20_000_000  # triangle corners over all instances (20 M triangles)
+MAX_NODE_VISITS = 100_000  # real files have a few thousand; each visit costs ~20 µs
 
 _PRIMITIVES = frozenset({"triangles", "polylist", "polygons", "tristrips", "trifans"})
 
@@ -108,6 +112,8 @@ class _Output:
     points: list[bytes | bytearray] = field(default_factory=list)  # moved position sources, float64
     corners: list[bytes | bytearray] = field(default_factory=list)  # per primitive, int64 into all points
     count: int = 0  # points so far
+    corners_total: int = 0  # triangle corners so far, bounded by MAX_INSTANCED_CORNERS
+    visits: int = 0  # nodes walked, bounded by MAX_NODE_VISITS
 
 
 @dataclass(slots=True)
@@ -194,6 +200,9 @@ def _walk(doc: _Document, node: etree._Element, parent: Matrix | None, out: _Out
     """Add the triangles under ``node`` to ``out`` in document order (as pycollada yields them)."""
     if depth > _MAX_DEPTH:
         raise MeshReadError("COLLADA node tree is too deep (an instance_node cycle?)")
+    out.visits += 1
+    if out.visits > MAX_NODE_VISITS:
+        raise MeshReadError(f"COLLADA instancing visits more than {MAX_NODE_VISITS} nodes; refused")
     own = _node_matrix(doc, node)
     # pycollada: a top-level node's matrix is its own, a child's is parent @ own.
     matrix = own if parent is None else _product(parent, own)
@@ -224,6 +233,12 @@ def _instance(doc: _Document, gid: str, matrix: Matrix, out: _Output) -> None:
             offset = offsets[id(positions)] = out.count
             out.points.append(_place(positions, matrix, out.unit))
             out.count += len(positions) // 3
+        out.corners_total += len(tri)
+        if out.corners_total > MAX_INSTANCED_CORNERS:
+            raise MeshReadError(
+                f"COLLADA instancing yields more than {MAX_INSTANCED_CORNERS // 3} triangles "
+                "(instance_node fan-out); refused"
+            )
         out.corners.append(_shift(tri, offset))
 
 
@@ -456,6 +471,8 @@ def _positions(doc: _Document, source: etree._Element, where: str) -> Floats:
         offset = int(accessor.get("offset", "0")) if accessor is not None else 0
     except ValueError:
         raise MeshReadError(f"{where}: accessor with a bad stride or offset") from None
+    if stride > max(len(values), 3) or offset > len(values):  # also keeps both within a C long
+        raise MeshReadError(f"{where}: accessor stride {stride} or offset {offset} exceeds the {len(values)} values")
     if stride <= columns[-1] or offset < 0:
         raise MeshReadError(f"{where}: accessor stride {stride} and offset {offset} do not fit x, y, z")
     # The accessor's count is not trusted (pycollada does not read it either): the array length is.

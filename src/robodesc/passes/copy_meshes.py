@@ -8,6 +8,14 @@ same source file is copied once). ``Mesh.path`` (and ``Material.texture_path``) 
 writes a portable reference. With ``convert_meshes`` (e.g. ``{".dae": ".obj"}``) files with those
 suffixes are converted through trimesh instead of copied, with a finding.
 
+Only meshes and textures are copied, and only from where the robot lives (docs/security.md): a
+file is copied when its real path (symlinks followed) lies inside the input's folder or a package
+root the robot's ``package://`` references resolved to, and when it reads as what its suffix says
+(STL, OBJ and COLLADA through robodesc's mesh readers; other formats and textures by their
+signature). Anything else (an absolute path or ``file://`` URI to a system file, ``../`` out of the
+input's folder, a symlink to ``/etc/passwd``) gets a ``mesh-not-copied`` warning and keeps its
+original reference.
+
 Limitation: files a mesh refers to internally (textures inside a DAE or OBJ's .mtl) are not copied.
 """
 
@@ -15,6 +23,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import stat
 import tempfile
 from typing import Any
 
@@ -24,6 +33,69 @@ from robodesc.passes.context import PassContext
 
 NAME = "copy_meshes"
 SUBDIR = "meshes"
+
+# Signatures of the formats checked without a full read (lower-case suffix -> accepted prefixes).
+_SIGNATURES: dict[str, tuple[bytes, ...]] = {
+    ".glb": (b"glTF",),
+    ".ply": (b"ply",),
+    ".png": (b"\x89PNG",),
+    ".jpg": (b"\xff\xd8\xff",),
+    ".jpeg": (b"\xff\xd8\xff",),
+    ".bmp": (b"BM",),
+    ".tif": (b"II*\x00", b"MM\x00*"),
+    ".tiff": (b"II*\x00", b"MM\x00*"),
+    ".exr": (b"\x76\x2f\x31\x01",),
+}
+_READ_AS_MESH = (".stl", ".obj", ".dae")
+
+
+def allowed_roots(robot: Robot) -> list[str]:
+    """Real paths of the folders files may be copied from: the input's folder and the root of every
+    package a mesh or texture was found in."""
+    roots: list[str] = []
+    if robot.source_file:
+        roots.append(os.path.dirname(os.path.abspath(robot.source_file)))
+    for link in robot.links:
+        geometries = [v.geometry for v in link.visuals] + [c.geometry for c in link.collisions]
+        for geom in geometries:
+            if isinstance(geom, Mesh) and geom.package is not None and geom.path is not None:
+                inner = os.path.normpath(geom.package[1]) if geom.package[1] else ""
+                path = os.path.normpath(geom.path)
+                if inner and inner != "." and path.endswith(os.sep + inner):
+                    roots.append(path[: -len(inner) - 1])
+    return list(dict.fromkeys(os.path.realpath(r) for r in roots))
+
+
+def refusal(source: str, roots: list[str], texture: bool) -> str | None:
+    """Why ``source`` must not be copied, or ``None``."""
+    real = os.path.realpath(source)
+    if not any(real == r or real.startswith(r.rstrip(os.sep) + os.sep) for r in roots):
+        where = f" (through a symlink to {real!r})" if real != os.path.abspath(source) else ""
+        return f"{source!r}{where} is outside the input's folder and its packages' roots; not copied"
+    try:
+        mode = os.stat(real).st_mode
+    except OSError as exc:
+        return f"{source!r} cannot be read: {exc.strerror}"
+    if not stat.S_ISREG(mode):
+        return f"{source!r} is not a regular file; not copied"
+    suffix = os.path.splitext(source)[1].lower()
+    if not texture and suffix in _READ_AS_MESH:
+        from robodesc.meshes.data import build_mesh
+
+        try:
+            build_mesh(real, None)
+        except Exception as exc:  # any reader failure means: not a mesh of this kind
+            return f"{source!r} does not read as a {suffix[1:].upper()} mesh ({exc}); not copied"
+        return None
+    signatures = _SIGNATURES.get(suffix)
+    if signatures is None:
+        kind = "texture" if texture else "mesh"
+        return f"{source!r}: robodesc cannot check that a {suffix or 'suffix-less'} file is a {kind}; not copied"
+    with open(real, "rb") as handle:
+        head = handle.read(16)
+    if not head.startswith(signatures):
+        return f"{source!r} does not start like a {suffix[1:].upper()} file; not copied"
+    return None
 
 
 class _Copier:
@@ -90,11 +162,20 @@ def _umask() -> int:
 def copy_meshes(robot: Robot, out_dir: str, ctx: PassContext) -> Robot:
     copier = _Copier(out_dir, ctx)
     copied = 0
+    roots = allowed_roots(robot)
+
+    def allowed(path: str, element: str, texture: bool) -> bool:
+        why = refusal(path, roots, texture)
+        if why is not None:
+            ctx.warn("mesh-not-copied", why, element=element, stage=NAME)
+        return why is None
 
     def mesh(m: Mesh, element: str) -> None:
         nonlocal copied
         if m.path is None or not os.path.isfile(m.path):
             ctx.warn("mesh-not-copied", f"mesh {m.uri!r} has no file to copy", element=element, stage=NAME)
+            return
+        if not allowed(m.path, element, texture=False):
             return
         name = copier.place(m.path, element, convert=True)
         if name is not None:
@@ -106,6 +187,8 @@ def copy_meshes(robot: Robot, out_dir: str, ctx: PassContext) -> Robot:
     def texture(mat: Material, element: str) -> None:
         nonlocal copied
         if mat.texture_path is None or not os.path.isfile(mat.texture_path):
+            return
+        if not allowed(mat.texture_path, element, texture=True):
             return
         name = copier.place(mat.texture_path, element, convert=False)
         if name is not None:

@@ -17,12 +17,15 @@ folder first, the interface file last, so a reader never sees an interface witho
 
 from __future__ import annotations
 
+import math
 import os
+from array import array
 from dataclasses import dataclass, field
 
 from robodesc.emit.common.files import staged_folder, write_atomic, write_files
 from robodesc.emit.usd.context import GEOMETRY, MATERIALS, PHYSICS, ROLES
-from robodesc.usdfile.spec import Layer, Payload, Prim
+from robodesc.ir.diagnostics import ConfigError
+from robodesc.usdfile.spec import Attribute, Layer, Payload, Prim, value_type
 from robodesc.usdfile.usda import usda_text
 
 PAYLOAD_DIR = "Payload"
@@ -73,7 +76,52 @@ def robot_prim(layer: Layer, name: str, display_name: str | None) -> Prim:
     return prim
 
 
+FLOAT32_MAX = 3.4028234663852886e38
+
+
+def check_float32(layer: Layer) -> None:
+    """Refuse a float/half attribute whose value float32 cannot hold (the .usdc writer could not
+    pack it; .usda would write ``inf``), naming the prim and attribute. The verifier bounds the
+    robot's own numbers; this catches what options and unit conversion make of them (a
+    ``--stiffness 1e300`` becomes 1.7e298 per degree)."""
+    stack: list[tuple[str, Prim]] = [("", layer.root)]
+    while stack:
+        path, prim = stack.pop()
+        for prop in prim.properties.values():
+            if not isinstance(prop, Attribute) or prop.value is None:
+                continue
+            try:
+                scalar = value_type(prop.type_name)[0].scalar
+            except KeyError:
+                continue
+            if scalar not in ("float", "half"):
+                continue
+            value = prop.value
+            if isinstance(value, array) and value.typecode == "f":
+                continue  # already float32 (mesh points)
+            bad = _beyond_float32(value)
+            if bad is not None:
+                raise ConfigError(
+                    f"USD attribute {path}.{prop.name} ({prop.type_name}) would be {bad:g}, beyond float32's "
+                    f"±{FLOAT32_MAX:.4g}; lower the option or value that produced it"
+                )
+        for name, child in prim.children.items():
+            stack.append((f"{path}/{name}", child))
+
+
+def _beyond_float32(value: object) -> float | None:
+    if isinstance(value, float | int) and not isinstance(value, bool):
+        return float(value) if math.isfinite(value) and abs(value) > FLOAT32_MAX else None
+    if isinstance(value, tuple | list | array):
+        for item in value:
+            found = _beyond_float32(item)
+            if found is not None:
+                return found
+    return None
+
+
 def encode(layer: Layer, ext: str) -> str | bytes:
+    check_float32(layer)
     if ext == ".usda":
         return usda_text(layer)
     from robodesc.usdfile.usdc import usdc_bytes

@@ -1,0 +1,417 @@
+"""A seeded mutation fuzzer for robodesc's promise about hostile input (docs/security.md).
+
+Each case takes one seed input (URDF, xacro, YAML composition, ``.holo``) and its mesh, applies one
+to three mutations (extreme numbers, deleted/duplicated/swapped lines, renamed references, control
+characters, deep nesting, truncation, hostile xacro expressions, hostile mesh references, corrupted
+mesh bytes), and compiles it for one target through ``robodesc.cli.main`` in this process under a
+``SIGALRM`` time bound. A case passes when it ends in
+
+- exit 0, and the output loads (URDF/SDF parse as XML with the right root, USD opens in usd-core), or
+- exit 1 or 2, with no traceback, and the output that existed before the run byte-identical;
+
+and fails as ``crash`` (an exception escaped ``main``, a traceback was printed, another exit code),
+``hang`` (the time bound), ``bad-output`` (exit 0 but the output does not load) or ``partial-output``
+(a failed run changed the earlier output).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import dataclasses
+import io
+import os
+import random
+import re
+import shutil
+import signal
+import traceback
+from collections.abc import Callable, Iterator
+from pathlib import Path
+
+SEEDS = Path(__file__).parent / "seeds"
+SEED_FILES = ("arm.urdf", "arm.urdf.xacro", "four_bar.yaml", "arm.holo")
+TARGETS: dict[str, tuple[list[str], str]] = {
+    # name -> (CLI options, output name)
+    "urdf": (["-t", "urdf"], "out.urdf"),
+    "sdf": (["-t", "sdf"], "out.sdf"),
+    "usda": (["-t", "usd"], "out.usda"),
+    "usdc": (["-t", "usd"], "out.usdc"),
+    "isaac": (["--isaac-sim"], "out_isaac"),
+}
+TIME_LIMIT = 30  # seconds per case: far above any honest case (the slowest take ~2 s)
+SENTINEL = b"earlier output: a failed run must leave these bytes alone\n"
+
+EXTREMES = (
+    "nan", "inf", "-inf", "1e308", "-1e308", "1.7976931348623157e308", "1e39", "3.5e38", "1e-320", "5e-324",
+    "0", "-0", "1e30", "1e31", "1e7", "1e-10", "123456789012345678901234567890", "-1", "99999999999", "1e16",
+    "0x10", "1_0", "", " ", "1 2", "1e", "+", "--1",
+)  # fmt: skip
+HOSTILE_TEXT = ("\x01", "\x1b[31m", "\u202e", "\x7f", "\ufeff", "\u0000", "é", "&amp;", "<", "\t\n", "'", '"', "$", "{")
+HOSTILE_XACRO = (
+    "${9**9**9}",
+    "${python.os}",
+    "${xacro.load_yaml('/etc/passwd')}",
+    "$(env HOME)",
+    "$(optenv HOME none)",
+    "${'a' * 10**9}",
+    "$(find no_such_package)",
+    "${[x for x in range(10**9)]}",
+    "${().__class__}",
+    "${lambda: 1}",
+    "$(eval __import__('os'))",
+    "${" + "(" * 300 + "1" + ")" * 300 + "}",
+    "${1/0}",
+    "${undefined_name}",
+)
+HOSTILE_MESH = (
+    "/etc/passwd",
+    "file:///etc/passwd",
+    "../../../../../../etc/passwd",
+    "/dev/zero",
+    "meshes/pipe.stl",
+    "meshes/link_to_passwd.stl",
+    "package://no_such_pkg/x.stl",
+    "package://fuzzpkg/../../../etc/passwd",
+    "meshes/broken.stl",
+    "meshes/finger.dae",
+    "",
+)
+
+
+@dataclasses.dataclass(slots=True)
+class Outcome:
+    case: int
+    seed_file: str
+    target: str
+    mutations: list[str]
+    status: str  # ok | refused | crash | hang | bad-output | partial-output
+    exit_code: int | None
+    detail: str = ""
+    case_dir: str = ""
+
+    @property
+    def failed(self) -> bool:
+        return self.status not in ("ok", "refused")
+
+
+# ---- mutations ------------------------------------------------------------------------------------
+
+_NUMBER = re.compile(r"(?<![\w.])-?\d+(?:\.\d+)?(?:e-?\d+)?(?![\w.])")
+_WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]{2,}")
+
+
+def _lines(text: str) -> list[str]:
+    return text.split("\n")
+
+
+def m_number(rng: random.Random, text: str, _d: Path) -> str:
+    found = list(_NUMBER.finditer(text))
+    if not found:
+        return text
+    m = rng.choice(found)
+    return text[: m.start()] + rng.choice(EXTREMES) + text[m.end() :]
+
+
+def m_numbers_all(rng: random.Random, text: str, _d: Path) -> str:
+    value = rng.choice(EXTREMES[:20])
+    return _NUMBER.sub(lambda m: value if rng.random() < 0.3 else m.group(0), text)
+
+
+def m_delete_line(rng: random.Random, text: str, _d: Path) -> str:
+    lines = _lines(text)
+    del lines[rng.randrange(len(lines))]
+    return "\n".join(lines)
+
+
+def m_duplicate_line(rng: random.Random, text: str, _d: Path) -> str:
+    lines = _lines(text)
+    i = rng.randrange(len(lines))
+    lines.insert(rng.randrange(len(lines) + 1), lines[i])
+    return "\n".join(lines)
+
+
+def m_swap_lines(rng: random.Random, text: str, _d: Path) -> str:
+    lines = _lines(text)
+    i, j = rng.randrange(len(lines)), rng.randrange(len(lines))
+    lines[i], lines[j] = lines[j], lines[i]
+    return "\n".join(lines)
+
+
+def m_rename(rng: random.Random, text: str, _d: Path) -> str:
+    words = list(_WORD.finditer(text))
+    if len(words) < 2:
+        return text
+    m = rng.choice(words)
+    other = rng.choice(words).group(0)
+    return text[: m.start()] + other + text[m.end() :]
+
+
+def m_inject_text(rng: random.Random, text: str, _d: Path) -> str:
+    words = list(_WORD.finditer(text))
+    if not words:
+        return text
+    m = rng.choice(words)
+    return text[: m.end()] + rng.choice(HOSTILE_TEXT) * rng.choice((1, 3, 1000)) + text[m.end() :]
+
+
+def m_truncate(rng: random.Random, text: str, _d: Path) -> str:
+    return text[: rng.randrange(len(text) + 1)]
+
+
+def m_byte_flip(rng: random.Random, text: str, _d: Path) -> str:
+    chars = list(text)
+    for _ in range(rng.choice((1, 5, 50))):
+        chars[rng.randrange(len(chars))] = chr(rng.randrange(1, 0x3000))
+    return "".join(chars)
+
+
+def m_deep_nesting(rng: random.Random, text: str, d: Path) -> str:
+    depth = rng.choice((200, 2000, 50000))
+    suffix = d.name
+    if suffix.endswith((".yaml", ".yml")):
+        return text + f"\nx-deep: {'[' * depth}{']' * depth}\n"
+    if suffix.endswith(".holo"):
+        i = text.rfind("}")
+        return text[:i] + 'object "Deep" { v: ' + "[" * depth + "1" + "]" * depth + " }\n" + text[i:]
+    i = text.rfind("</robot>")
+    if i < 0:
+        return text
+    return text[:i] + "<x>" * depth + "</x>" * depth + text[i:]
+
+
+def m_many_links(rng: random.Random, text: str, d: Path) -> str:
+    if not d.name.endswith((".urdf", ".xacro")):
+        return text
+    i = text.rfind("</robot>")
+    if i < 0:
+        return text
+    n = rng.choice((100, 2000))
+    parts = [f'<link name="extra{k}"/><joint name="ej{k}" type="fixed"><parent link="{"base" if k == 0 else f"extra{k - 1}"}"/><child link="extra{k}"/></joint>' for k in range(n)]  # fmt: skip
+    return text[:i] + "".join(parts) + text[i:]
+
+
+def m_hostile_xacro(rng: random.Random, text: str, d: Path) -> str:
+    values = list(re.finditer(r'(value|default|name|xyz|size)="([^"]*)"', text))
+    if not values:
+        return text
+    m = rng.choice(values)
+    expr = rng.choice(HOSTILE_XACRO).replace("&", "&amp;").replace("<", "&lt;").replace('"', "&quot;")
+    return text[: m.start(2)] + expr + text[m.end(2) :]
+
+
+def m_hostile_mesh(rng: random.Random, text: str, _d: Path) -> str:
+    target = rng.choice(HOSTILE_MESH)
+    if "meshes/finger.stl" in text:
+        return text.replace("meshes/finger.stl", target, 1)
+    if "<collision>" in text:  # URDF without the mesh (a mutation removed it): add one
+        return text.replace(
+            "<collision>", f'<collision><geometry><mesh filename="{target}"/></geometry></collision><collision>', 1
+        )
+    return text
+
+
+def m_mesh_bytes(rng: random.Random, text: str, d: Path) -> str:
+    """Corrupt the mesh file the seed refers to (the text stays)."""
+    mesh = d.parent / "meshes" / "finger.stl"
+    data = bytearray(mesh.read_bytes())
+    choice = rng.randrange(4)
+    if choice == 0:
+        data = data[: rng.randrange(len(data))]
+    elif choice == 1:
+        data[80:84] = (0xFFFFFFF).to_bytes(4, "little")  # absurd triangle count
+    elif choice == 2:
+        for _ in range(20):
+            data[rng.randrange(len(data))] = rng.randrange(256)
+    else:
+        import struct
+
+        for k in range(84 + 12, len(data) - 4, 50):  # every vertex coordinate extreme
+            data[k : k + 4] = struct.pack("<f", rng.choice((float("nan"), float("inf"), 3.0e38, 1e-45)))
+    mesh.write_bytes(bytes(data))
+    return text
+
+
+MUTATIONS: dict[str, Callable[[random.Random, str, Path], str]] = {
+    "number": m_number,
+    "numbers": m_numbers_all,
+    "delete-line": m_delete_line,
+    "duplicate-line": m_duplicate_line,
+    "swap-lines": m_swap_lines,
+    "rename": m_rename,
+    "inject-text": m_inject_text,
+    "truncate": m_truncate,
+    "byte-flip": m_byte_flip,
+    "deep-nesting": m_deep_nesting,
+    "many-links": m_many_links,
+    "hostile-xacro": m_hostile_xacro,
+    "hostile-mesh": m_hostile_mesh,
+    "mesh-bytes": m_mesh_bytes,
+}
+# Mutations more likely to find something are drawn more often.
+WEIGHTS = {"number": 5, "numbers": 2, "hostile-xacro": 2, "hostile-mesh": 2, "mesh-bytes": 2}
+
+
+# ---- one case ---------------------------------------------------------------------------------
+
+
+def prepare(case: int, seed: int, root: Path) -> tuple[Path, str, list[str], list[str]]:
+    """Write case ``case`` under ``root``: returns (input, target, CLI options, mutation names)."""
+    rng = random.Random(f"{seed}:{case}")
+    seed_file = rng.choice(SEED_FILES)
+    target = rng.choice(sorted(TARGETS))
+    case_dir = root / f"case{case}"
+    if case_dir.exists():
+        shutil.rmtree(case_dir)
+    (case_dir / "meshes").mkdir(parents=True)
+    shutil.copy(SEEDS / "meshes" / "finger.stl", case_dir / "meshes" / "finger.stl")
+    (case_dir / "meshes" / "broken.stl").write_bytes(b"solid x\nfacet normal 0 0 1\nouter loop\nvertex 1 2\n")
+    (case_dir / "meshes" / "finger.dae").write_bytes(b"<COLLADA><library_geometries/></COLLADA>")
+    (case_dir / "package.xml").write_text("<package><name>fuzzpkg</name></package>\n")
+    with contextlib.suppress(OSError):
+        os.mkfifo(case_dir / "meshes" / "pipe.stl")
+    with contextlib.suppress(OSError):
+        os.symlink("/etc/passwd", case_dir / "meshes" / "link_to_passwd.stl")
+    path = case_dir / seed_file
+    text = (SEEDS / seed_file).read_text(encoding="utf-8")
+    names = list(MUTATIONS)
+    weights = [WEIGHTS.get(n, 1) for n in names]
+    applied: list[str] = []
+    for _ in range(rng.choice((1, 1, 2, 3))):
+        name = rng.choices(names, weights)[0]
+        text = MUTATIONS[name](rng, text, path)
+        applied.append(name)
+    path.write_text(text, encoding="utf-8", errors="surrogatepass")
+    options, _out = TARGETS[target]
+    extra = ["--no-validate"] if rng.random() < 0.85 else []  # validation is the slow part: one case in 7
+    if rng.random() < 0.2:
+        extra.append("--copy-meshes")
+    return path, target, [*options, *extra], applied
+
+
+class _Timeout(BaseException):
+    """Raised by the alarm; a BaseException so that robodesc's ``except Exception`` cannot eat it."""
+
+
+@contextlib.contextmanager
+def _alarm(seconds: int) -> Iterator[None]:
+    def fire(_signum: int, _frame: object) -> None:
+        raise _Timeout
+
+    previous = signal.signal(signal.SIGALRM, fire)
+    signal.alarm(seconds)
+    try:
+        yield
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+def _snapshot(path: Path) -> dict[str, bytes]:
+    if path.is_dir():
+        return {str(p.relative_to(path)): p.read_bytes() for p in sorted(path.rglob("*")) if p.is_file()}
+    return {"": path.read_bytes()} if path.exists() else {}
+
+
+def _plant_sentinel(out: Path) -> None:
+    if out.suffix:  # a file target
+        out.write_bytes(SENTINEL)
+    else:
+        out.mkdir()
+        (out / "earlier.txt").write_bytes(SENTINEL)
+
+
+def check_output(target: str, out: Path) -> str | None:
+    """Why the output of a successful run does not load, or ``None``."""
+    from lxml import etree
+
+    try:
+        if target in ("urdf", "sdf"):
+            root = etree.parse(str(out)).getroot()
+            if root.tag != ("robot" if target == "urdf" else "sdf"):
+                return f"root element is <{root.tag}>"
+            return None
+        from pxr import Usd
+
+        usd = out if target != "isaac" else next(iter(sorted(out.glob("*.usd*"))), None)
+        if usd is None:
+            return "no USD file in the Isaac folder"
+        stage = Usd.Stage.Open(str(usd))
+        if stage is None or not stage.GetDefaultPrim():
+            return "usd-core opens no stage with a default prim"
+        return None
+    except Exception as exc:  # the consumer's own failure is the finding
+        return f"{type(exc).__name__}: {exc}"
+
+
+def run_case(case: int, seed: int, root: Path, time_limit: int = TIME_LIMIT) -> Outcome:
+    from robodesc.cli import main
+
+    path, target, options, applied = prepare(case, seed, root)
+    out = path.parent / TARGETS[target][1]
+    _plant_sentinel(out)
+    before = _snapshot(out)
+    stdout, stderr = io.StringIO(), io.StringIO()
+    argv = ["compile", str(path), *options, "-o", str(out), "-q"]
+    outcome = Outcome(case, path.name, target, applied, "ok", None, case_dir=str(path.parent))
+    try:
+        with _alarm(time_limit), contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
+            code = main(argv)
+    except _Timeout:
+        outcome.status, outcome.detail = "hang", f"no answer within {time_limit} s: robodesc {' '.join(argv)}"
+        return outcome
+    except BaseException as exc:  # anything escaping main() is the finding
+        outcome.status = "crash"
+        outcome.detail = "".join(traceback.format_exception(exc))[-3000:]
+        return outcome
+    outcome.exit_code = code
+    err = stderr.getvalue()
+    if "Traceback (most recent call last)" in err:
+        outcome.status, outcome.detail = "crash", err[-3000:]
+    elif code == 0:
+        problem = check_output(target, out)
+        if problem is not None:
+            outcome.status, outcome.detail = "bad-output", problem
+    elif code in (1, 2):
+        outcome.status = "refused"
+        outcome.detail = err.strip().splitlines()[0] if err.strip() else ""
+        if _snapshot(out) != before:
+            outcome.status = "partial-output"
+            outcome.detail = f"exit {code} changed the earlier output: {outcome.detail}"
+    else:
+        outcome.status, outcome.detail = "crash", f"exit code {code}: {err[-2000:]}"
+    if not outcome.failed:
+        shutil.rmtree(path.parent, ignore_errors=True)
+    return outcome
+
+
+def run(cases: int, seed: int, root: Path, first: int = 0) -> list[Outcome]:
+    return [run_case(i, seed, root) for i in range(first, first + cases)]
+
+
+def summary(outcomes: list[Outcome]) -> str:
+    from collections import Counter
+
+    by_status = Counter(o.status for o in outcomes)
+    lines = [f"{len(outcomes)} cases: " + ", ".join(f"{n} {s}" for s, n in sorted(by_status.items()))]
+    for o in outcomes:
+        if o.failed:
+            lines.append(
+                f"  case {o.case} [{o.seed_file} -> {o.target}, {'+'.join(o.mutations)}] {o.status}: "
+                f"{o.detail.strip().splitlines()[-1] if o.detail.strip() else ''} ({o.case_dir})"
+            )
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":  # python tests/fuzz/fuzzer.py CASES [SEED] [DIR]: the long mode by hand
+    import sys
+    import tempfile
+
+    count = int(sys.argv[1]) if len(sys.argv) > 1 else 200
+    base_seed = int(sys.argv[2]) if len(sys.argv) > 2 else 17
+    where = Path(sys.argv[3]) if len(sys.argv) > 3 else Path(tempfile.mkdtemp(prefix="robodesc-fuzz-"))
+    results = []
+    for i in range(count):
+        results.append(run_case(i, base_seed, where))
+        if results[-1].failed:
+            print(summary([results[-1]]).splitlines()[-1], flush=True)
+    print(summary(results))

@@ -1,0 +1,41 @@
+"""The seeded mutation fuzzer (tests/fuzz/fuzzer.py) in the suite.
+
+CI runs ``ROBODESC_FUZZ_CASES`` cases (default 300, about a minute on two cores); the long mode is
+the same test with more cases, e.g. ``ROBODESC_FUZZ_CASES=5000 python -m pytest tests/fuzz -k fuzz``
+(or ``python tests/fuzz/fuzzer.py 5000``). ``ROBODESC_FUZZ_SEED`` picks another sequence; a failing
+case is reproduced by its number and seed, and its folder is kept (the failure message names it).
+"""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+
+from tests.fuzz.fuzzer import Outcome, run_case, summary
+
+CASES = int(os.environ.get("ROBODESC_FUZZ_CASES", "300"))
+SEED = int(os.environ.get("ROBODESC_FUZZ_SEED", "17"))
+
+
+@pytest.fixture(scope="module")
+def outcomes(tmp_path_factory: pytest.TempPathFactory) -> list[Outcome]:
+    root = tmp_path_factory.mktemp("fuzz")
+    return [run_case(i, SEED, root) for i in range(CASES)]
+
+
+def test_fuzz_no_crash_hang_or_bad_output(outcomes: list[Outcome]) -> None:
+    bad = [o for o in outcomes if o.status in ("crash", "hang", "bad-output")]
+    assert not bad, summary(bad)
+
+
+def test_fuzz_failed_runs_leave_earlier_output(outcomes: list[Outcome]) -> None:
+    # Outputs are staged, validated there and moved only on success (docs/diagnostics.md).
+    partial = [o for o in outcomes if o.status == "partial-output"]
+    assert not partial, summary(partial)
+
+
+def test_fuzz_reaches_every_target_and_seed(outcomes: list[Outcome]) -> None:
+    assert {o.target for o in outcomes} == {"urdf", "sdf", "usda", "usdc", "isaac"}
+    assert len({o.seed_file for o in outcomes}) == 4
+    assert any(o.status == "ok" for o in outcomes) and any(o.status == "refused" for o in outcomes)
