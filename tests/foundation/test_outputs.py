@@ -270,3 +270,26 @@ def test_copy_meshes_into_a_folder_output(tmp_path: Path, capsys: pytest.Capture
     assert copied.is_file() and stat.S_IMODE(copied.stat().st_mode) & 0o044 == 0o044
     assert 'filename="meshes/finger.stl"' in (out / "gripper_arm.urdf").read_text()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["isaac"]  # no staging left behind
+
+
+def test_progress_shows_only_for_slow_steps_on_a_terminal() -> None:
+    import io
+    import time
+
+    from rich.console import Console
+
+    from robodesc.cli import _Progress
+
+    quiet = _Progress(True)  # standard error is not a terminal under pytest: no output at all
+    assert quiet.console is None
+    shown = _Progress(False)
+    buffer = io.StringIO()
+    shown.console = Console(file=buffer, force_terminal=True, width=80)
+    shown.DELAY = 0.05  # stands for the two seconds
+    shown("loading")
+    shown.stop()  # a fast step: nothing shown
+    assert "loading" not in buffer.getvalue()
+    shown("validating")
+    time.sleep(0.5)
+    shown.stop()
+    assert "validating" in buffer.getvalue()
