@@ -24,9 +24,10 @@ from robodesc.emit.common.paths import PathMode
 from robodesc.emit.urdf import UrdfOptions, emit_urdf
 from robodesc.frontends.load import load_path
 from robodesc.frontends.options import LoadOptions, MissingMesh
-from robodesc.ir.diagnostics import RobodescError, Severity
+from robodesc.ir.diagnostics import Findings, RobodescError, Severity
 from robodesc.ir.model import Robot
 from robodesc.ir.verify import PHYSICAL_CODES, verify
+from robodesc.pipeline import drop_dangling
 from robodesc.validation.corpora import CorpusRobot, all_robots
 from robodesc.validation.mujoco_urdf import validate_urdf_text
 from robodesc.validation.options import ValidateOptions
@@ -70,19 +71,17 @@ class RobotResult:
 
 # ---- running -----------------------------------------------------------------------------------
 def load(robot: CorpusRobot, result: RobotResult) -> Robot | None:
-    opts = LoadOptions(package_paths=robot.packages, xacro_args=robot.xacro_args)
+    # The compiler's default: a missing mesh is a warning (the reference is kept), noted here.
+    opts = LoadOptions(package_paths=robot.packages, xacro_args=robot.xacro_args, missing_mesh=MissingMesh.WARN)
     try:
-        return load_path(robot.path, opts).robot
-    except RobodescError as exc:
-        first = exc.render()
-    try:  # a missing mesh should not hide everything else: keep the reference and say so
-        opts.missing_mesh = MissingMesh.WARN
-        loaded = load_path(robot.path, opts).robot
+        loaded = load_path(robot.path, opts)
     except RobodescError as exc:
         result.load_error = exc.render()
         return None
-    result.load_note = f"loads only with --missing-mesh warn: {_short_path(first)}"
-    return loaded
+    missing = [f for f in loaded.findings if f.code == "missing-mesh"]
+    if missing:
+        result.load_note = f"missing mesh (a warning): {_short_path(missing[0].render())}"
+    return loaded.robot
 
 
 def run_urdf(robot: Robot, options: ValidateOptions, workdir: str) -> TargetResult:
@@ -146,12 +145,15 @@ def run_robot(robot: CorpusRobot, targets: list[str], options: ValidateOptions, 
         return result
     result.links = len(ir.links)
     structural = []
-    for f in verify(ir):
+    # As the compiler does: an element naming what does not exist is dropped with a warning.
+    found = verify(ir)
+    kept = drop_dangling(ir, found.errors, Findings())
+    for f in found:
         if f.severity is Severity.ERROR:
             where = f" (line {f.loc.line})" if f.loc is not None and f.loc.line is not None else ""
             result.defects.append(f"{f.element}: [{f.code}] {f.message}{where}")
             result.defect_elements.add(f.element)
-            if f.code not in PHYSICAL_CODES:
+            if f.code not in PHYSICAL_CODES and f in kept:
                 structural.append(f"{f.element}: {f.message}")
     if structural:
         # `robodesc compile` stops on structural errors (only physical ones can be let through).

@@ -123,7 +123,8 @@ def main() -> int:
             os.makedirs(ours_dir)
             out = os.path.join(ours_dir, "robot.usda")
             # The peer's output shape (layered asset + physics scene), no repairs, no validation:
-            # sanitize_names and unique_materials run anyway (USD needs them).
+            # sanitize_names and unique_materials run anyway (USD needs them). Default severity: a
+            # missing mesh or an invalid inertia is a warning, as the peer treats them.
             cmd = [
                 exe,
                 "compile",
@@ -135,10 +136,6 @@ def main() -> int:
                 "--layered",
                 "--physics-scene",
                 "--no-validate",
-                "--missing-mesh",
-                "warn",
-                "--invalid-inertia",
-                "warn",
                 "-q",
                 *pkg_args,
             ]
@@ -193,7 +190,8 @@ def _report(rows: list[Row], how: str) -> str:
         "",
         f"robodesc run as: {how}. Both write a layered asset with a physics scene; one process per robot.",
         "",
-        f"- robots: {len(rows)}; converted: peer {sum(r.peer_ok for r in rows)}, robodesc {sum(r.ours_ok for r in rows)}",
+        f"- robots: {len(rows)}; converted with default flags: peer {sum(r.peer_ok for r in rows)}, "
+        f"robodesc {sum(r.ours_ok for r in rows)}",
         f"- both converted: {len(both)}; total wall time on those: peer {peer_total:.1f} s, robodesc {ours_total:.1f} s"
         + (f" (x{peer_total / ours_total:.2f})" if ours_total else ""),
         f"- per-robot speed-up (peer time / robodesc time): median x{statistics.median(ratios):.2f}, "

@@ -5,7 +5,13 @@
 ...                                   package_paths={"my_pkg": "src/my_pkg"})
 >>> [f.render() for f in result.findings]
 
-``source`` is a path (URDF, xacro, YAML, ``.holo``), a string of URDF XML, an IR :class:`Robot`,
+Every compile writes to a staging location beside its output, validates it there and moves it into
+place only when it passes: a source defect the output carries is a warning in ``result.findings``;
+an output that differs from the source because of robodesc raises
+:class:`~robodesc.pipeline.ValidationFailedError` (its ``result.validation`` holds the report) and
+writes nothing (docs/diagnostics.md).
+
+``source`` is a path (URDF, xacro, YAML, ``.holo``, a Python file defining ``build()``), a string of URDF XML, an IR :class:`Robot`,
 or any object with a ``build() -> Robot`` method (the composition builder). Options are keyword
 arguments; an unknown one raises :class:`ConfigError` naming the closest valid option.
 """
@@ -23,6 +29,7 @@ from robodesc.pipeline import (
     CompileResult,
     Progress,
     Source,
+    ValidationFailedError,
     compile_robot,
     load_source,
     target_options_class,
@@ -175,7 +182,10 @@ def validate(source: Source, target: str = "urdf", **options: Any) -> Any:
         suffix = {"usd": "usda", "isaac": ""}.get(target, target)
         out = os.path.join(tmp, f"robot.{suffix}" if suffix else "robot")
         cls = target_options_class(target)
-        result = _compile(target, source, out, None, {**options, "validate": True}, *((cls,) if cls else ()))
+        try:
+            result = _compile(target, source, out, None, {**options, "validate": True}, *((cls,) if cls else ()))
+        except ValidationFailedError as failed:  # nothing written; the report says why
+            result = failed.result
     return result.validation
 
 

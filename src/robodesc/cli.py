@@ -1,7 +1,11 @@
 """``robodesc`` on the command line: a thin layer over :mod:`robodesc.api`.
 
-Bad input never shows a traceback: each problem is one line ``error: file:line: element: what``,
-and the exit code is 2 (1 when a validation check fails).
+Bad input never shows a traceback: each problem is one line ``error: file:line: element: what``.
+Exit codes (docs/diagnostics.md): 0 written (warnings, if any, are listed), 1 the output failed
+validation because of robodesc (nothing written), 2 refused (bad input, options or output path;
+nothing written), 3 a robodesc bug (one line; ``--debug`` shows the trace).
+A successful compile prints its warnings grouped by kind, then one summary line; ``-v`` lists every
+finding; ``--json`` prints one JSON document on every exit path.
 """
 
 from __future__ import annotations
@@ -10,13 +14,15 @@ import argparse
 import json
 import os
 import sys
+import threading
+from collections import defaultdict
 from collections.abc import Sequence
 from typing import Any, NoReturn
 
 from robodesc._version import __version__
 from robodesc.emit.common.paths import PathMode
 from robodesc.frontends.options import MissingMesh
-from robodesc.ir.diagnostics import ConfigError, Finding, RobodescError, Severity, VerificationError
+from robodesc.ir.diagnostics import ConfigError, Finding, RobodescError, Severity, SourceLoc, VerificationError
 from robodesc.options import InvalidInertia, build_options
 from robodesc.pipeline import TARGETS, compile_robot, target_options_class
 
@@ -25,7 +31,8 @@ examples:
   robodesc compile robot.urdf.xacro -t urdf -o out/robot.urdf --package my_pkg=src/my_pkg
   robodesc compile go2.urdf.xacro -t urdf -o go2.urdf --missing-mesh warn --invalid-inertia repair
   robodesc inspect robot.urdf
-exit codes: 0 ok, 1 validation failed, 2 bad input or options
+exit codes: 0 written (warnings listed), 1 validation failed because of robodesc (nothing written),
+            2 refused: bad input, options or output path (nothing written), 3 a robodesc bug
 """
 
 
@@ -73,29 +80,44 @@ def _add_input_options(p: argparse.ArgumentParser) -> None:
     g.add_argument(
         "--missing-mesh",
         choices=[m.value for m in MissingMesh],
-        default="error",
-        help="a mesh file that does not exist: fail (error, default), keep the reference (warn), "
-        "substitute a box of its scale (primitive) or drop that visual/collision (drop)",
+        default="warn",
+        help="a mesh file that does not exist: keep the reference with a warning (warn, default; USD leaves "
+        "the shape out), fail (error), substitute a box of its scale (primitive) or drop that visual/collision (drop)",
     )
     g.add_argument(
         "--invalid-inertia",
         choices=[m.value for m in InvalidInertia],
-        default="error",
+        default="warn",
         help="physically invalid mass or inertia in the source (mass <= 0, a tensor that is not positive "
-        "definite or breaks the triangle inequality): fail (error, default), pass through (warn), or "
-        "repair from geometry and report each repair (repair)",
+        "definite or breaks the triangle inequality): pass through with a warning (warn, default), fail "
+        "(error), or repair from geometry and report each repair (repair)",
     )
-    g.add_argument("--strict", action="store_true", help="unknown elements are errors instead of being kept verbatim")
+    g.add_argument(
+        "--strict",
+        action="store_true",
+        help="every warning is an error: refuse (exit 2, nothing written) when the source has any defect, "
+        "unknown elements included (for CI pipelines)",
+    )
+
+
+class _UsageError(Exception):
+    """argparse found a bad command line (exit 2): raised instead of exiting so --json can report it."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> NoReturn:
+        raise _UsageError(f"{self.prog}: {message}")
 
 
 def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="robodesc",
         description="Compile robot descriptions: URDF/xacro and compositions to URDF, SDF and Isaac-ready USD.",
         epilog=EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     parser.add_argument("--version", action="version", version=f"robodesc {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show the traceback of an internal error")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
 
     comp = sub.add_parser(
@@ -301,6 +323,9 @@ def _parser() -> argparse.ArgumentParser:
         "--json", action="store_true", help="print a JSON summary (findings, files, validation) on standard output"
     )
     comp.add_argument("-q", "--quiet", action="store_true", help="print errors only")
+    comp.add_argument(
+        "-v", "--verbose", action="store_true", help="list every finding (informational ones too), not one per kind"
+    )
 
     insp = sub.add_parser(
         "inspect",
@@ -332,6 +357,10 @@ def _parser() -> argparse.ArgumentParser:
     )
     exp.add_argument("input")
     _add_package_and_arg(exp)
+    for sp in (comp, insp, valp, exp):
+        sp.add_argument(
+            "--debug", action="store_true", default=argparse.SUPPRESS, help="show the traceback of an internal error"
+        )
     return parser
 
 
@@ -347,26 +376,196 @@ def _common_options(args: argparse.Namespace) -> dict[str, Any]:
     }
 
 
-def _print_findings(findings: Sequence[Finding], quiet: bool) -> None:
+# ---- printing --------------------------------------------------------------------------------
+def _path(path: str | None) -> str:
+    """A path as the user should read it: relative to the working directory when that is shorter."""
+    if not path:
+        return path or ""
+    suffix = ""
+    if path.endswith(" (expanded)"):
+        path, suffix = path.removesuffix(" (expanded)"), " (expanded)"
+    if os.path.isabs(path):
+        rel = os.path.relpath(path)
+        if len(rel) < len(path):
+            path = rel
+    return path + suffix
+
+
+def _render(f: Finding, severity: Severity | None = None) -> str:
+    loc = f.loc
+    if loc is not None and loc.file:
+        loc = SourceLoc(_path(loc.file), loc.line, loc.column)
+    where = f"{loc}: " if loc is not None else ""
+    what = f"{f.element}: " if f.element else ""
+    return f"{(severity or f.severity).value}: {where}{what}{f.message}"
+
+
+def _finding_dict(f: Finding) -> dict[str, object]:
+    from robodesc.advice import advice_for
+
+    out = f.as_dict()
+    if out.get("file"):
+        out["file"] = _path(str(out["file"]))
+    advice = advice_for(f.code)
+    if advice is not None and f.severity is not Severity.INFO:
+        out["consumers"] = advice.consumers
+        out["repair"] = advice.repair
+    return out
+
+
+def _print_findings(findings: Sequence[Finding], quiet: bool, verbose: bool = False) -> None:
+    """Warnings grouped by kind: a count, one example, what consumers do and what repairs it.
+    ``verbose`` lists every finding, informational ones too; ``quiet`` prints none."""
+    if quiet:
+        return
+    if verbose:
+        for f in findings:
+            print(_render(f), file=sys.stderr)
+        return
+    from robodesc.advice import advice_for
+
+    groups: dict[str, list[Finding]] = defaultdict(list)
     for f in findings:
-        if quiet and f.severity is not Severity.ERROR:
-            continue
-        print(f.render(), file=sys.stderr)
+        if f.severity is Severity.WARNING:
+            groups[f.code].append(f)
+    for code, items in groups.items():
+        more = f" (and {len(items) - 1} more {code}; -v lists them)" if len(items) > 1 else ""
+        print(_render(items[0]) + more, file=sys.stderr)
+        advice = advice_for(code)
+        if advice is not None:
+            repair = f" Repair: {advice.repair}." if advice.repair else ""
+            print(f"  -> {advice.consumers}.{repair}", file=sys.stderr)
 
 
 def _report_error(err: RobodescError) -> int:
     if isinstance(err, VerificationError):
-        for line in err.render_all():
-            print(f"error: {line}", file=sys.stderr)
+        for f in err.findings:
+            print(_render(f, Severity.ERROR), file=sys.stderr)
         codes = {f.code for f in err.findings}
         if codes & {"bad-mass", "bad-inertia"}:
             print(
                 "hint: --invalid-inertia repair fixes these from geometry; --invalid-inertia warn passes them through",
                 file=sys.stderr,
             )
+        if err.__class__.__name__ == "StrictError":
+            print("hint: --strict turned these warnings into errors; without it the output is written", file=sys.stderr)
     else:
-        print(f"error: {err.render()}", file=sys.stderr)
+        loc = err.loc
+        if loc is not None and loc.file:
+            loc = SourceLoc(_path(loc.file), loc.line, loc.column)
+        where = f"{loc}: " if loc is not None else ""
+        what = f"{err.element}: " if err.element else ""
+        print(f"error: {where}{what}{err.message}", file=sys.stderr)
     return err.exit_code
+
+
+def _error_dicts(err: BaseException) -> list[dict[str, object]]:
+    if isinstance(err, VerificationError):
+        return [{**_finding_dict(f), "severity": "error"} for f in err.findings]
+    if isinstance(err, RobodescError):
+        loc = err.loc
+        return [
+            {
+                "severity": "error",
+                "code": type(err).__name__,
+                "message": err.message,
+                "element": err.element,
+                "file": _path(loc.file) if loc and loc.file else None,
+                "line": loc.line if loc else None,
+                "column": loc.column if loc else None,
+            }
+        ]
+    return [{"severity": "error", "code": type(err).__name__, "message": str(err)}]
+
+
+def _summary_line(result: Any, target: str, out: str | None) -> str:
+    robot = result.robot
+    where = _path(out) if out else "standard output"
+    mass = robot.total_mass()
+    head = (
+        f"robodesc: {target} {where}: {len(robot.links)} links, {len(robot.joints)} joints, "
+        f"{robot.dof} DOF, {mass:.4g} kg"
+    )
+    return f"{head}; {_verdict(result)}"
+
+
+# The numbers validation compares with the source, and their units (simulation metrics such as
+# penetration are not errors against the source and are left to the full table).
+_COMPARED = {
+    "fk_position": " m",
+    "fk_rotation": " rad",
+    "com": " m",
+    "mass": " (relative)",
+    "inertia": " (relative)",
+    "axis": "",
+    "limit": "",
+}
+
+
+def _verdict(result: Any) -> str:
+    report = result.validation
+    if report is None:
+        return "not validated (--no-validate)"
+    consumer = getattr(report, "consumer", "")
+    largest = sorted(((v, k) for k, v in report.max_errors.items() if v is not None and k in _COMPARED), reverse=True)[
+        :2
+    ]
+    errors = ", ".join(f"{k} {v:.2g}{_COMPARED[k]}" for v, k in largest)
+    state = "passed" if report.ok else "FAILED"
+    extra = []
+    if result.source_failures:
+        extra.append(f"{len(result.source_failures)} source defect(s) the consumer refused, listed as warnings")
+    if errors:
+        extra.append(f"largest errors: {errors}")
+    return f"validation by {consumer} {state}" + (f" ({'; '.join(extra)})" if extra else "")
+
+
+class _Progress:
+    """A spinner on standard error for steps that take more than about two seconds (a large xacro,
+    many meshes, validation); nothing at all when standard error is not a terminal."""
+
+    DELAY = 2.0
+
+    def __init__(self, enabled: bool) -> None:
+        self.console: Any = None
+        if enabled:
+            from rich.console import Console
+
+            console = Console(stderr=True)
+            if console.is_terminal:
+                self.console = console
+        self.step = ""
+        self.status: Any = None
+        self.timer: threading.Timer | None = None
+        self.lock = threading.Lock()
+
+    def __call__(self, step: str) -> None:
+        if self.console is None:
+            return
+        with self.lock:
+            self.step = step
+            if self.status is not None:
+                self.status.update(f"robodesc: {step}")
+            elif self.timer is None:
+                self.timer = threading.Timer(self.DELAY, self._show)
+                self.timer.daemon = True
+                self.timer.start()
+
+    def _show(self) -> None:
+        with self.lock:
+            if self.console is None or self.timer is None:
+                return
+            self.status = self.console.status(f"robodesc: {self.step}")
+            self.status.start()
+
+    def stop(self) -> None:
+        with self.lock:
+            if self.timer is not None:
+                self.timer.cancel()
+                self.timer = None
+            if self.status is not None:
+                self.status.stop()
+                self.status = None
 
 
 def _gains(values: list[str] | None, flag: str) -> float | dict[str, float] | None:
@@ -447,78 +646,156 @@ def _accepted(target: str) -> set[str]:
     return {f.name for f in dataclasses.fields(cls)} if cls is not None else set()
 
 
+def _json_doc(
+    command: str,
+    exit_code: int,
+    *,
+    target: str | None = None,
+    output: str | None = None,
+    result: Any = None,
+    errors: list[dict[str, object]] | None = None,
+    report: Any = None,
+) -> dict[str, Any]:
+    """The one JSON document every exit path prints with --json."""
+    doc: dict[str, Any] = {
+        "command": command,
+        "ok": exit_code == 0,
+        "exit_code": exit_code,
+        "target": target,
+        "output": _path(output) if output else None,
+        "files": {},
+        "summary": None,
+        "findings": [],
+        "errors": errors or [],
+        "validation": None,
+    }
+    if result is not None:
+        robot = result.robot
+        doc["files"] = {role: _path(p) for role, p in result.files.items()}
+        doc["summary"] = {
+            "robot": robot.name,
+            "links": len(robot.links),
+            "joints": len(robot.joints),
+            "dof": robot.dof,
+            "mass": robot.total_mass(),
+            "validation": _verdict(result),
+        }
+        doc["findings"] = [_finding_dict(f) for f in result.findings]
+        report = report if report is not None else result.validation
+    if report is not None:
+        doc["validation"] = json.loads(report.to_json())
+    return doc
+
+
 def _cmd_compile(args: argparse.Namespace) -> int:
+    from robodesc.pipeline import ValidationFailedError, check_output
+
     opts = build_options({**_common_options(args), "mesh_paths": args.mesh_paths, "preset": args.preset})
     opts.target_options = _target_options(args)
     opts.passes = _pass_options(args)
     target = "isaac" if args.isaac_sim else "ros2" if args.ros2 else args.target
     # Each target takes only its own options.
     opts.target_options = {k: v for k, v in opts.target_options.items() if k in _accepted(target)}
-
-    def progress(step: str) -> None:
-        if not args.quiet and not args.json:
-            print(f"robodesc: {step}", file=sys.stderr)
-
+    args.json_target, args.json_output = target, args.output
+    if args.report:
+        check_output(args.report, folder=False, source=args.input, what="--report")
+        if args.output and os.path.abspath(args.report) == os.path.abspath(args.output):
+            raise ConfigError(f"--report {args.report}: is also the output (-o); give another file")
     opts.validate = args.validate
-    result = compile_robot(args.input, target, args.output, opts, progress)
+    progress = _Progress(not args.quiet and not args.json)
+    try:
+        result = compile_robot(args.input, target, args.output, opts, progress)
+    except ValidationFailedError as failed:
+        progress.stop()
+        return _validation_failed(args, target, failed.result)
+    finally:
+        progress.stop()
     report = result.validation
     if args.report and report is not None:
         from robodesc.emit.common.files import write_atomic
 
         write_atomic(args.report, report.to_markdown())
     if args.json:
-        summary: dict[str, Any] = {
-            "target": result.target,
-            "files": result.files,
-            "findings": [f.as_dict() for f in result.findings],
-            "validation": json.loads(report.to_json()) if report is not None else None,
-        }
-        print(json.dumps(summary, indent=2))
-    else:
-        _print_findings(result.findings, args.quiet)
-        if args.output is None and result.text is not None:
-            sys.stdout.write(result.text)
-        elif not args.quiet:
-            for role, path in result.files.items():
-                print(f"robodesc: wrote {role}: {path}", file=sys.stderr)
-        if report is not None and (not args.quiet or not report.ok):
-            print(report.to_text(), file=sys.stderr)
-    if report is not None and not report.ok:
-        print("error: the output failed validation (see the report above); --no-validate skips it", file=sys.stderr)
-        return 1
+        print(json.dumps(_json_doc("compile", 0, target=target, output=args.output, result=result), indent=2))
+        return 0
+    _print_findings(result.findings, args.quiet, args.verbose)
+    if args.output is None and result.text is not None:
+        sys.stdout.write(result.text)
+    if report is not None and args.verbose:
+        print(report.to_text(), file=sys.stderr)
+    if not args.quiet:
+        print(_summary_line(result, target, args.output), file=sys.stderr)
     return 0
+
+
+def _validation_failed(args: argparse.Namespace, target: str, result: Any) -> int:
+    """Exit 1: the output differs from the source because of robodesc. Nothing was written; the
+    full table is printed (and written to --report)."""
+    report = result.validation
+    if args.report:
+        from robodesc.emit.common.files import write_atomic
+
+        write_atomic(args.report, report.to_markdown())
+    if args.json:
+        errors = [
+            {"severity": "error", "code": f"validation:{c.name}", "message": c.message, "element": c.element}
+            for c in report.failures
+        ]
+        doc = _json_doc("compile", 1, target=target, output=args.output, result=result, errors=errors)
+        doc["files"] = {}
+        print(json.dumps(doc, indent=2))
+        return 1
+    _print_findings(result.findings, args.quiet, args.verbose)
+    print(report.to_text(), file=sys.stderr)
+    print(
+        f"error: the output failed validation ({len(report.failures)} check(s) above); nothing was written. "
+        "This is robodesc's fault: please report it. --no-validate writes the output anyway",
+        file=sys.stderr,
+    )
+    return 1
 
 
 def _cmd_validate(args: argparse.Namespace) -> int:
     import tempfile
 
+    from robodesc.pipeline import ValidationFailedError
+
     lower = args.input.lower()
     if lower.endswith((".sdf", ".usd", ".usda", ".usdc")):
         kind = "sdf" if lower.endswith(".sdf") else "usd"
-        print(
-            f"error: {args.input}: robodesc validates an output against the robot it was compiled from; "
-            f"run: robodesc validate SOURCE -t {kind}",
-            file=sys.stderr,
+        raise ConfigError(
+            f"{args.input}: robodesc validates an output against the robot it was compiled from; "
+            f"run: robodesc validate SOURCE -t {kind}"
         )
-        return 2
+    if args.report:
+        from robodesc.pipeline import check_output
+
+        check_output(args.report, folder=False, source=args.input, what="--report")
     opts = build_options(_common_options(args))
+    args.json_target = args.target
     with tempfile.TemporaryDirectory(prefix="robodesc-validate-") as tmp:
-        out = f"{tmp}/robot.{'usda' if args.target == 'usd' else args.target}"
-        result = compile_robot(args.input, args.target, out, opts)
+        spec_folder = args.target in ("isaac", "ros2")
+        out = f"{tmp}/robot" + ("" if spec_folder else f".{'usda' if args.target == 'usd' else args.target}")
+        code = 0
+        try:
+            result = compile_robot(args.input, args.target, out, opts)
+        except ValidationFailedError as failed:
+            result, code = failed.result, 1
         report = result.validation
         if report is None:
-            print("error: nothing to validate", file=sys.stderr)
-            return 2
+            raise ConfigError(f"target {args.target!r} has nothing to validate")
         if args.report:
             from robodesc.emit.common.files import write_atomic
 
             write_atomic(args.report, report.to_markdown())
         if args.json:
-            print(report.to_json())
+            doc = _json_doc("validate", code, target=args.target, result=result)
+            doc["files"] = {}
+            print(json.dumps(doc, indent=2))
         else:
-            _print_findings(result.findings, quiet=True)
+            _print_findings(result.findings, quiet=False)
             print(report.to_text())
-    return 0 if report.ok else 1
+    return code
 
 
 def _cmd_inspect(args: argparse.Namespace) -> int:
@@ -543,33 +820,88 @@ def _cmd_expand(args: argparse.Namespace) -> int:
     text = expand_xacro(
         args.input, dict(args.arg), resolver, findings, trust=args.trust_xacro, allowed_env=tuple(args.env)
     )
-    _print_findings(list(findings), False)
+    for f in findings:
+        print(_render(f), file=sys.stderr)
     sys.stdout.write(text + "\n")
     return 0
 
 
+COMMANDS = {"compile": _cmd_compile, "expand": _cmd_expand, "validate": _cmd_validate, "inspect": _cmd_inspect}
+
+
 def main(argv: Sequence[str] | None = None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    # usd-core prints a banner when PXR_WORK_THREAD_LIMIT is set; this turns such alerts off.
+    os.environ.setdefault("TF_ENV_SETTING_ALERTS_ENABLED", "0")
+    want_json = "--json" in argv
+    debug = "--debug" in argv
+    command = next((a for a in argv if a in COMMANDS), "")
     parser = _parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except _UsageError as exc:
+        if want_json:
+            doc = _json_doc(command, 2, errors=[{"severity": "error", "code": "usage", "message": str(exc)}])
+            print(json.dumps(doc, indent=2))
+        else:
+            print(
+                f"error: {exc} (robodesc {command or ''} --help lists the options)".replace("  ", " "), file=sys.stderr
+            )
+        return 2
     if args.command is None:
         parser.print_help()
         return 2
+    want_json = bool(getattr(args, "json", False))
+
+    def fail(code: int, errors: list[dict[str, object]]) -> int:
+        if want_json:
+            doc = _json_doc(
+                args.command,
+                code,
+                target=getattr(args, "json_target", None),
+                output=getattr(args, "json_output", None),
+                errors=errors,
+            )
+            print(json.dumps(doc, indent=2))
+        return code
+
     try:
-        if args.command == "compile":
-            return _cmd_compile(args)
-        if args.command == "expand":
-            return _cmd_expand(args)
-        if args.command == "validate":
-            return _cmd_validate(args)
-        return _cmd_inspect(args)
+        return COMMANDS[args.command](args)
     except RobodescError as err:
-        return _report_error(err)
+        code = err.exit_code if want_json else _report_error(err)
+        return fail(code, _error_dicts(err))
     except KeyboardInterrupt:
         print("error: interrupted", file=sys.stderr)
         return 130
     except BrokenPipeError:  # the reader (| head) went away: not an error of ours
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
+    except OSError as exc:
+        # The environment: a full disk, a permission changed mid-run, a vanished folder.
+        where = f"{_path(exc.filename)}: " if getattr(exc, "filename", None) else ""
+        message = f"{where}{exc.strerror or exc}"
+        if not want_json:
+            print(f"error: {message}", file=sys.stderr)
+        return fail(2, [{"severity": "error", "code": "environment", "message": message}])
+    except (RecursionError, MemoryError) as exc:
+        what = "too deeply nested" if isinstance(exc, RecursionError) else "too large for the memory available"
+        message = f"{_path(getattr(args, 'input', ''))}: the input is {what}"
+        if not want_json:
+            print(f"error: {message}", file=sys.stderr)
+        return fail(2, [{"severity": "error", "code": type(exc).__name__, "message": message}])
+    except Exception as exc:  # the last line of defence: one line, exit 3
+        message = f"{type(exc).__name__}: {exc}".strip()
+        if not want_json:
+            print(
+                f"robodesc bug: {message.splitlines()[0][:300]} -- this is an internal error, not a problem "
+                "with your input; please report it (--debug shows the traceback)",
+                file=sys.stderr,
+            )
+        if debug:
+            import traceback
+
+            traceback.print_exc()
+        return fail(3, [{"severity": "error", "code": "internal", "message": message}])
 
 
 def run() -> NoReturn:

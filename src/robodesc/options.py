@@ -21,8 +21,8 @@ from robodesc.ir.diagnostics import ConfigError
 class InvalidInertia(enum.Enum):
     """What physically invalid masses and inertias in the source do."""
 
-    ERROR = "error"  # fail with one line per defect (the default)
-    WARN = "warn"  # pass them through unchanged, as warnings
+    ERROR = "error"  # fail with one line per defect
+    WARN = "warn"  # pass them through unchanged, as warnings (the default: the output carries them faithfully)
     REPAIR = "repair"  # repair them (from geometry where there is geometry) and report each repair
 
 
@@ -31,9 +31,12 @@ class CompileOptions:
     # ---- input -------------------------------------------------------------------------------
     package_paths: dict[str, str] = field(default_factory=dict)
     xacro_args: dict[str, str] = field(default_factory=dict)
-    missing_mesh: MissingMesh = MissingMesh.ERROR
+    # A missing mesh is a warning by default: URDF and SDF keep the reference, USD leaves the shape
+    # out and says so (docs/diagnostics.md).
+    missing_mesh: MissingMesh = MissingMesh.WARN
+    # Every warning is an error (exit 2, nothing written), for pipelines that want no surprises.
     strict: bool = False
-    invalid_inertia: InvalidInertia = InvalidInertia.ERROR
+    invalid_inertia: InvalidInertia = InvalidInertia.WARN
     trust_xacro: bool = False
     allowed_env: tuple[str, ...] = ()
     # ---- passes ------------------------------------------------------------------------------

@@ -1,6 +1,12 @@
-"""The whole compile: frontend → verifier → passes → verifier → emitter → validation.
+"""The whole compile: frontend → verifier → passes → verifier → emitter → validation → move.
 
 Only this module and the API above it know every stage; each stage only knows the IR.
+
+Severity is decided here, by consequence (docs/diagnostics.md): a source defect the output can
+carry faithfully is a warning (a mimic naming no joint is dropped, an invalid inertia passes
+through); only what leaves nothing sensible to emit (no link, a cycle, no single root) refuses the
+compile. Everything is written to a staging location beside the output, validated there, and moved
+into place only when the run succeeds: a failed run leaves an earlier output byte-identical.
 """
 
 from __future__ import annotations
@@ -9,6 +15,10 @@ import copy
 import dataclasses
 import importlib
 import os
+import re
+import shutil
+import stat
+import tempfile
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Protocol
@@ -19,7 +29,10 @@ from robodesc.ir.diagnostics import (
     ConfigError,
     Finding,
     Findings,
+    ParseError,
     Severity,
+    SourceLoc,
+    ValidationFailed,
     VerificationError,
 )
 from robodesc.ir.model import Robot
@@ -49,6 +62,9 @@ class CompileResult:
     text: str | None = None
     files: dict[str, str] = field(default_factory=dict)
     validation: Any = None  # a robodesc.validation report when validation ran
+    # Validation rows that failed because of a defect of the source, not of robodesc (the run
+    # still succeeds; they are listed as warnings).
+    source_failures: list[Any] = field(default_factory=list)
 
     @property
     def warnings(self) -> list[Finding]:
@@ -70,12 +86,35 @@ def load_source(source: Source, options: CompileOptions, findings: Findings) -> 
             raise ConfigError(f"{type(source).__name__}.build() returned {type(robot).__name__}, not a Robot")
         return robot
     text = os.fspath(source)  # type: ignore[arg-type]
+    if text.endswith(".py") and not text.lstrip().startswith("<"):
+        return _python_composition(text)
     if text.lstrip().startswith("<"):
         loaded = load_string(text, options.load_options())
     else:
         loaded = load_path(text, options.load_options())
     findings.extend(loaded.findings)
     return loaded.robot
+
+
+def _python_composition(path: str) -> Robot:
+    """A Python composition: a file that defines ``build() -> Robot`` (docs/compositions.md). It is
+    a program, so it runs: name only files you would run with ``python``."""
+    import runpy
+
+    if not os.path.isfile(path):
+        raise ParseError("input file not found", loc=SourceLoc(path))
+    namespace = runpy.run_path(path, run_name="robodesc_composition")
+    build = namespace.get("build")
+    if not callable(build):
+        raise ParseError(
+            "a Python composition defines build() returning a Robot; this file does not", loc=SourceLoc(path)
+        )
+    robot = build()
+    if not isinstance(robot, Robot):
+        raise ParseError(f"build() returned {type(robot).__name__}, not a Robot", loc=SourceLoc(path))
+    if robot.source_file is None:
+        robot.source_file = path
+    return robot
 
 
 def pass_options(options: CompileOptions, spec: Target) -> PassOptions:
@@ -93,11 +132,19 @@ def pass_options(options: CompileOptions, spec: Target) -> PassOptions:
 
 
 def verify_source(robot: Robot, options: CompileOptions, findings: Findings, repairing: bool = False) -> None:
-    """Verify what the frontend built. Structural errors are fatal; physically invalid inertia is
-    fatal unless the passes will repair it or the user asked to pass it through."""
+    """Verify what the frontend built. What leaves nothing sensible to emit is fatal (exit 2);
+    elements that name what does not exist are dropped with a warning; physically invalid inertia
+    passes through as a warning (``--invalid-inertia error`` makes it fatal) unless the passes will
+    repair it."""
     result = verify(robot)
-    structural = [f for f in result.errors if f.code not in PHYSICAL_CODES]
-    physical = [f for f in result.errors if f.code in PHYSICAL_CODES]
+    # Dropped elements are warnings; --strict refuses them with every other warning at the end.
+    errors = drop_dangling(robot, result.errors, findings)
+    if _world_link(robot, errors, findings):
+        # A root link "world" was added: the tree is whole now, verify it again.
+        result = verify(robot)
+        errors = drop_dangling(robot, result.errors, findings)
+    structural = [f for f in errors if f.code not in PHYSICAL_CODES]
+    physical = [f for f in errors if f.code in PHYSICAL_CODES]
     findings.extend([f for f in result.items if f.severity is not Severity.ERROR])
     if structural:
         raise VerificationError(structural)
@@ -109,11 +156,93 @@ def verify_source(robot: Robot, options: CompileOptions, findings: Findings, rep
         findings.add(
             Severity.WARNING,
             f.code,
-            f.message + " (passed through: --invalid-inertia warn)",
+            f.message + " (passed through unchanged; --invalid-inertia repair fixes it from geometry)",
             element=f.element,
             loc=f.loc,
             stage=f.stage,
         )
+
+
+# Verifier errors about an element that names something absent, or a shape that cannot exist: the
+# element is dropped (with a warning) and the rest of the robot is compiled as written.
+_LABEL = re.compile(r"^(\w+) '(.*)'$")
+_SHAPE = re.compile(r"^link '(.*)' (visual|collision) (\d+)$")
+
+
+def _world_link(robot: Robot, errors: list[Finding], findings: Findings) -> bool:
+    """Joints whose parent is an undeclared link ``world``: Gazebo and Drake read it as the world
+    (the robot welded or jointed to the ground), urdfdom refuses it. Add that link, empty, as the
+    root, and say so."""
+    world_joints = [f for f in errors if f.code == "dangling-link" and f.message.startswith("parent link 'world' ")]
+    if not world_joints or any(link.name == "world" for link in robot.links):
+        return False
+    from robodesc.ir.model import Link
+
+    robot.links.insert(0, Link(name="world", src=world_joints[0].loc))
+    findings.add(
+        Severity.WARNING,
+        "world-link",
+        "parent link 'world' is not declared: added as an empty root link, as Gazebo and Drake read it "
+        "(urdfdom refuses the file)",
+        element=world_joints[0].element,
+        loc=world_joints[0].loc,
+        stage="verify",
+    )
+    return True
+
+
+def drop_dangling(robot: Robot, errors: list[Finding], findings: Findings) -> list[Finding]:
+    """Drop the elements these errors are about where the robot stays whole without them; return
+    the errors that remain. Each drop is a warning naming the element and what was lost."""
+    fatal: list[Finding] = []
+    shapes: set[tuple[str, str, int]] = set()
+    for f in errors:
+        what = _dropped(robot, f, shapes)
+        if what is None:
+            fatal.append(f)
+            continue
+        findings.add(Severity.WARNING, f.code, f"{f.message}; {what}", element=f.element, loc=f.loc, stage=f.stage)
+    for link in robot.links:
+        link.visuals = [x for i, x in enumerate(link.visuals) if (link.name, "visual", i) not in shapes]
+        link.collisions = [x for i, x in enumerate(link.collisions) if (link.name, "collision", i) not in shapes]
+    return fatal
+
+
+def _dropped(robot: Robot, f: Finding, shapes: set[tuple[str, str, int]]) -> str | None:
+    if f.code == "bad-geometry":
+        shape = _SHAPE.match(f.element)
+        if shape is None:
+            return None
+        shapes.add((shape.group(1), shape.group(2), int(shape.group(3))))
+        return f"this {shape.group(2)} was dropped (no consumer can build it)"
+    label = _LABEL.match(f.element)
+    if label is None:
+        return None
+    kind, name = label.group(1), label.group(2)
+    if kind == "joint" and f.code in ("dangling-mimic", "bad-mimic"):
+        for joint in robot.joints:
+            if joint.name == name:
+                joint.mimic = None
+        return "its <mimic> was dropped: the joint moves on its own (urdfdom and Gazebo ignore such a mimic)"
+    if kind == "transmission" and f.code == "dangling-joint":
+        robot.transmissions = [t for t in robot.transmissions if t.name != name]
+        return "the transmission was dropped (ros_control would refuse it)"
+    if kind == "ros2_control" and f.code == "dangling-joint":
+        joints = {j.name for j in robot.joints}
+        for rc in robot.ros2_controls:
+            if rc.name == name:
+                rc.joints = [cj for cj in rc.joints if cj.name in joints]
+        return "that <joint> entry was dropped from the ros2_control block"
+    if kind == "sensor" and f.code in ("dangling-joint", "dangling-link"):
+        robot.sensors = [x for x in robot.sensors if x.name != name]
+        return "the sensor was dropped"
+    if kind == "fixed_frame" and f.code == "dangling-link":
+        robot.fixed_frames = [x for x in robot.fixed_frames if x.name != name]
+        return "the fixed frame was dropped"
+    if kind == "loop_joint" and f.code == "dangling-link":
+        robot.loop_joints = [x for x in robot.loop_joints if x.name != name]
+        return "the loop joint was dropped"
+    return None
 
 
 # ---- targets ---------------------------------------------------------------------------------
@@ -163,6 +292,8 @@ def compile_robot(
     progress: Progress = _quiet,
 ) -> CompileResult:
     spec = target_spec(target)
+    if out is not None:
+        check_output(out, folder=spec.folder, source=source)
     findings = Findings()
     resolved = pass_options(options, spec)
     progress("loading")
@@ -173,30 +304,262 @@ def compile_robot(
     findings.extend(passes_pipeline.run_passes(robot, options=resolved))
     after = verify(robot)
     errors = after.errors
-    if options.invalid_inertia is InvalidInertia.WARN:
+    if options.invalid_inertia is not InvalidInertia.ERROR:
         errors = [f for f in errors if f.code not in PHYSICAL_CODES]
     if errors:
         raise VerificationError(errors)
-    if resolved.copy_meshes:
-        if not out:
-            raise ConfigError("--copy-meshes needs an output file (-o)")
-        out_dir = out if spec.folder else os.path.dirname(os.path.abspath(out))
-        progress(f"copying meshes to {os.path.join(out_dir, 'meshes')}")
-        ctx = PassContext(resolved)
-        copy_meshes(robot, out_dir, ctx)
-        findings.extend(ctx.findings)
-    progress(f"writing {target}")
-    emitted = spec.emit(robot, _request(spec, out, options), findings)
-    result = CompileResult(
-        robot=robot, findings=_unique(findings), target=target, text=emitted.text, files=emitted.files
-    )
-    if options.validate:
-        progress("validating")
-        result.validation = validate_emitted(robot, spec, emitted, out, options, after)
-    if spec.finish is not None and out:
-        # Written after the output moved in place: the reports describe the files as written.
-        result.files.update(spec.finish(robot, out, result.findings, result.validation))
+    stage = Staging(out, spec.folder)
+    try:
+        request = _request(spec, stage.path, options)
+        stage.protect_payloads(spec.name == "usd" and bool(getattr(request.options, "layered", False)))
+        kept_meshes = None
+        if resolved.copy_meshes:
+            if not out:
+                raise ConfigError("--copy-meshes needs an output file (-o)")
+            # A folder target gets its meshes/ inside the staged folder; a file target beside the file.
+            out_dir = stage.path if spec.folder else os.path.dirname(os.path.abspath(out))
+            assert out_dir is not None
+            progress(
+                f"copying meshes to {os.path.join(out or '', 'meshes') if spec.folder else os.path.join(out_dir, 'meshes')}"
+            )
+            ctx = PassContext(resolved)
+            copy_meshes(robot, out_dir, ctx)
+            findings.extend(ctx.findings)
+            if spec.folder:
+                kept_meshes = stage.set_aside("meshes")
+        progress(f"writing {target}")
+        emitted = spec.emit(robot, request, findings)
+        if kept_meshes is not None:
+            stage.put_back(kept_meshes, "meshes")
+        result = CompileResult(robot=robot, findings=[], target=target, text=emitted.text, files=emitted.files)
+        if options.validate:
+            progress("validating")
+            _quiet_usd_banner()
+            result.validation = validate_emitted(robot, spec, emitted, stage.path, options, after)
+            if result.validation is not None:
+                result.source_failures = source_defect_failures(findings, result.validation)
+        result.findings = _unique(findings)
+        if options.strict:
+            _refuse_warnings(result)
+        if result.validation is not None and not result.validation.ok:
+            raise ValidationFailedError(result)
+        if spec.finish is not None and stage.path:
+            # Written into the staged output: the reports describe the files as they will be.
+            result.files.update(spec.finish(robot, stage.path, result.findings, result.validation))
+        result.files = {role: stage.final_path(path) for role, path in result.files.items()}
+        stage.commit()
+    except BaseException:
+        stage.discard()
+        raise
     return result
+
+
+class ValidationFailedError(ValidationFailed):
+    """The output differs from the source because of robodesc (exit 1); nothing was moved into place.
+    ``result`` holds the report."""
+
+    def __init__(self, result: CompileResult) -> None:
+        report = result.validation
+        failed = [c for c in report.checks if c.status.name == "FAIL"]
+        first = failed[0] if failed else None
+        what = f"{first.name} {first.element}: {first.message}" if first is not None else "a check failed"
+        super().__init__(f"the output failed validation ({len(failed)} failed check(s); first: {what})")
+        self.result = result
+
+
+def _refuse_warnings(result: CompileResult) -> None:
+    """``--strict``: every warning (and every source-caused validation failure) is an error."""
+    warned = [f for f in result.findings if f.severity is Severity.WARNING]
+    for check in result.source_failures:
+        warned.append(Finding(Severity.WARNING, f"validation:{check.name}", check.message, element=check.element))
+    if warned:
+        raise StrictError([dataclasses.replace(f, severity=Severity.ERROR) for f in warned])
+
+
+class StrictError(VerificationError):
+    """``--strict`` and the compile had warnings: refused, nothing written."""
+
+
+def _quiet_usd_banner() -> None:
+    # usd-core prints a banner to standard error when PXR_WORK_THREAD_LIMIT is set (the validators
+    # set it); this setting, read when pxr loads, turns such alerts off.
+    os.environ.setdefault("TF_ENV_SETTING_ALERTS_ENABLED", "0")
+
+
+# ---- outputs ---------------------------------------------------------------------------------
+class OutputPathError(ConfigError):
+    """The output path cannot be written as asked; found before any work is done."""
+
+
+def check_output(out: str, *, folder: bool, source: Any = None, what: str = "-o") -> None:
+    """Refuse an output path that cannot work, each problem with its own message."""
+    if not out:
+        raise OutputPathError(f"{what}: empty path")
+    path = os.path.abspath(out)
+    if not folder and out.endswith(("/", os.sep)):
+        raise OutputPathError(
+            f"{what} {out}: ends with '/', so it names a folder; this output is one file (e.g. {out.rstrip('/' + os.sep) or '.'}/robot.urdf)"
+        )
+    if isinstance(source, str | os.PathLike) and not os.fspath(source).lstrip().startswith("<"):
+        src = os.path.abspath(os.fspath(source))
+        if src == path or (os.path.exists(path) and os.path.exists(src) and os.path.samefile(src, path)):
+            raise OutputPathError(f"{what} {out}: is the input file; robodesc does not overwrite its input")
+    try:
+        st = os.stat(path)
+    except FileNotFoundError:
+        st = None
+    except NotADirectoryError:
+        st = None
+    except OSError as exc:
+        raise OutputPathError(f"{what} {out}: cannot be examined ({exc.strerror})") from None
+    if st is not None:
+        if stat.S_ISDIR(st.st_mode) and not folder:
+            raise OutputPathError(
+                f"{what} {out}: is an existing folder; give a file name inside it (e.g. {os.path.join(out, 'robot.urdf')})"
+            )
+        if not stat.S_ISDIR(st.st_mode) and folder:
+            raise OutputPathError(f"{what} {out}: is an existing file; this target writes a folder")
+        if not stat.S_ISDIR(st.st_mode) and not stat.S_ISREG(st.st_mode):
+            raise OutputPathError(
+                f"{what} {out}: is a device or special file, not a regular file; robodesc never replaces one"
+            )
+    # The nearest existing folder above must be a folder, and writable.
+    parent = os.path.dirname(path)
+    while not os.path.lexists(parent):
+        up = os.path.dirname(parent)
+        if up == parent:
+            break
+        parent = up
+    if os.path.lexists(parent) and not os.path.isdir(parent):
+        raise OutputPathError(f"{what} {out}: {_rel(parent)} is a file, so nothing can be written under it")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise OutputPathError(f"{what} {out}: the folder {_rel(parent)} is not writable")
+
+
+def _rel(path: str) -> str:
+    rel = os.path.relpath(path)
+    return path if rel.startswith(".." + os.sep + "..") else rel
+
+
+class Staging:
+    """Where a compile writes before it has validated: beside the output, so every relative path
+    (meshes, textures, payload layers) is the same as at the final place. ``commit`` moves it into
+    place; ``discard`` removes it and leaves whatever was there before untouched.
+
+    A file output is staged as a hidden file in the same folder; a folder output as a hidden folder
+    beside it. A layered USD asset also owns ``payloads/`` beside the file: the earlier one is set
+    aside while the new one is written, and restored if the run fails."""
+
+    def __init__(self, out: str | None, folder: bool) -> None:
+        self.final = out
+        self.folder = folder
+        self.path: str | None = None
+        self._payloads: tuple[str, str | None] | None = None
+        self._aside: list[str] = []
+        if out is None:
+            return
+        parent = os.path.dirname(os.path.abspath(out))
+        os.makedirs(parent, exist_ok=True)
+        base = os.path.basename(os.path.abspath(out))
+        if folder:
+            self.path = tempfile.mkdtemp(prefix=f".robodesc-{base}-", dir=parent)
+            os.rmdir(self.path)  # the target creates it (as a folder it stages and moves itself)
+        else:
+            fd, self.path = tempfile.mkstemp(prefix=".robodesc-", suffix=f"-{base}", dir=parent)
+            os.close(fd)
+            os.unlink(self.path)
+
+    def protect_payloads(self, layered: bool) -> None:
+        if not layered or self.final is None:
+            return
+        from robodesc.emit.usd.layers import PAYLOAD_DIR
+
+        payloads = os.path.join(os.path.dirname(os.path.abspath(self.final)), PAYLOAD_DIR)
+        backup = None
+        if os.path.lexists(payloads):
+            backup = tempfile.mkdtemp(prefix=".robodesc-old-payloads-", dir=os.path.dirname(payloads))
+            os.rmdir(backup)
+            os.replace(payloads, backup)
+        self._payloads = (payloads, backup)
+
+    def set_aside(self, name: str) -> str | None:
+        """Keep a copy (hard links) of ``name`` of the staged folder while a target rewrites the
+        folder as a whole; the target still reads the original (the USD reads the copied meshes)."""
+        assert self.path is not None
+        here = os.path.join(self.path, name)
+        if not os.path.isdir(here):
+            return None
+        aside = tempfile.mkdtemp(prefix=".robodesc-aside-", dir=os.path.dirname(self.path))
+        os.rmdir(aside)
+        shutil.copytree(here, aside, copy_function=_link_or_copy)
+        self._aside.append(aside)
+        return aside
+
+    def put_back(self, aside: str, name: str) -> None:
+        assert self.path is not None
+        os.makedirs(self.path, exist_ok=True)
+        here = os.path.join(self.path, name)
+        if os.path.isdir(here):
+            shutil.rmtree(here)
+        os.replace(aside, here)
+        self._aside.remove(aside)
+
+    def final_path(self, path: str) -> str:
+        if self.path is None or self.final is None:
+            return path
+        if path == self.path:
+            return self.final
+        if self.folder and path.startswith(self.path + os.sep):
+            return os.path.join(self.final, path[len(self.path) + 1 :])
+        return path
+
+    def commit(self) -> None:
+        if self.path is None or self.final is None:
+            return
+        from robodesc.emit.common.files import replace_dir_atomic
+
+        if self.folder:
+            if os.path.isdir(self.path):
+                os.chmod(self.path, _folder_mode())
+                replace_dir_atomic(self.path, self.final)
+        elif os.path.lexists(self.path):
+            os.replace(self.path, self.final)
+        if self._payloads is not None and self._payloads[1] is not None:
+            shutil.rmtree(self._payloads[1], ignore_errors=True)
+        self._payloads = None
+        self.path = None
+
+    def discard(self) -> None:
+        for aside in self._aside:
+            shutil.rmtree(aside, ignore_errors=True)
+        self._aside = []
+        if self.path is not None:
+            if os.path.isdir(self.path) and not os.path.islink(self.path):
+                shutil.rmtree(self.path, ignore_errors=True)
+            elif os.path.lexists(self.path):
+                os.unlink(self.path)
+            self.path = None
+        if self._payloads is not None:
+            payloads, backup = self._payloads
+            if os.path.lexists(payloads):
+                shutil.rmtree(payloads, ignore_errors=True)
+            if backup is not None:
+                os.replace(backup, payloads)
+            self._payloads = None
+
+
+def _link_or_copy(src: str, dst: str) -> None:
+    try:
+        os.link(src, dst)
+    except OSError:
+        shutil.copy2(src, dst)
+
+
+def _folder_mode() -> int:
+    """0o777 less the umask: what mkdir would give (mkdtemp makes staging folders 0700)."""
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o777 & ~mask
 
 
 def validate_emitted(
@@ -241,33 +604,84 @@ def validate_emitted(
             with open(urdf, encoding="utf-8") as handle:
                 urdf_text = handle.read()
             base_dir = os.path.dirname(urdf)
+        urdf_text, unmodelled = _without_unmodelled_shapes(urdf_text)
         report = validate_urdf_text(robot, urdf_text, base_dir, vopts)
-    _carried_defects(verified, report)
+        if unmodelled:
+            from robodesc.validation.report import Status
+
+            report.add(
+                "unmodelled-geometry",
+                Status.SKIP,
+                "document",
+                f"{unmodelled} visual/collision element(s) with a geometry robodesc does not model are kept "
+                "verbatim in the output; MuJoCo cannot read them, so the URDF was checked without them",
+            )
     return report
 
 
-def _carried_defects(verified: Findings, report: Any) -> None:
-    """A consumer refusing an element the SOURCE already had wrong is the source's defect faithfully
-    carried through, not a compile failure: keep it visible as a warning."""
+_MODELLED_SHAPES = frozenset({"box", "cylinder", "sphere", "mesh", "capsule"})
+
+
+def _without_unmodelled_shapes(text: str) -> tuple[str, int]:
+    """The URDF without the visual/collision elements kept verbatim because their geometry is one
+    robodesc does not model (a plane, a heightmap): MuJoCo refuses those whatever robodesc does."""
+    if "<geometry" not in text:
+        return text, 0
+    from lxml import etree
+
+    root = etree.fromstring(text.encode("utf-8"))
+    removed = 0
+    for el in root.iterfind("link/*"):
+        if el.tag not in ("visual", "collision"):
+            continue
+        geometry = el.find("geometry")
+        shapes = [c.tag for c in geometry if isinstance(c.tag, str)] if geometry is not None else []
+        parent = el.getparent()
+        if shapes and shapes[0] not in _MODELLED_SHAPES and parent is not None:
+            parent.remove(el)
+            removed += 1
+    if not removed:
+        return text, 0
+    return etree.tostring(root, encoding="unicode"), removed
+
+
+# Validation checks that fail when the source is at fault whatever robodesc writes: the consumer
+# refusing to build the model (a massless moving link) or a mesh file it cannot read.
+SOURCE_CHECKS = frozenset({"mujoco-compile", "mesh-files"})
+
+
+def source_defect_failures(findings: Findings | list[Finding], report: Any) -> list[Any]:
+    """Turn the failed checks the SOURCE is to blame for into warnings, and return them.
+
+    A check fails because of the source when it is about an element the source already had wrong
+    (a warning of the frontend or the verifier: invalid inertia, a massless link, a dropped shape),
+    or when the consumer refuses the model as a whole (SOURCE_CHECKS), as the corpus report
+    classifies them. What remains failed is robodesc's fault: exit 1."""
     from robodesc.validation.report import Status
 
-    defective = {f.element for f in verified if f.code in PHYSICAL_CODES or f.code == "massless-link"}
+    defective = {
+        f.element
+        for f in findings
+        if f.element
+        and (
+            f.code in PHYSICAL_CODES or (f.severity is Severity.WARNING and f.stage.startswith(("verify", "frontend")))
+        )
+    }
+    out = []
     for check in report.checks:
-        if (
-            check.status is Status.FAIL
-            and check.name in ("mujoco-compile", "drake-parse")
-            and check.element in defective
-        ):
+        if check.status is Status.FAIL and (check.name in SOURCE_CHECKS or check.element in defective):
             check.status = Status.WARN
             check.message += " [a defect of the source, carried through unchanged]"
+            out.append(check)
+    return out
 
 
 def _unique(findings: Findings) -> list[Finding]:
     """Drop repeats (the verifier and a pass may notice the same thing)."""
-    seen: set[tuple[str, str, str]] = set()
+    seen: set[tuple[str, str, str, str]] = set()
     out = []
     for f in findings:
-        key = (f.code, f.element, f.message)
+        key = (f.code, f.element, f.message, str(f.loc))
         if key not in seen:
             seen.add(key)
             out.append(f)

@@ -75,7 +75,8 @@ def test_one_precise_message(name: str) -> None:
 @pytest.mark.parametrize("name", ["unknown_key.yaml", "unbalanced.holo", "missing_mesh.holo", "cycle.yaml"])
 def test_cli_prints_one_line_and_exits_2(name: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "robot.urdf"
-    code = main(["compile", str(BAD / name), "-o", str(out), "-q"])
+    # A missing mesh is a warning by default (docs/diagnostics.md); asked to, it refuses.
+    code = main(["compile", str(BAD / name), "-o", str(out), "-q", "--missing-mesh", "error"])
     err = capsys.readouterr().err
     _, where, _ = CASES[name]
     assert code == 2, err

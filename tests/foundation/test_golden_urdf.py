@@ -48,7 +48,7 @@ def _portable(text: str, out_dir: Path) -> str:
     import os
     import re
 
-    corpus = Path(__file__).resolve().parents[3] / "shared" / "corpus"
+    corpus = (Path(__file__).resolve().parents[3] / "shared" / "corpus").resolve()
 
     def fix(match: re.Match[str]) -> str:
         if "://" in match.group(1):  # a missing mesh keeps its URI
@@ -67,3 +67,13 @@ def test_missing_mesh_policies_on_go2() -> None:
         assert any(
             f.code == "missing-mesh" and "body.dae" in f.message and f.element == "link 'body'" for f in loaded.findings
         )
+
+
+def test_golden_numbers_compare_at_the_stated_tolerance() -> None:
+    from tests.conftest import GOLDEN_REL_TOL, same_within_rounding
+
+    # The 15th digit differs between OpenBLAS kernels; a changed value or word does not pass.
+    assert GOLDEN_REL_TOL == 1e-12
+    assert same_within_rounding('ixx="3.3500412129993215e-08"', 'ixx="3.3500412129993426e-08"')
+    assert not same_within_rounding('ixx="3.35e-08"', 'ixx="3.36e-08"')
+    assert not same_within_rounding('ixx="1"', 'iyy="1"')

@@ -3,8 +3,11 @@
 Mesh and texture URIs come as ``package://pkg/path``, ``model://name/path``, ``file://``, absolute or
 relative paths. A ROS package is looked up, in order, in: the caller's explicit ``NAME=DIR`` map; the
 ``package.xml`` files above the input file (the package it belongs to) and beside that package
-(its workspace); ``ROS_PACKAGE_PATH``; ``AMENT_PREFIX_PATH`` (``<prefix>/share/<pkg>``). A
-``package://`` or ``model://`` path that climbs out of its package root through ``..`` is refused.
+(its workspace); ``ROS_PACKAGE_PATH``; ``AMENT_PREFIX_PATH`` (``<prefix>/share/<pkg>``); last, a
+folder of that name above the input file or beside one of its folders, as pybullet and most
+downloaded robot folders expect (``upkie_description/urdf/upkie.urdf`` naming
+``package://upkie_description/meshes/...``). A ``package://`` or ``model://`` path that climbs
+out of its package root through ``..`` is refused.
 """
 
 from __future__ import annotations
@@ -19,6 +22,10 @@ from robodesc.ir.diagnostics import BrokenReferenceError, PathEscapeError
 
 _NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 _MODEL_PATH_VARS = ("GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH", "GAZEBO_MODEL_PATH", "SDF_PATH")
+# How many folders above the input a package named by its folder is looked for.
+FOLDER_LEVELS = 6
+# The ``how`` of a package found only by its folder's name: frontends say so in a warning.
+BY_FOLDER_NAME = "a folder of that name near the input (no package.xml)"
 
 
 @dataclass(slots=True, frozen=True)
@@ -71,6 +78,24 @@ class PackageResolver:
             candidate = os.path.join(prefix, "share", name)
             if os.path.isdir(candidate):
                 return os.path.abspath(candidate), "AMENT_PREFIX_PATH"
+        if self.input_file:
+            return self._folder_near_input(name)
+        return None
+
+    def _folder_near_input(self, name: str) -> tuple[str, str] | None:
+        """A folder called ``name`` that holds the input, or stands beside one of its folders."""
+        assert self.input_file is not None
+        here = os.path.dirname(os.path.abspath(self.input_file))
+        for _ in range(FOLDER_LEVELS):
+            if os.path.basename(here) == name:
+                return here, BY_FOLDER_NAME
+            beside = os.path.join(here, name)
+            if os.path.isdir(beside):
+                return beside, BY_FOLDER_NAME
+            parent = os.path.dirname(here)
+            if parent == here:
+                break
+            here = parent
         return None
 
     def _near_input(self, name: str) -> tuple[str, str] | None:

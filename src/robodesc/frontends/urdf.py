@@ -7,15 +7,17 @@ never dropped. Values are parsed strictly: ``"1/12*m"`` is an error naming the a
 
 from __future__ import annotations
 
+import functools
 import os
+import re
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TypeVar
 
 from lxml import etree
 
 from robodesc.frontends.options import LoadOptions, MissingMesh
-from robodesc.frontends.packages import PackageResolver
+from robodesc.frontends.packages import BY_FOLDER_NAME, PackageResolver
 from robodesc.frontends.xml_safety import parse_xml
 from robodesc.ir.diagnostics import BrokenReferenceError, Findings, ParseError, PathEscapeError, SourceLoc
 from robodesc.ir.geometry import (
@@ -63,6 +65,23 @@ from robodesc.ir.model import (
 
 STAGE = "frontend:urdf"
 T = TypeVar("T")
+# xacro's environment substitutions, sometimes left in a URDF that was never run through xacro.
+_ENV_SUBST = re.compile(r"\$\((env|optenv)\s+([A-Za-z_][A-Za-z0-9_]*)(?:\s+([^)]*))?\)")
+# What each target does with a geometry robodesc does not model, said once in the warning.
+_OTHER_TARGETS = "kept verbatim in the URDF output, left out of SDF and USD"
+
+
+class _UnmodelledShape(Exception):
+    """A <geometry> holds a shape robodesc does not model: its visual/collision is kept verbatim."""
+
+    def __init__(self, tag: str) -> None:
+        super().__init__(tag)
+        self.tag = tag
+
+
+class _ZeroShape(Exception):
+    """A primitive of zero size: nothing to draw or collide with."""
+
 
 # Sensor type spellings seen in URDF files, mapped to the IR's.
 _SENSOR_TYPES = {
@@ -91,6 +110,7 @@ class UrdfReader:
     resolver: PackageResolver
     findings: Findings
     _last_anchor: tuple[str, str] | None = None
+    _folder_packages: set[str] = field(default_factory=set)
 
     # ---- entry point ---------------------------------------------------------------------
     def read(self, root: etree._Element) -> Robot:
@@ -100,6 +120,7 @@ class UrdfReader:
         if not robot.name:
             self.findings.warn("unnamed-robot", "<robot> has no name; using 'robot'", loc=robot.src, stage=STAGE)
             robot.name = "robot"
+        self._substitute_env(root)
         anchor: tuple[str, str] | None = None
         handlers: dict[str, Callable[[etree._Element, Robot], tuple[str, str]]] = {
             "link": self._add_link,
@@ -131,6 +152,39 @@ class UrdfReader:
         return robot
 
     # ---- helpers -------------------------------------------------------------------------
+    def _substitute_env(self, root: etree._Element) -> None:
+        """Resolve ``$(env VAR)`` and ``$(optenv VAR default)`` as xacro would have: a URDF that
+        was written by hand from a xacro template sometimes keeps them (in mesh paths mostly)."""
+        for el in root.iter():
+            if not isinstance(el.tag, str):
+                continue
+            for key, raw in el.attrib.items():
+                value = str(raw)
+                if "$(" not in value:
+                    continue
+                new = _ENV_SUBST.sub(functools.partial(self._env_value, el=el), value)
+                if new != value:
+                    el.set(key, new)
+
+    def _env_value(self, match: re.Match[str], el: etree._Element) -> str:
+        kind, var, default = match.group(1), match.group(2), match.group(3)
+        # As in xacro (docs/security.md): only the variables the user names with --env are read.
+        allowed = self.options.trust_xacro or var in self.options.allowed_env
+        value = self.resolver.environ.get(var) if allowed else None
+        if value is None and kind == "optenv":
+            value = (default or "").strip()
+        if value is None:
+            why = "names an unset environment variable" if allowed else f"was not read (--env {var} allows it)"
+            self.findings.warn("env-unset", f"{match.group(0)} {why}; left as written", loc=self._loc(el), stage=STAGE)
+            return match.group(0)
+        self.findings.info(
+            "env-substituted",
+            f"{match.group(0)} resolved to {value!r}, as xacro would (this file is plain URDF)",
+            loc=self._loc(el),
+            stage=STAGE,
+        )
+        return value
+
     def _loc(self, el: etree._Element) -> SourceLoc:
         line = el.sourceline
         return SourceLoc(self.file, line if isinstance(line, int) else None)
@@ -141,6 +195,22 @@ class UrdfReader:
     def _extension(self, el: etree._Element, anchor: tuple[str, str] | None = None) -> Extension:
         xml = etree.tostring(el, encoding="unicode", with_tail=False)
         return Extension(tag=_tag(el), xml=xml, anchor=anchor, reference=el.get("reference"), src=self._loc(el))
+
+    def _carried_verbatim(self, el: etree._Element, exc: ParseError) -> Extension:
+        """An element robodesc only carries (a transmission's actuator, a joint's calibration or
+        safety controller) with a value it cannot read: keep the element as written, with a warning.
+        No simulator target uses these; ROS nodes that read them see the original text."""
+        if self.options.strict:
+            raise exc
+        self.findings.warn(
+            "unreadable-carried",
+            f"{exc.message}; <{_tag(el)}> is only carried through, so it is kept verbatim in the URDF output "
+            "(no simulator target reads it)",
+            element=exc.element,
+            loc=exc.loc,
+            stage=STAGE,
+        )
+        return self._extension(el)
 
     def _unknown(self, el: etree._Element, where: str) -> None:
         message = f"unknown element <{_tag(el)}> in {where}: kept verbatim"
@@ -164,10 +234,31 @@ class UrdfReader:
         if raw is None:
             return None
         parts = raw.split()
+        if "," in raw:
+            # pybullet reads "0.07, 0, -0.69"; urdfdom refuses it.
+            parts = raw.replace(",", " ").split()
+            self.findings.warn(
+                "comma-vector",
+                f"<{_tag(el)} {attr}={raw!r}>: numbers separated by commas; read as spaces, as pybullet does "
+                "(urdfdom refuses them)",
+                element=element,
+                loc=self._loc(el),
+                stage=STAGE,
+            )
         try:
             values = tuple(float(p) for p in parts)
         except ValueError:
             raise self._fail(el, f"<{_tag(el)} {attr}={raw!r}>: expected {n} numbers", element) from None
+        if len(values) > n:
+            # urdfdom refuses these, pybullet and the Isaac importer read the first n: do that, loudly.
+            self.findings.warn(
+                "extra-numbers",
+                f"<{_tag(el)} {attr}={raw!r}>: {len(values)} numbers where {n} are expected; the first {n} are used",
+                element=element,
+                loc=self._loc(el),
+                stage=STAGE,
+            )
+            return values[:n]
         if len(values) != n:
             raise self._fail(el, f"<{_tag(el)} {attr}={raw!r}>: expected {n} numbers, got {len(values)}", element)
         return values
@@ -250,14 +341,8 @@ class UrdfReader:
                 if link.inertial is not None:
                     raise self._fail(child, "a link has at most one <inertial>", label)
                 link.inertial = self._inertial(child, label)
-            elif tag == "visual":
-                visual = self._visual(child, label, link)
-                if visual is not None:
-                    link.visuals.append(visual)
-            elif tag == "collision":
-                collision = self._collision(child, label, link)
-                if collision is not None:
-                    link.collisions.append(collision)
+            elif tag in ("visual", "collision"):
+                self._add_shape(child, tag, label, link)
             else:
                 self._unknown(child, label)
                 link.extensions.append(self._extension(child))
@@ -286,6 +371,29 @@ class UrdfReader:
             if isinstance(child.tag, str) and _tag(child) not in ("origin", "mass", "inertia"):
                 self._unknown(child, f"{label} <inertial>")
         return inertial
+
+    def _add_shape(self, el: etree._Element, tag: str, label: str, link: Link) -> None:
+        try:
+            if tag == "visual":
+                visual = self._visual(el, label, link)
+                if visual is not None:
+                    link.visuals.append(visual)
+            else:
+                collision = self._collision(el, label, link)
+                if collision is not None:
+                    link.collisions.append(collision)
+        except _UnmodelledShape as shape:
+            self.findings.warn(
+                "unmodelled-geometry",
+                f"<{tag}> with geometry <{shape.tag}>, which robodesc does not model: {_OTHER_TARGETS} "
+                "(urdfdom refuses the file; pybullet reads planes and heightfields)",
+                element=label,
+                loc=self._loc(el),
+                stage=STAGE,
+            )
+            link.extensions.append(self._extension(el))
+        except _ZeroShape:
+            pass  # reported where the size was read
 
     def _visual(self, el: etree._Element, label: str, link: Link) -> Visual | None:
         geometry = self._geometry(el, label)
@@ -328,8 +436,18 @@ class UrdfReader:
         if geom_el is None:
             raise self._fail(el, f"<{_tag(el)}> has no <geometry>", label)
         shapes = [c for c in geom_el if isinstance(c.tag, str)]
-        if len(shapes) != 1:
-            raise self._fail(geom_el, f"<geometry> must hold exactly one shape, has {len(shapes)}", label)
+        if not shapes:
+            raise self._fail(geom_el, "<geometry> holds no shape", label)
+        if len(shapes) > 1:
+            # urdfdom, pybullet and the Isaac importer all read the first shape and ignore the rest.
+            self.findings.warn(
+                "extra-shapes",
+                f"<geometry> holds {len(shapes)} shapes ({', '.join('<' + _tag(c) + '>' for c in shapes)}); "
+                "the first is used, as urdfdom and pybullet do",
+                element=label,
+                loc=self._loc(shapes[1]),
+                stage=STAGE,
+            )
         shape = shapes[0]
         tag = _tag(shape)
         loc = self._loc(shape)
@@ -337,28 +455,40 @@ class UrdfReader:
             size = self._vec3(shape, "size", label)
             if size is None:
                 raise self._fail(shape, "<box> needs size", label)
+            self._zero_size(el, shape, label, size)
             return Box(size=size, src=loc)
-        if tag == "cylinder":
-            return Cylinder(
-                radius=_req(self._float(shape, "radius", label, required=True)),
-                length=_req(self._float(shape, "length", label, required=True)),
-                src=loc,
-            )
-        if tag == "capsule":
-            return Capsule(
-                radius=_req(self._float(shape, "radius", label, required=True)),
-                length=_req(self._float(shape, "length", label, required=True)),
-                src=loc,
-            )
+        if tag in ("cylinder", "capsule"):
+            radius = _req(self._float(shape, "radius", label, required=True))
+            length = _req(self._float(shape, "length", label, required=True))
+            self._zero_size(el, shape, label, (radius,) if tag == "capsule" else (radius, length))
+            return (Cylinder if tag == "cylinder" else Capsule)(radius=radius, length=length, src=loc)
         if tag == "sphere":
-            return Sphere(radius=_req(self._float(shape, "radius", label, required=True)), src=loc)
+            radius = _req(self._float(shape, "radius", label, required=True))
+            self._zero_size(el, shape, label, (radius,))
+            return Sphere(radius=radius, src=loc)
         if tag == "mesh":
             uri = shape.get("filename")
             if not uri:
                 raise self._fail(shape, "<mesh> needs filename", label)
             mesh = Mesh(uri=uri, scale=self._vec3(shape, "scale", label), src=loc)
             return self._resolve_mesh(mesh, label)
-        raise self._fail(shape, f"unknown geometry <{tag}>", label)
+        if self.options.strict:
+            raise self._fail(shape, f"unknown geometry <{tag}>", label)
+        raise _UnmodelledShape(tag)
+
+    def _zero_size(self, el: etree._Element, shape: etree._Element, label: str, sizes: tuple[float, ...]) -> None:
+        """A primitive with a zero dimension has no volume to draw or collide with: drop it.
+        (Negative sizes are left to the verifier, which refuses them.)"""
+        if any(s == 0 for s in sizes) and all(s >= 0 for s in sizes):
+            self.findings.warn(
+                "zero-size-shape",
+                f"<{_tag(el)}> has a <{_tag(shape)}> of zero size; it was dropped "
+                "(urdfdom keeps it, MuJoCo and PhysX refuse zero-size colliders)",
+                element=label,
+                loc=self._loc(shape),
+                stage=STAGE,
+            )
+            raise _ZeroShape()
 
     def _resolve_mesh(self, mesh: Mesh, label: str) -> Geometry | None:
         try:
@@ -368,9 +498,24 @@ class UrdfReader:
         except BrokenReferenceError as exc:
             return self._missing_mesh(mesh, label, f"mesh {mesh.uri!r}: {exc.message}")
         mesh.path, mesh.package = resolved.path, resolved.package
+        if resolved.how == BY_FOLDER_NAME and resolved.package is not None:
+            self._by_folder(resolved.package[0], resolved.path, resolved.package[1], mesh.src)
         if os.path.isfile(resolved.path):
             return mesh
         return self._missing_mesh(mesh, label, f"mesh file {resolved.path!r} does not exist (from {mesh.uri!r})")
+
+    def _by_folder(self, name: str, path: str, inner: str, loc: SourceLoc | None) -> None:
+        if name in self._folder_packages:
+            return
+        self._folder_packages.add(name)
+        root = path[: len(path) - len(inner)].rstrip("/" + os.sep) if inner and path.endswith(inner) else path
+        self.findings.warn(
+            "package-by-folder",
+            f"package {name!r} is not a ROS package here; the folder {root!r} of that name beside or above "
+            f"the input was used (--package {name}=DIR chooses another)",
+            loc=loc,
+            stage=STAGE,
+        )
 
     def _missing_mesh(self, mesh: Mesh, label: str, message: str) -> Geometry | None:
         policy = self.options.missing_mesh
@@ -437,6 +582,20 @@ class UrdfReader:
                 velocity=self._float(limit_el, "velocity", label),
                 src=self._loc(limit_el),
             )
+        if (
+            joint.limit is not None
+            and jtype in (JointType.REVOLUTE, JointType.PRISMATIC)
+            and (joint.limit.lower is None or joint.limit.upper is None)
+        ):
+            missing = " and ".join(b for b in ("lower", "upper") if getattr(joint.limit, b) is None)
+            self.findings.warn(
+                "limit-unbounded",
+                f"<limit> of a {jtype.value} joint without {missing}: urdfdom (ROS) reads a missing bound as 0, "
+                "MuJoCo, pybullet and Drake as no limit; robodesc keeps it unset (SDF and USD get no limit)",
+                element=label,
+                loc=self._loc(limit_el) if limit_el is not None else joint.src,
+                stage=STAGE,
+            )
         dyn_el = self._one(el, "dynamics", label)
         if dyn_el is not None:
             joint.dynamics = Dynamics(
@@ -460,21 +619,27 @@ class UrdfReader:
             )
         sc_el = self._one(el, "safety_controller", label)
         if sc_el is not None:
-            joint.safety_controller = SafetyController(
-                k_velocity=_req(self._float(sc_el, "k_velocity", label, required=True)),
-                k_position=self._float(sc_el, "k_position", label),
-                soft_lower_limit=self._float(sc_el, "soft_lower_limit", label),
-                soft_upper_limit=self._float(sc_el, "soft_upper_limit", label),
-                src=self._loc(sc_el),
-            )
+            try:
+                joint.safety_controller = SafetyController(
+                    k_velocity=_req(self._float(sc_el, "k_velocity", label, required=True)),
+                    k_position=self._float(sc_el, "k_position", label),
+                    soft_lower_limit=self._float(sc_el, "soft_lower_limit", label),
+                    soft_upper_limit=self._float(sc_el, "soft_upper_limit", label),
+                    src=self._loc(sc_el),
+                )
+            except ParseError as exc:
+                joint.extensions.append(self._carried_verbatim(sc_el, exc))
         cal_el = self._one(el, "calibration", label)
         if cal_el is not None:
-            joint.calibration = Calibration(
-                rising=self._float(cal_el, "rising", label),
-                falling=self._float(cal_el, "falling", label),
-                reference_position=self._float(cal_el, "reference_position", label),
-                src=self._loc(cal_el),
-            )
+            try:
+                joint.calibration = Calibration(
+                    rising=self._float(cal_el, "rising", label),
+                    falling=self._float(cal_el, "falling", label),
+                    reference_position=self._float(cal_el, "reference_position", label),
+                    src=self._loc(cal_el),
+                )
+            except ParseError as exc:
+                joint.extensions.append(self._carried_verbatim(cal_el, exc))
         known = {"parent", "child", "origin", "axis", "limit", "dynamics", "mimic", "safety_controller", "calibration"}
         for child in el:
             if isinstance(child.tag, str) and _tag(child) not in known:
@@ -629,11 +794,13 @@ class UrdfReader:
                     try:
                         reduction = float((red[0].text or "").strip())
                     except ValueError:
-                        raise self._fail(
+                        bad = self._fail(
                             red[0],
                             f"<mechanicalReduction>{red[0].text}</mechanicalReduction>: expected a number",
                             label,
-                        ) from None
+                        )
+                        tr.extensions.append(self._carried_verbatim(child, bad))
+                        continue
                 tr.actuators.append(
                     TransmissionActuator(
                         name=self._name(child, "actuator"),
@@ -705,7 +872,8 @@ def read_urdf_string(
 ) -> Robot:
     """Parse URDF text into the IR. ``file`` is used for messages and package discovery."""
     opts = options or LoadOptions()
-    root = parse_xml(text, file)
+    found = findings if findings is not None else Findings()
+    root = parse_xml(text, file, found)
     reader = UrdfReader(
         file=file,
         base_dir=base_dir
@@ -713,6 +881,6 @@ def read_urdf_string(
         else (os.path.dirname(os.path.abspath(file)) if file else os.getcwd()),
         options=opts,
         resolver=resolver or PackageResolver(explicit=dict(opts.package_paths), input_file=file),
-        findings=findings if findings is not None else Findings(),
+        findings=found,
     )
     return reader.read(root)

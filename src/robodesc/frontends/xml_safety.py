@@ -8,17 +8,24 @@ laughs") attacks start. Files above :data:`MAX_BYTES` are refused before parsing
 
 from __future__ import annotations
 
+import codecs
+import contextlib
 import os
 import re
 import stat
 
 from lxml import etree
 
-from robodesc.ir.diagnostics import ParseError, SourceLoc
+from robodesc.ir.diagnostics import Findings, ParseError, SourceLoc
 
 MAX_BYTES = 256 * 1024 * 1024
 _DOCTYPE = re.compile(rb"<!DOCTYPE", re.IGNORECASE)
 _ENTITY = re.compile(rb"<!ENTITY", re.IGNORECASE)
+# An XML declaration anywhere in the prolog, and what may stand before it without harm.
+_DECLARATION = re.compile(rb"<\?xml(\s[^>]*?)?\?>")
+_PROLOG_NOISE = re.compile(rb"\A(?:\xef\xbb\xbf)?(?:\s|<!--.*?-->)*", re.DOTALL)
+_ATTR = re.compile(rb"""(version|encoding)\s*=\s*["']([^"']*)["']""")
+STAGE = "frontend:xml"
 
 
 def _parser() -> etree.XMLParser:
@@ -51,19 +58,139 @@ def refuse_hostile(data: bytes, file: str | None) -> None:
         )
 
 
-def parse_xml(data: bytes | str, file: str | None) -> etree._Element:
-    """Parse ``data`` safely and return the root element. ``file`` is used for messages only."""
+def parse_xml(data: bytes | str, file: str | None, findings: Findings | None = None) -> etree._Element:
+    """Parse ``data`` safely and return the root element. ``file`` is used for messages only.
+
+    Two things every ROS parser (urdfdom's TinyXML2) reads without complaint are accepted here too,
+    each with a warning in ``findings``: an XML declaration that is not the first thing in the file
+    or names a version other than 1.0, and anything after the root element's end (NUL padding,
+    a second document, editor garbage)."""
     raw = data.encode("utf-8") if isinstance(data, str) else data
     refuse_hostile(raw, file)
+    raw = _tolerant_declaration(raw, file, findings)
     try:
         root = etree.fromstring(raw, _parser())
     except etree.XMLSyntaxError as exc:
-        line, column = exc.position if exc.position else (None, None)
-        message = str(exc.msg).split(", line ")[0]
-        raise ParseError(f"malformed XML: {message}", loc=SourceLoc(file, line, column)) from None
+        if "Namespace prefix" in str(exc.msg):
+            declared = _declare_prefixes(raw, file, findings)
+            if declared is not None:
+                return parse_xml(declared, file, findings)
+        end = _root_end(raw, exc) if "Extra content at the end" in str(exc.msg) else None
+        if end is None:
+            raise _syntax_error(exc, file) from None
+        line = raw.count(b"\n", 0, end) + 1
+        if findings is not None:
+            findings.warn(
+                "trailing-content",
+                f"{len(raw) - end} bytes after the root element's end were ignored "
+                f"({_describe(raw[end:])}); urdfdom and pybullet stop reading there too",
+                loc=SourceLoc(file, line),
+                stage=STAGE,
+            )
+        try:
+            root = etree.fromstring(raw[:end], _parser())
+        except etree.XMLSyntaxError as again:
+            raise _syntax_error(again, file) from None
     if root is None:
         raise ParseError("empty document", loc=SourceLoc(file))
     return root
+
+
+_PREFIXED = re.compile(rb"""(?:<|\s)([A-Za-z_][\w.-]*):[A-Za-z_][\w.-]*(?=[\s=/>])""")
+_XMLNS = re.compile(rb"""xmlns:([A-Za-z_][\w.-]*)\s*=""")
+_ROOT_START = re.compile(rb"<([A-Za-z_][\w.:-]*)")
+
+
+def _declare_prefixes(raw: bytes, file: str | None, findings: Findings | None) -> bytes | None:
+    """Declare namespace prefixes the file uses without declaring them (``<drake:acceleration>``):
+    urdfdom and pybullet ignore namespaces, libxml2 refuses. The elements stay unknown elements,
+    kept verbatim. Returns None when there is nothing to declare."""
+    used = {m.group(1) for m in _PREFIXED.finditer(raw)} - {m.group(1) for m in _XMLNS.finditer(raw)}
+    used -= {b"xml", b"xmlns"}
+    if not used:
+        return None
+    prolog = _PROLOG_NOISE.match(raw)
+    start = _ROOT_START.search(raw, prolog.end() if prolog is not None else 0)
+    if start is None:
+        return None
+    names = sorted(p.decode("ascii", "replace") for p in used)
+    decls = b"".join(b' xmlns:%s="urn:robodesc:undeclared:%s"' % (p, p) for p in sorted(used))
+    if findings is not None:
+        findings.warn(
+            "undeclared-prefix",
+            f"namespace prefix(es) {', '.join(names)} used without a declaration; declared for reading "
+            "(urdfdom and pybullet ignore namespaces)",
+            loc=SourceLoc(file, raw.count(b"\n", 0, start.start()) + 1),
+            stage=STAGE,
+        )
+    return raw[: start.end()] + decls + raw[start.end() :]
+
+
+def _syntax_error(exc: etree.XMLSyntaxError, file: str | None) -> ParseError:
+    line, column = exc.position if exc.position else (None, None)
+    message = str(exc.msg).split(", line ")[0]
+    return ParseError(f"malformed XML: {message}", loc=SourceLoc(file, line, column))
+
+
+def _describe(tail: bytes) -> str:
+    stripped = tail.strip()
+    if not stripped.strip(b"\0"):
+        return "NUL bytes"
+    return f"starting {stripped[:30].decode('utf-8', 'replace')!r}"
+
+
+def _tolerant_declaration(raw: bytes, file: str | None, findings: Findings | None) -> bytes:
+    """Blank out an XML declaration libxml2 would refuse: one after comments or blank lines, or
+    with a version other than 1.0. Spaces keep every line number as it was; a declared encoding
+    other than UTF-8 is honoured by transcoding first."""
+    match = _DECLARATION.search(raw, 0, 4096)
+    if match is None:
+        return raw
+    prolog = _PROLOG_NOISE.match(raw)
+    if prolog is None or prolog.end() != match.start():
+        return raw  # the declaration is not in the prolog: let the parser say what is wrong
+    attrs = {k.decode(): v.decode("ascii", "replace") for k, v in _ATTR.findall(match.group(0))}
+    version = attrs.get("version", "1.0")
+    late = match.start() != (3 if raw.startswith(b"\xef\xbb\xbf") else 0)
+    encoding = attrs.get("encoding", "utf-8")
+    foreign = encoding.lower().replace("_", "-") not in ("utf-8", "utf8")
+    if not late and version in ("1.0", "1.1") and not foreign:
+        return raw
+    if foreign:
+        # An unknown or wrong encoding: read as UTF-8, and the parser reports the bad bytes.
+        with contextlib.suppress(LookupError, UnicodeDecodeError):
+            raw = raw.decode(codecs.lookup(encoding).name).encode("utf-8")
+        match = _DECLARATION.search(raw, 0, 4096)
+        assert match is not None
+    why = "is not at the start of the file" if late else f"names XML version {version!r}"
+    if findings is not None and (late or version not in ("1.0", "1.1")):
+        findings.warn(
+            "xml-declaration",
+            f"the XML declaration {why}; it was ignored and the file read as XML 1.0 "
+            "(urdfdom and pybullet accept it, libxml2 would not)",
+            loc=SourceLoc(file, raw.count(b"\n", 0, match.start()) + 1),
+            stage=STAGE,
+        )
+    blank = re.sub(rb"[^\n]", b" ", match.group(0))
+    return raw[: match.start()] + blank + raw[match.end() :]
+
+
+def _root_end(raw: bytes, exc: etree.XMLSyntaxError) -> int | None:
+    """The offset just past the root element's end tag, from libxml2's "extra content" error."""
+    if not exc.position:
+        return None
+    line, column = exc.position
+    start = 0
+    for _ in range(line - 1):
+        start = raw.find(b"\n", start) + 1
+        if start == 0:
+            return None
+    # libxml2 counts columns in characters: convert to bytes through the line's UTF-8 text.
+    stop = raw.find(b"\n", start)
+    text = raw[start : stop if stop >= 0 else len(raw)].decode("utf-8", "replace")
+    offset = start + len(text[: max(column - 1, 0)].encode("utf-8"))
+    head = raw[:offset].rstrip()
+    return len(head) if head.endswith(b">") else None
 
 
 def read_file(path: str, limit: int = MAX_BYTES) -> bytes:

@@ -142,6 +142,7 @@ class _Copier:
                 )
             else:
                 shutil.copyfile(source, tmp)
+            os.chmod(tmp, 0o666 & ~_umask())  # mkstemp made it 0600; a copy gets the usual mode
             os.replace(tmp, target)
         except Exception as exc:
             if os.path.exists(tmp):
@@ -150,6 +151,12 @@ class _Copier:
             return None
         self.done[key] = name
         return name
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
 
 
 def copy_meshes(robot: Robot, out_dir: str, ctx: PassContext) -> Robot:

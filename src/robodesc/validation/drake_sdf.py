@@ -122,20 +122,32 @@ def validate_sdf(
     for msg in dict.fromkeys(" ".join(w.split()) for w in warnings):
         report.add("drake-warning", Status.WARN, "document", msg[:400])
     sdf_to_ir = {v: k for k, v in names.links.items()}
-    bodies = {sdf_to_ir.get(name, name): body for name, body in _bodies(plant).items()}
+    bodies = {
+        sdf_to_ir.get(name, name): body for name, body in _bodies(plant, set(sdf_to_ir) | _link_names(robot)).items()
+    }
     _compare_bodies(robot, bodies, opts, report)
     _compare_joints(robot, plant, names, opts, report)
     _compare_fk(robot, plant, bodies, names, opts, report)
     return report
 
 
-def _bodies(plant: Any) -> dict[str, Any]:
+def _link_names(robot: Robot) -> set[str]:
+    return {link.name for link in robot.links}
+
+
+def _bodies(plant: Any, robot_names: set[str]) -> dict[str, Any]:
+    """The bodies of the robot's model: a world file (``--world``) adds models of its own (the
+    ground plane), whose bodies are not the robot's."""
     from pydrake.multibody.tree import BodyIndex
 
-    out = {}
+    by_model: dict[Any, dict[str, Any]] = {}
     for i in range(1, plant.num_bodies()):  # 0 is Drake's world
         body = plant.get_body(BodyIndex(i))
-        out[body.name()] = body
+        by_model.setdefault(body.model_instance(), {})[body.name()] = body
+    out: dict[str, Any] = {}
+    for bodies in by_model.values():
+        if len(by_model) == 1 or robot_names & set(bodies):
+            out.update(bodies)
     return out
 
 

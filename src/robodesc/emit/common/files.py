@@ -45,12 +45,19 @@ def staged_folder(target: str) -> Iterator[str]:
     parent = os.path.dirname(os.path.abspath(target))
     os.makedirs(parent, exist_ok=True)
     staging = tempfile.mkdtemp(prefix=".robodesc-", dir=parent)
+    os.chmod(staging, folder_mode())  # mkdtemp makes it 0700; the output gets the user's usual mode
     try:
         yield staging
         replace_dir_atomic(staging, target)
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
         raise
+
+
+def folder_mode() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o777 & ~mask
 
 
 def write_files(directory: str, files: Mapping[str, str | bytes]) -> None:
