@@ -17,7 +17,7 @@ from robodesc._version import __version__
 from robodesc.emit.common.paths import PathMode
 from robodesc.frontends.options import MissingMesh
 from robodesc.ir.diagnostics import ConfigError, Finding, RobodescError, Severity, VerificationError
-from robodesc.options import InvalidInertia, build_options
+from robodesc.options import CompileOptions, InvalidInertia, build_options
 from robodesc.pipeline import TARGETS, compile_robot, target_options_class
 
 EPILOG = """\
@@ -302,6 +302,10 @@ def _parser() -> argparse.ArgumentParser:
     )
     comp.add_argument("-q", "--quiet", action="store_true", help="print errors only")
 
+    from robodesc.batch.command import add_batch_parser
+
+    add_batch_parser(sub, comp)  # takes compile's own options
+
     insp = sub.add_parser(
         "inspect",
         help="show a robot's tree, DOF, mass and findings",
@@ -447,10 +451,17 @@ def _accepted(target: str) -> set[str]:
     return {f.name for f in dataclasses.fields(cls)} if cls is not None else set()
 
 
-def _cmd_compile(args: argparse.Namespace) -> int:
+def _compile_options(args: argparse.Namespace) -> CompileOptions:
+    """The compile flags as options (every target's: each target keeps its own)."""
     opts = build_options({**_common_options(args), "mesh_paths": args.mesh_paths, "preset": args.preset})
     opts.target_options = _target_options(args)
     opts.passes = _pass_options(args)
+    opts.validate = args.validate
+    return opts
+
+
+def _cmd_compile(args: argparse.Namespace) -> int:
+    opts = _compile_options(args)
     target = "isaac" if args.isaac_sim else "ros2" if args.ros2 else args.target
     # Each target takes only its own options.
     opts.target_options = {k: v for k, v in opts.target_options.items() if k in _accepted(target)}
@@ -459,7 +470,6 @@ def _cmd_compile(args: argparse.Namespace) -> int:
         if not args.quiet and not args.json:
             print(f"robodesc: {step}", file=sys.stderr)
 
-    opts.validate = args.validate
     result = compile_robot(args.input, target, args.output, opts, progress)
     report = result.validation
     if args.report and report is not None:
@@ -557,6 +567,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         if args.command == "compile":
             return _cmd_compile(args)
+        if args.command == "batch":
+            from robodesc.batch.command import run_command
+
+            return run_command(args, _compile_options)
         if args.command == "expand":
             return _cmd_expand(args)
         if args.command == "validate":
