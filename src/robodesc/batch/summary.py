@@ -51,7 +51,7 @@ def job_entry(job: Job, result: JobResult | None, root: str) -> dict[str, Any]:
         "seconds": round(result.seconds, 3),
         "output": _rel(job.output, root),
         "files": {role: _rel(path, root) for role, path in sorted(result.files.items())},
-        "robot": result.robot,
+        "robot": dict(sorted(result.robot.items())) if result.robot else None,
     }
 
 
