@@ -54,6 +54,8 @@ class JobResult:
     status: str
     seconds: float = 0.0
     error: str = ""
+    # The step a failed job stopped in: load, verify, passes, copy-meshes, emit, validate.
+    stage: str = ""
     findings: list[dict[str, Any]] = field(default_factory=list)
     validation: dict[str, Any] | None = None  # the validation report as JSON, when validation ran
     files: dict[str, str] = field(default_factory=dict)  # role -> absolute path

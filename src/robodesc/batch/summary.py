@@ -45,6 +45,7 @@ def job_entry(job: Job, result: JobResult | None, root: str) -> dict[str, Any]:
         "status": result.status,
         "cached": result.cached,
         "error": result.error,
+        "stage": result.stage,
         "findings": {s: severities.get(s, 0) for s in SEVERITIES},
         "finding_kinds": dict(sorted(kinds.items())),
         "validation": _validation(result, job.options.validate),

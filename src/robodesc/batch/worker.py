@@ -131,6 +131,17 @@ def _failure_findings(err: RobodescError) -> list[dict[str, Any]]:
     ]
 
 
+# compile_robot's progress messages -> the stage names a failed job reports.
+_STAGES = {
+    "loading": "load",
+    "verifying": "verify",
+    "running": "passes",
+    "copying": "copy-meshes",
+    "writing": "emit",
+    "validating": "validate",
+}
+
+
 def run_job(job: Job) -> JobResult:
     """Compile one job with the same pipeline call as ``robodesc compile``; never raises for a job's
     own failure (it is the job's result)."""
@@ -143,7 +154,12 @@ def run_job(job: Job) -> JobResult:
     robot = None
     _recording = opened = (set(), set())
     try:
-        compiled = compile_robot(_source(job.path), job.target, job.output, job.options)
+        result.stage = "load"
+
+        def progress(step: str) -> None:
+            result.stage = _STAGES.get(step.split(" ", 1)[0].rstrip(":"), result.stage)
+
+        compiled = compile_robot(_source(job.path), job.target, job.output, job.options, progress)
         robot = compiled.robot
         result.findings = [f.as_dict() for f in compiled.findings]
         result.files = dict(compiled.files)
@@ -165,6 +181,8 @@ def run_job(job: Job) -> JobResult:
         result.detail = traceback.format_exc()
     finally:
         _recording = None
+    if result.status == OK:
+        result.stage = ""
     result.seconds = time.perf_counter() - started
     if result.status in (OK, VALIDATION_FAILED):
         result.deps = _dependencies(opened, job, robot)
