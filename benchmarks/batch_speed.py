@@ -38,7 +38,17 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 SHARED_CORPUS = os.path.join(ROOT, "..", "shared", "corpus")
 # The peer's shape of output, no repairs, no validation (as benchmarks/usd_vs_urdf_usd_converter.py).
-OPTIONS = ["-t", "usd", "--layered", "--physics-scene", "--no-validate", "--missing-mesh", "warn", "--invalid-inertia", "warn"]
+OPTIONS = [
+    "-t",
+    "usd",
+    "--layered",
+    "--physics-scene",
+    "--no-validate",
+    "--missing-mesh",
+    "warn",
+    "--invalid-inertia",
+    "warn",
+]
 
 
 def _exe() -> str:
@@ -165,7 +175,9 @@ def _report(rows: list[dict[str, Any]], modes: dict[str, dict[int, float]], size
         f"The peer (NVIDIA's urdf-usd-converter) reads URDF only: its loop covers the {peer_robots[big]} URDF robots",
         f"of the {big}, the others' modes all {big} (so the ratios understate robodesc slightly).",
         "",
-        "| mode | " + " | ".join(f"{n} robots: s | robots/s | x peer loop" for n in sizes) + f" | growth {small}->{big} |",
+        "| mode | "
+        + " | ".join(f"{n} robots: s | robots/s | x peer loop" for n in sizes)
+        + f" | growth {small}->{big} |",
         "|---|" + "---|---|---|" * len(sizes) + "---|",
     ]
     for name, times in modes.items():

@@ -129,7 +129,11 @@ def test_manifest_mistakes_name_the_file_and_line(tmp_path: Path) -> None:
 def test_sweeps_grid_and_seeded_random() -> None:
     grid = sweep.expand({"grid": {"a": [1, 2], "b": ["x", "y", "z"]}}, "test")
     assert grid == [{"a": str(a), "b": b} for a in (1, 2) for b in "xyz"]
-    spec = {"random": {"m": {"uniform": [1.0, 2.0]}, "n": {"randint": [1, 3]}, "c": ["p", "q"]}, "samples": 5, "seed": 7}
+    spec = {
+        "random": {"m": {"uniform": [1.0, 2.0]}, "n": {"randint": [1, 3]}, "c": ["p", "q"]},
+        "samples": 5,
+        "seed": 7,
+    }
     first, second = sweep.expand(spec, "test"), sweep.expand(spec, "test")
     assert first == second and len(first) == 5
     assert all(1.0 <= float(p["m"]) <= 2.0 and p["n"] in "123" and p["c"] in "pq" for p in first)
@@ -148,7 +152,9 @@ def test_sweep_expands_into_jobs_with_their_xacro_arguments(tmp_path: Path) -> N
     robots = make_collection(tmp_path)
     out = tmp_path / "out"
     xacro = str(robots / "arm" / "arm.urdf.xacro")
-    code, summary = batch(xacro, "-o", str(out), "--no-validate", "--sweep", "length=0.3,0.4", "--sweep", "length2=1..2", "--samples", "2")
+    code, summary = batch(
+        xacro, "-o", str(out), "--no-validate", "--sweep", "length=0.3,0.4", "--sweep", "length2=1..2", "--samples", "2"
+    )
     assert code == 0
     variants = [(j["id"], j["variant"]["length"]) for j in summary["jobs"]]
     assert variants == [("arm-v1", "0.3"), ("arm-v2", "0.3"), ("arm-v3", "0.4"), ("arm-v4", "0.4")]
@@ -212,7 +218,9 @@ def test_failed_jobs_are_not_cached(tmp_path: Path) -> None:
 # ---- isolation -----------------------------------------------------------------------------------
 def test_a_crash_an_exception_and_a_timeout_are_results_and_the_batch_goes_on(tmp_path: Path) -> None:
     robots = make_collection(tmp_path)
-    python_robot(robots / "segfault.py", "segfault", body="os.kill(os.getpid(), signal.SIGSEGV)", prelude="import os, signal")
+    python_robot(
+        robots / "segfault.py", "segfault", body="os.kill(os.getpid(), signal.SIGSEGV)", prelude="import os, signal"
+    )
     python_robot(robots / "raises.py", "raises", body="raise RuntimeError('boom')")
     python_robot(robots / "hangs.py", "hangs", body="time.sleep(120)", prelude="import time")
     out = tmp_path / "out"
@@ -226,13 +234,23 @@ def test_a_crash_an_exception_and_a_timeout_are_results_and_the_batch_goes_on(tm
     assert jobs["hangs"]["status"] == "timeout"
     assert {jobs[k]["status"] for k in ("alpha", "beta", "arm/arm", "pendulum")} == {"ok"}
     assert summary["totals"]["by_outcome"] == {
-        "ok": 4, "validation-failed": 0, "error": 0, "crashed": 2, "timeout": 1, "not-run": 0
+        "ok": 4,
+        "validation-failed": 0,
+        "error": 0,
+        "crashed": 2,
+        "timeout": 1,
+        "not-run": 0,
     }
 
 
 def test_ctrl_c_stops_cleanly_keeps_finished_jobs_and_the_next_run_resumes(tmp_path: Path) -> None:
     robots = make_collection(tmp_path)
-    python_robot(robots / "zz_slow.py", "slow", body="time.sleep(float(os.environ.get('SLOW', '120')))", prelude="import os, time")
+    python_robot(
+        robots / "zz_slow.py",
+        "slow",
+        body="time.sleep(float(os.environ.get('SLOW', '120')))",
+        prelude="import os, time",
+    )
     out = tmp_path / "out"
     cmd = [sys.executable, "-m", "robodesc", "batch", str(robots), "-o", str(out), "-j", "1", "--no-validate", "-q"]
     proc = subprocess.Popen(cmd, stderr=subprocess.PIPE, text=True)
@@ -253,7 +271,7 @@ def test_ctrl_c_stops_cleanly_keeps_finished_jobs_and_the_next_run_resumes(tmp_p
     assert {jobs[k]["status"] for k in ("alpha", "beta", "arm/arm", "pendulum")} == {"ok"}
     # Resume: only the job that did not finish runs.
     env = {**os.environ, "SLOW": "0"}
-    done = subprocess.run(cmd[:-1] + ["-q"], env=env, capture_output=True, text=True, timeout=120)
+    done = subprocess.run([*cmd[:-1], "-q"], env=env, capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     resumed = json.loads((out / "summary.json").read_text())
     assert rerun(resumed) == {"zz_slow"}
@@ -261,7 +279,9 @@ def test_ctrl_c_stops_cleanly_keeps_finished_jobs_and_the_next_run_resumes(tmp_p
 
 def test_json_goes_to_stdout(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     robots = make_collection(tmp_path)
-    assert main(["batch", str(robots / "alpha.urdf"), "-o", str(tmp_path / "out"), "--json", "-q", "--no-validate"]) == 0
+    assert (
+        main(["batch", str(robots / "alpha.urdf"), "-o", str(tmp_path / "out"), "--json", "-q", "--no-validate"]) == 0
+    )
     summary = json.loads(capsys.readouterr().out)
     assert [j["id"] for j in summary["jobs"]] == ["alpha"]
 

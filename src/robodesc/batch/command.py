@@ -35,17 +35,50 @@ def add_batch_parser(sub: Any, compile_parser: argparse.ArgumentParser) -> argpa
         formatter_class=argparse.RawDescriptionHelpFormatter,
         epilog=EPILOG,
     )
-    p.add_argument("inputs", nargs="+", metavar="INPUT", help="robot files, folders, or manifests (.csv, .yaml with jobs:)")
-    p.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder: one folder per job, and the summary")
+    p.add_argument(
+        "inputs", nargs="+", metavar="INPUT", help="robot files, folders, or manifests (.csv, .yaml with jobs:)"
+    )
+    p.add_argument(
+        "-o", "--output", required=True, metavar="DIR", help="output folder: one folder per job, and the summary"
+    )
     run = p.add_argument_group("running")
-    run.add_argument("-j", "--jobs", type=int, metavar="N", help="parallel workers (default: the number of cores; Ray: the cluster's CPUs)")
-    run.add_argument("--executor", choices=["local", "ray"], default="local", help="a local process pool (default) or Ray tasks (pip install robodesc[ray])")
-    run.add_argument("--address", metavar="ADDR", help="Ray cluster to join (auto, HOST:6379, ray://HOST:10001); default: start Ray on this machine")
-    run.add_argument("--timeout", type=float, default=600.0, metavar="S", help="seconds one job may take before it is stopped (default 600)")
+    run.add_argument(
+        "-j",
+        "--jobs",
+        type=int,
+        metavar="N",
+        help="parallel workers (default: the number of cores; Ray: the cluster's CPUs)",
+    )
+    run.add_argument(
+        "--executor",
+        choices=["local", "ray"],
+        default="local",
+        help="a local process pool (default) or Ray tasks (pip install robodesc[ray])",
+    )
+    run.add_argument(
+        "--address",
+        metavar="ADDR",
+        help="Ray cluster to join (auto, HOST:6379, ray://HOST:10001); default: start Ray on this machine",
+    )
+    run.add_argument(
+        "--timeout",
+        type=float,
+        default=600.0,
+        metavar="S",
+        help="seconds one job may take before it is stopped (default 600)",
+    )
     run.add_argument("--force", action="store_true", help="redo every job, even those unchanged since their last run")
-    run.add_argument("--usd-format", choices=["usda", "usdc"], default="usda", help="USD file format of -t usd (default usda)")
+    run.add_argument(
+        "--usd-format", choices=["usda", "usdc"], default="usda", help="USD file format of -t usd (default usda)"
+    )
     sw = p.add_argument_group("variant sweeps (xacro arguments)")
-    sw.add_argument("--sweep", action="append", default=[], metavar="NAME=V1,V2|NAME=LOW..HIGH", help="grid over listed values, or uniform random between LOW and HIGH (repeatable)")
+    sw.add_argument(
+        "--sweep",
+        action="append",
+        default=[],
+        metavar="NAME=V1,V2|NAME=LOW..HIGH",
+        help="grid over listed values, or uniform random between LOW and HIGH (repeatable)",
+    )
     sw.add_argument("--samples", type=int, metavar="N", help="random variants per grid point (needed with LOW..HIGH)")
     sw.add_argument("--seed", type=int, default=0, help="seed of the random variants (default 0)")
     p.add_argument("--json", action="store_true", help="print the summary as JSON on standard output")
@@ -84,7 +117,12 @@ def run_command(args: argparse.Namespace, compile_options: Callable[[argparse.Na
     target = "isaac" if args.isaac_sim else "ros2" if args.ros2 else args.target
     spec = sweep.from_cli(args.sweep, args.samples, args.seed)
     jobs = plan(
-        args.inputs, target=target, options=compile_options(args), root=args.output, sweep=spec, usd_format=args.usd_format
+        args.inputs,
+        target=target,
+        options=compile_options(args),
+        root=args.output,
+        sweep=spec,
+        usd_format=args.usd_format,
     )
     console = Console(stderr=True)
     run = run_batch(

@@ -38,11 +38,11 @@ def run_local(jobs: Sequence[Job], workers: int, timeout: float | None, done: Do
 
     import pebble
 
-    pool = pebble.ProcessPool(
+    pool: Any = pebble.ProcessPool(
         max_workers=max(1, workers), initializer=init_worker, context=multiprocessing.get_context("spawn")
     )
     try:
-        futures = {pool.schedule(run_job, args=(job,), timeout=timeout): job for job in jobs}
+        futures: dict[Any, Job] = {pool.schedule(run_job, args=(job,), timeout=timeout): job for job in jobs}
         for future in as_completed(futures):
             job = futures[future]
             try:
@@ -50,9 +50,7 @@ def run_local(jobs: Sequence[Job], workers: int, timeout: float | None, done: Do
             except FutureTimeout:
                 result = JobResult(job.id, TIMEOUT, seconds=timeout or 0.0, error=f"timed out after {timeout:g} s")
             except pebble.ProcessExpired as exc:
-                result = JobResult(
-                    job.id, CRASHED, error=f"the worker process died ({_signal_name(exc.exitcode)})"
-                )
+                result = JobResult(job.id, CRASHED, error=f"the worker process died ({_signal_name(exc.exitcode)})")
             except Exception as exc:  # the job could not even be sent or returned (pickling)
                 result = JobResult(job.id, CRASHED, error=f"{type(exc).__name__}: {exc}")
             done(job, result)
@@ -68,8 +66,9 @@ def run_ray(jobs: Sequence[Job], workers: int | None, timeout: float | None, don
     """Each job a Ray task running :func:`run_job`. ``address=None`` starts a local Ray with
     ``workers`` CPUs; otherwise it joins that cluster (``auto``, ``ray://HOST:10001``, ``HOST:6379``).
     Inputs and outputs are paths: they must be on storage every node sees."""
-    import ray
+    import ray as ray_module
 
+    ray: Any = ray_module
     started_here = not ray.is_initialized()
     if started_here:
         kwargs: dict[str, Any] = {"include_dashboard": False, "log_to_driver": False, "configure_logging": False}

@@ -45,7 +45,8 @@ class Job:
 
     def options_dict(self) -> dict[str, Any]:
         """The options as plain JSON values (for the cache key and the job record)."""
-        return _plain(dataclasses.asdict(self.options))
+        plain: dict[str, Any] = _plain(dataclasses.asdict(self.options))
+        return plain
 
 
 @dataclass(slots=True)

@@ -79,7 +79,10 @@ def _row(data: Mapping[str, Any], defaults: Mapping[str, Any], base: str, where:
             raise ConfigError(f"{where}: unknown job key {key!r}{closest(str(key), ROW_KEYS)}")
     if not data.get("input"):
         raise ConfigError(f"{where}: a job needs input: FILE")
-    options = {**_mapping(defaults.get("options"), "defaults options", where), **_mapping(data.get("options"), "options", where)}
+    options = {
+        **_mapping(defaults.get("options"), "defaults options", where),
+        **_mapping(data.get("options"), "options", where),
+    }
     args = {**_mapping(defaults.get("args"), "defaults args", where), **_mapping(data.get("args"), "args", where)}
     packages = {
         **_mapping(defaults.get("packages"), "defaults packages", where),

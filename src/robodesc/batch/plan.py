@@ -14,9 +14,7 @@ from robodesc.ir.diagnostics import ConfigError
 from robodesc.options import CompileOptions
 
 
-def _variants(
-    base: Job, spec: Mapping[str, Any] | None, where: str, overrides: Mapping[str, Any]
-) -> list[Job]:
+def _variants(base: Job, spec: Mapping[str, Any] | None, where: str, overrides: Mapping[str, Any]) -> list[Job]:
     if not spec:
         return [base]
     points = sweeps.expand(spec, where)
@@ -79,7 +77,15 @@ def plan(
                 if not os.path.isfile(row.input):
                     raise ConfigError(f"{row.where}: input {row.input!r}: no such file")
                 out = os.path.join(os.path.abspath(root), row.output) if row.output else ""
-                add(row.input, row.id or robot_stem(row.input), row.where, row.target or target, row.options, row.sweep, out)
+                add(
+                    row.input,
+                    row.id or robot_stem(row.input),
+                    row.where,
+                    row.target or target,
+                    row.options,
+                    row.sweep,
+                    out,
+                )
         else:
             add(given, robot_stem(given), given, target, {}, sweep, "")
     return finalize(jobs, root, usd_format)

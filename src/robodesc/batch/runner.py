@@ -30,7 +30,14 @@ class _Progress:
         self.bar: Any = None
         if not enabled or total == 0:
             return
-        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+        from rich.progress import (
+            BarColumn,
+            MofNCompleteColumn,
+            Progress,
+            TextColumn,
+            TimeElapsedColumn,
+            TimeRemainingColumn,
+        )
 
         self.bar = Progress(
             TextColumn("[bold]batch"),
@@ -118,9 +125,7 @@ def run_batch(
         interrupted = True
     finally:
         bar.stop()
-    summary = build_summary(
-        jobs, results, root, wall_seconds=time.perf_counter() - started, interrupted=interrupted
-    )
+    summary = build_summary(jobs, results, root, wall_seconds=time.perf_counter() - started, interrupted=interrupted)
     write_summary(root, summary)
     return BatchRun(summary, results, interrupted)
 

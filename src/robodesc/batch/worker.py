@@ -23,6 +23,8 @@ from robodesc.ir.diagnostics import RobodescError, VerificationError
 
 _recording: tuple[set[str], set[str]] | None = None  # (opened to read, opened to write)
 _hooked = False
+
+
 # Python's libraries (their code, metadata a lazy import reads) are not the robot's inputs; robodesc's
 # own code is covered by the build fingerprint instead. Data installed beside them (share/...) is.
 def _library_dirs() -> tuple[str, ...]:
@@ -152,7 +154,8 @@ def run_job(job: Job) -> JobResult:
     started = time.perf_counter()
     result = JobResult(job.id, OK)
     robot = None
-    _recording = opened = (set(), set())
+    opened: tuple[set[str], set[str]] = (set(), set())
+    _recording = opened
     try:
         result.stage = "load"
 
