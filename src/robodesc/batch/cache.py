@@ -7,7 +7,8 @@ A job is skipped when its last run wrote its outputs and nothing it depends on c
   changes without a version bump does not reuse stale outputs);
 - the content hash of every file the job read last time (the input, every file it included, the
   meshes): a file that would be newly included can only come from a changed file already listed;
-- the content hash of every output it wrote (an output deleted or edited by hand is rewritten).
+- every output it wrote, by size and modification time (an output deleted or edited by hand is
+  rewritten; outputs are not inputs, so a stamp is enough and costs no hashing).
 
 Records live in ``ROOT/.robodesc-batch/jobs/``, one JSON file per job, written as each job ends,
 so a batch killed at any point keeps every finished job.
@@ -21,7 +22,7 @@ import os
 from typing import Any
 
 from robodesc.batch.jobs import WROTE_OUTPUTS, Job, JobResult
-from robodesc.batch.worker import file_hash
+from robodesc.batch.worker import file_hash, output_stamp
 
 RECORDS = os.path.join(".robodesc-batch", "jobs")
 FORMAT = 1
@@ -100,9 +101,13 @@ def fresh_result(root: str, job: Job, key: str, hashes: Hashes) -> JobResult | N
     result = JobResult.from_dict(record.get("result") or {})
     if result.status not in WROTE_OUTPUTS or not result.deps:
         return None
-    for table in (result.deps, result.outputs):
-        if any(hashes.get(path) != digest for path, digest in table.items()):
+    if any(hashes.get(path) != digest for path, digest in result.deps.items()):
+        return None
+    try:
+        if any(output_stamp(path) != stamp for path, stamp in result.outputs.items()):
             return None
+    except OSError:
+        return None  # an output is gone
     if any(not os.path.exists(path) for path in result.files.values()):
         return None
     result.cached = True

@@ -68,6 +68,26 @@ def file_hash(path: str) -> str:
         return hashlib.file_digest(handle, "sha256").hexdigest()
 
 
+# A worker hashes a mesh many robots share once: keyed by the file's identity, size and time,
+# which only ever saves recomputing the same content hash within this process.
+_hash_memo: dict[tuple[str, int, int, int], str] = {}
+
+
+def _memo_hash(path: str) -> str:
+    info = os.stat(path)
+    key = (path, info.st_ino, info.st_size, info.st_mtime_ns)
+    if key not in _hash_memo:
+        _hash_memo[key] = file_hash(path)
+    return _hash_memo[key]
+
+
+def output_stamp(path: str) -> str:
+    """How an output is recognised as the one this job wrote: its size and modification time. An
+    output is not an input, and hashing every written USD file would cost more than the check saves."""
+    info = os.stat(path)
+    return f"{info.st_size}:{info.st_mtime_ns}"
+
+
 def _dependencies(opened: tuple[set[str], set[str]], job: Job, robot: Any) -> dict[str, str]:
     explicit = {os.path.abspath(job.path)}  # the input and the IR's meshes always count
     if robot is not None:
@@ -91,7 +111,7 @@ def _dependencies(opened: tuple[set[str], set[str]], job: Job, robot: Any) -> di
             ):
                 continue  # a library's code or metadata, read by a lazy import
         if os.path.isfile(path):  # not a folder, nor a temporary file already gone
-            deps[path] = file_hash(path)
+            deps[path] = _memo_hash(path)
     return deps
 
 
@@ -189,7 +209,7 @@ def run_job(job: Job) -> JobResult:
     result.seconds = time.perf_counter() - started
     if result.status in (OK, VALIDATION_FAILED):
         result.deps = _dependencies(opened, job, robot)
-        result.outputs = {path: file_hash(path) for path in sorted(result.files.values()) if os.path.isfile(path)}
+        result.outputs = {path: output_stamp(path) for path in sorted(result.files.values()) if os.path.isfile(path)}
     return result
 
 
