@@ -30,10 +30,10 @@ FORMAT = 1
 
 def build_fingerprint() -> str:
     """robodesc's version and a hash of its installed code (Python sources and C extensions)."""
-    import robodesc
+    from robodesc._version import __version__
 
-    package = os.path.dirname(os.path.abspath(robodesc.__file__))
-    digest = hashlib.sha256(robodesc.__version__.encode())
+    package = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # robodesc/
+    digest = hashlib.sha256(__version__.encode())
     for folder, dirs, names in sorted(os.walk(package)):
         dirs.sort()
         dirs[:] = [d for d in dirs if d != "__pycache__"]
@@ -41,7 +41,7 @@ def build_fingerprint() -> str:
             if name.endswith((".py", ".so", ".pyd")):
                 path = os.path.join(folder, name)
                 digest.update(os.path.relpath(path, package).encode() + b"\0" + file_hash(path).encode())
-    return f"{robodesc.__version__}+{digest.hexdigest()[:16]}"
+    return f"{__version__}+{digest.hexdigest()[:16]}"
 
 
 def job_key(job: Job, fingerprint: str) -> str:
@@ -63,7 +63,7 @@ def record_path(root: str, job_id: str) -> str:
 
 
 def write_record(root: str, job: Job, key: str, result: JobResult) -> None:
-    from robodesc.emit.files import write_atomic
+    from robodesc.emit.common.files import write_atomic
 
     data = {"format": FORMAT, "id": job.id, "key": key, "result": result.as_dict()}
     write_atomic(record_path(root, job.id), json.dumps(data, indent=1, sort_keys=True))

@@ -12,7 +12,7 @@ from typing import Any
 
 from robodesc.ir.diagnostics import ConfigError
 from robodesc.options import CompileOptions, build_options
-from robodesc.pipeline import FOLDER_TARGETS, TARGETS, target_options_class
+from robodesc.pipeline import TARGETS, target_options_class, target_spec
 
 # Suffixes a robot's file name ends with, longest first: the job and its output are named by the rest.
 ROBOT_SUFFIXES = (".urdf.xacro", ".xacro", ".urdf", ".xml", ".yaml", ".yml", ".holo", ".py")
@@ -97,7 +97,7 @@ def robot_stem(path: str) -> str:
 
 def output_path(root: str, job_id: str, target: str, stem: str, usd_format: str = "usda") -> str:
     folder = os.path.join(os.path.abspath(root), *job_id.split("/"))
-    if target in FOLDER_TARGETS:
+    if target_spec(target).folder:
         return folder
     suffix = f".{usd_format}" if target == "usd" else OUTPUT_SUFFIX[target]
     return os.path.join(folder, stem + suffix)

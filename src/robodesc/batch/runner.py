@@ -131,7 +131,7 @@ def run_batch(
 
 
 def write_summary(root: str, summary: dict[str, Any]) -> None:
-    from robodesc.emit.files import write_atomic
+    from robodesc.emit.common.files import write_atomic
 
     write_atomic(os.path.join(root, "summary.json"), json.dumps(summary, indent=2) + "\n")
     write_atomic(os.path.join(root, "summary.md"), to_markdown(summary))

@@ -59,7 +59,7 @@ def job_entry(job: Job, result: JobResult | None, root: str) -> dict[str, Any]:
 def build_summary(
     jobs: Sequence[Job], results: Mapping[str, JobResult], root: str, *, wall_seconds: float, interrupted: bool
 ) -> dict[str, Any]:
-    from robodesc import __version__
+    from robodesc._version import __version__
 
     entries = [job_entry(job, results.get(job.id), root) for job in jobs]
     by_outcome = Counter(e["status"] for e in entries)
