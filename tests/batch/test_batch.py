@@ -121,6 +121,9 @@ def test_manifest_mistakes_name_the_file_and_line(tmp_path: Path) -> None:
     (robots / "jobs.yaml").write_text("jobs:\n  - input: alpha.urdf\n  - input: beta.urdf\n    targt: sdf\n")
     with pytest.raises(ConfigError, match=r"jobs\.yaml:3: unknown job key 'targt'; did you mean 'target'\?"):
         plan([str(robots / "jobs.yaml")], target="urdf", options=CompileOptions(), root=str(tmp_path / "o"))
+    (robots / "jobs.yaml").write_text("jobs:\n  - {input: alpha.urdf, id: ../elsewhere}\n")
+    with pytest.raises(ConfigError, match="must stay inside the output folder"):
+        plan([str(robots / "jobs.yaml")], target="urdf", options=CompileOptions(), root=str(tmp_path / "o"))
     (robots / "jobs.csv").write_text("input,missing_mesh\nalpha.urdf,sometimes\n")
     with pytest.raises(ConfigError, match=r"jobs\.csv:2: option missing_mesh='sometimes'"):
         plan([str(robots / "jobs.csv")], target="urdf", options=CompileOptions(), root=str(tmp_path / "o"))

@@ -152,6 +152,9 @@ def finalize(jobs: list[Job], root: str, usd_format: str = "usda") -> list[Job]:
     order) and give every job without an output of its own the one under ``root``."""
     taken: set[str] = set()
     for job in jobs:
+        parts = job.id.split("/")
+        if job.id.startswith("/") or any(p in ("", ".", "..") for p in parts):
+            raise ConfigError(f"job id {job.id!r}: a job's folder must stay inside the output folder")
         new, count = job.id, 1
         while new in taken:
             count += 1
