@@ -138,10 +138,12 @@ def robot_result(robot: CorpusRobot, targets: list[str], results: list[JobResult
             + "; --missing-mesh warn|primitive|drop chooses another policy"
         )
     structural = first.status not in WROTE_OUTPUTS and first.stage == "verify"
+    if structural:
+        # The compile stopped at the first verification, so it built no robot to describe: read
+        # it again here for its size and every verifier error (physical ones included).
+        _source_defects(robot, out)
     for f in first.findings:
-        if (structural and f["severity"] == "error") or (
-            f["code"] in PHYSICAL_CODES and str(f["message"]).endswith(PASSED_THROUGH)
-        ):
+        if f["code"] in PHYSICAL_CODES and str(f["message"]).endswith(PASSED_THROUGH):
             out.defects.append(_render_finding(f))
             out.defect_elements.add(str(f["element"]))
     for target, res in zip(targets, results, strict=True):
@@ -161,6 +163,22 @@ def robot_result(robot: CorpusRobot, targets: list[str], results: list[JobResult
             tr.converted, tr.blame, tr.why = "no", "target", res.error
         out.targets.append(tr)
     return out
+
+
+def _source_defects(robot: CorpusRobot, out: RobotResult) -> None:
+    from robodesc.frontends.load import load_path
+    from robodesc.frontends.options import LoadOptions, MissingMesh
+    from robodesc.ir.diagnostics import Severity
+    from robodesc.ir.verify import verify
+
+    options = LoadOptions(package_paths=robot.packages, xacro_args=robot.xacro_args, missing_mesh=MissingMesh.WARN)
+    ir = load_path(robot.path, options).robot
+    out.links = len(ir.links)
+    for f in verify(ir):
+        if f.severity is Severity.ERROR:
+            where = f" (line {f.loc.line})" if f.loc is not None and f.loc.line is not None else ""
+            out.defects.append(f"{f.element}: [{f.code}] {f.message}{where}")
+            out.defect_elements.add(f.element)
 
 
 def load_consumers(path: str = CONSUMERS) -> dict[str, dict[str, Any]]:
@@ -191,7 +209,7 @@ def _slug(name: str) -> str:
 
 
 def _short_path(text: str) -> str:
-    for prefix in sorted({sys.prefix, os.path.dirname(ROOT)}, key=len, reverse=True):
+    for prefix in sorted({sys.prefix, sys.base_prefix, os.path.dirname(ROOT)}, key=len, reverse=True):
         text = text.replace(prefix + os.sep, "")
     return text.replace("|", "\\|").replace("\n", " ")
 
