@@ -246,7 +246,8 @@ def test_a_crash_an_exception_and_a_timeout_are_results_and_the_batch_goes_on(tm
     }
 
 
-def test_ctrl_c_stops_cleanly_keeps_finished_jobs_and_the_next_run_resumes(tmp_path: Path) -> None:
+@pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "kill"])
+def test_ctrl_c_stops_cleanly_keeps_finished_jobs_and_the_next_run_resumes(tmp_path: Path, stop: int) -> None:
     robots = make_collection(tmp_path)
     python_robot(
         robots / "zz_slow.py",
@@ -263,7 +264,7 @@ def test_ctrl_c_stops_cleanly_keeps_finished_jobs_and_the_next_run_resumes(tmp_p
         time.sleep(0.2)
     assert len(list(records.glob("*.json"))) == 4, "the four quick jobs did not finish"
     time.sleep(0.5)  # the slow one is running now
-    proc.send_signal(signal.SIGINT)
+    proc.send_signal(stop)
     _, err = proc.communicate(timeout=30)
     assert proc.returncode == 130, err
     assert "interrupted" in err and "Traceback" not in err

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import os
+import signal
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -111,6 +112,7 @@ def run_batch(
         bar.advance(result)
 
     interrupted = False
+    previous_term = _stop_on_sigterm()
     try:
         if todo:
             if executor == "ray":
@@ -125,9 +127,25 @@ def run_batch(
         interrupted = True
     finally:
         bar.stop()
+        if previous_term is not None:
+            signal.signal(signal.SIGTERM, previous_term)
     summary = build_summary(jobs, results, root, wall_seconds=time.perf_counter() - started, interrupted=interrupted)
     write_summary(root, summary)
     return BatchRun(summary, results, interrupted)
+
+
+def _stop_on_sigterm() -> Any:
+    """``kill`` stops a batch like Ctrl-C does (workers stopped, summary written); only in the
+    main thread, where Python lets a handler be set."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return None
+
+    def stop(signum: int, frame: Any) -> None:
+        raise KeyboardInterrupt
+
+    return signal.signal(signal.SIGTERM, stop)
 
 
 def write_summary(root: str, summary: dict[str, Any]) -> None:
