@@ -327,3 +327,25 @@ def test_ray_gives_the_same_summary_and_bytes_as_the_local_pool(tmp_path: Path) 
     assert by_id(on_ray)["raises"]["status"] == "crashed"
     local_files, ray_files = _tree(tmp_path / "local"), _tree(tmp_path / "ray")
     assert len(local_files) == 4 and local_files == ray_files
+
+
+def test_progress_bar_and_final_table_on_a_terminal(tmp_path: Path) -> None:
+    import io
+
+    from rich.console import Console
+
+    from robodesc.batch.runner import run_batch
+    from robodesc.batch.summary import print_table
+
+    robots = make_collection(tmp_path)
+    (robots / "meshes" / "b.stl").unlink()
+    out = tmp_path / "out"
+    options = CompileOptions(validate=False)
+    jobs = plan([str(robots)], target="urdf", options=options, root=str(out))
+    screen = io.StringIO()
+    console = Console(file=screen, force_terminal=True, width=120)
+    run = run_batch(jobs, str(out), workers=2, progress=True, console=console)
+    print_table(run.summary, console)
+    text = screen.getvalue()
+    assert "4/4" in text and "3 ok" in text and "1 error" in text  # done/total and the outcomes so far
+    assert "jobs that did not succeed" in text and "b.stl" in text
