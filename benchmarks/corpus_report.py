@@ -4,36 +4,40 @@
     PYTHONPATH=src python benchmarks/corpus_report.py --subset small  # a few robots -> docs/corpus-report-small.md
     PYTHONPATH=src python benchmarks/corpus_report.py --subset small --check   # CI: fail if the file is stale
 
-Targets: URDF (validated in MuJoCo), SDF (validated in Drake) and USD (validated with usd-core's
-UsdPhysics parser, plus mujoco-usd when installed), each only when its emitter imports. The file is deterministic: robots in corpus
-order, errors at machine precision printed as "≤1e-12", no timestamps; timings go to stdout only.
+A thin user of ``robodesc batch``: one job per robot and target (URDF validated in MuJoCo, SDF in
+Drake, USD with usd-core's UsdPhysics parser, plus mujoco-usd when installed), each the same compile
+as ``robodesc compile ROBOT -t TARGET`` with default flags, on every core
+(``--jobs``); this script only renders the jobs' results. With ``--workdir DIR`` the outputs are kept
+and a rerun redoes only the robots whose files changed. When ``benchmarks/results/consumers.json``
+exists (robot -> {"newton": ..., "newton_isaac": ..., "isaac_importer": ...}, written by the
+consumer benchmarks), its verdicts become extra columns.
+
+The file is deterministic: robots in corpus order, errors at machine precision printed as "≤1e-12",
+no timestamps; timings go to stdout only.
 """
 
 from __future__ import annotations
 
 import argparse
-import copy
+import json
 import os
 import sys
 import tempfile
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
-from robodesc.emit.common.paths import PathMode
-from robodesc.emit.urdf import UrdfOptions, emit_urdf
-from robodesc.frontends.load import load_path
-from robodesc.frontends.options import LoadOptions, MissingMesh
-from robodesc.ir.diagnostics import Findings, RobodescError, Severity
-from robodesc.ir.model import Robot
-from robodesc.ir.verify import PHYSICAL_CODES, verify
-from robodesc.pipeline import drop_dangling
+from robodesc.batch.jobs import CRASHED, TIMEOUT, WROTE_OUTPUTS, Job, JobResult, finalize, with_overrides
+from robodesc.batch.runner import run_batch
+from robodesc.ir.verify import PHYSICAL_CODES
+from robodesc.options import CompileOptions
 from robodesc.validation.corpora import CorpusRobot, all_robots
-from robodesc.validation.mujoco_urdf import validate_urdf_text
-from robodesc.validation.options import ValidateOptions
-from robodesc.validation.report import Status, ValidationReport
+from robodesc.validation.report import Check, Status, ValidationReport
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+CONSUMERS = os.path.join(ROOT, "benchmarks", "results", "consumers.json")
+CONSUMER_COLUMNS = ("newton", "newton_isaac", "isaac_importer")
 SMALL = (
     "spirit",
     "ur_description/urdf/ur5_robot",
@@ -45,6 +49,9 @@ SMALL = (
     "stretch_description_SE3_eoa_wrist_dw3_tool_sg3",
 )
 FLOOR = 1e-12  # below this an error is rounding, and its exact value differs between machines
+# The suffix the compiler adds to a physical defect it carries through (pipeline.verify_source).
+PASSED_THROUGH = " (passed through unchanged; --invalid-inertia repair fixes it from geometry)"
+CARRIED = " [a defect of the source, carried through unchanged]"
 
 
 @dataclass
@@ -69,108 +76,126 @@ class RobotResult:
     targets: list[TargetResult] = field(default_factory=list)
 
 
-# ---- running -----------------------------------------------------------------------------------
-def load(robot: CorpusRobot, result: RobotResult) -> Robot | None:
-    # The compiler's default: a missing mesh is a warning (the reference is kept), noted here.
-    opts = LoadOptions(package_paths=robot.packages, xacro_args=robot.xacro_args, missing_mesh=MissingMesh.WARN)
-    try:
-        loaded = load_path(robot.path, opts)
-    except RobodescError as exc:
-        result.load_error = exc.render()
-        return None
-    missing = [f for f in loaded.findings if f.code == "missing-mesh"]
+# ---- running: one batch job per robot and target -------------------------------------------------
+def _slug(name: str) -> str:
+    return "".join(c if c.isalnum() else "_" for c in name)
+
+
+def make_jobs(robots: list[CorpusRobot], targets: list[str], root: str) -> list[Job]:
+    jobs = []
+    for robot in robots:
+        for target in targets:
+            # Default flags, as a user runs them (a missing mesh and invalid inertia are warnings).
+            values = {"package_paths": dict(robot.packages), "xacro_args": dict(robot.xacro_args)}
+            options = with_overrides(CompileOptions(), target, values, robot.path)
+            job_id = f"{_slug(robot.corpus)}/{_slug(robot.name)}/{target}"
+            jobs.append(Job(job_id, robot.path, os.path.abspath(robot.path), target, "", options))
+    # USD as .usdc: mesh arrays written as text would dominate the time.
+    return finalize(jobs, root, usd_format="usdc")
+
+
+def report_from_json(data: dict[str, Any]) -> ValidationReport:
+    """The job's validation report, with checks the compiler let through as source defects counted
+    as failures again: this report says what the consumer thinks of the output, cause aside."""
+    report = ValidationReport(str(data["robot"]), str(data["target"]), str(data["consumer"]))
+    for c in data["checks"]:
+        status, message = Status(c["status"]), str(c["message"])
+        if status is Status.WARN and message.endswith(CARRIED):
+            status, message = Status.FAIL, message.removesuffix(CARRIED)
+        report.checks.append(Check(c["name"], status, c["element"], message, c["error"], c["tolerance"]))
+    report.max_errors = {k: float(v) for k, v in data["max_errors"].items()}
+    return report
+
+
+def _render_finding(f: dict[str, Any]) -> str:
+    where = f" (line {f['line']})" if f.get("line") is not None else ""
+    return f"{f['element']}: [{f['code']}] {str(f['message']).removesuffix(PASSED_THROUGH)}{where}"
+
+
+def _loc_render(f: dict[str, Any]) -> str:
+    loc = f["file"] + (f":{f['line']}" if f.get("line") is not None else "") if f.get("file") else ""
+    return ": ".join(x for x in (loc, f["element"], str(f["message"]).removesuffix("; reference kept")) if x)
+
+
+def robot_result(robot: CorpusRobot, targets: list[str], results: list[JobResult]) -> RobotResult:
+    out = RobotResult(robot)
+    first = results[0]
+    if first.status not in WROTE_OUTPUTS and first.stage == "load":
+        out.load_error = first.error
+        return out
+    info = next((r.robot for r in results if r.robot), None)
+    out.links = int(info["links"]) if info else 0
+    missing = [f for f in first.findings if f["code"] == "missing-mesh"]
     if missing:
-        result.load_note = f"missing mesh (a warning): {_short_path(missing[0].render())}"
-    return loaded.robot
+        out.load_note = (
+            "missing mesh (a warning): "
+            + _loc_render(missing[0])
+            + "; --missing-mesh primitive|drop|error chooses another policy"
+        )
+    structural = first.status not in WROTE_OUTPUTS and first.stage == "verify"
+    if structural:
+        # The compile stopped at the first verification, so it built no robot to describe: read
+        # it again here for its size and every verifier error (physical ones included).
+        _source_defects(robot, out)
+    for f in first.findings:
+        if f["code"] in PHYSICAL_CODES and str(f["message"]).endswith(PASSED_THROUGH):
+            out.defects.append(_render_finding(f))
+            out.defect_elements.add(str(f["element"]))
+    for target, res in zip(targets, results, strict=True):
+        tr = TargetResult(target, "yes", seconds=res.seconds)
+        if res.status in WROTE_OUTPUTS:
+            tr.report = report_from_json(res.validation) if res.validation else None
+        elif structural:
+            errors = [f"{f['element']}: {f['message']}" for f in res.findings if f["severity"] == "error"]
+            tr.converted, tr.blame = "no", "source"
+            # `robodesc compile` stops on structural errors (only physical ones can be let through).
+            tr.why = f"source defect, the compiler stops: {errors[0]}" + (
+                f" (and {len(errors) - 1} more)" if len(errors) > 1 else ""
+            )
+        elif res.status in (CRASHED, TIMEOUT):
+            tr.converted, tr.blame, tr.why = "no", "robodesc", f"robodesc crashed: {res.error}"
+        else:
+            tr.converted, tr.blame, tr.why = "no", "target", res.error
+        out.targets.append(tr)
+    return out
 
 
-def run_urdf(robot: Robot, options: ValidateOptions, workdir: str) -> TargetResult:
-    text = emit_urdf(robot, UrdfOptions(path_mode=PathMode.ABSOLUTE))
-    report = validate_urdf_text(robot, text, os.path.dirname(robot.source_file or "") or None, options)
-    return TargetResult("urdf", "yes", report=report)
+def _source_defects(robot: CorpusRobot, out: RobotResult) -> None:
+    from robodesc.frontends.load import load_path
+    from robodesc.frontends.options import LoadOptions, MissingMesh
+    from robodesc.ir.diagnostics import Severity
+    from robodesc.ir.verify import verify
 
-
-def run_sdf(robot: Robot, options: ValidateOptions, workdir: str) -> TargetResult:
-    try:
-        from robodesc.emit.sdf import SdfOptions, build_sdf
-    except ImportError as exc:
-        return TargetResult("sdf", "n/a", f"target not available ({exc})")
-    from robodesc.validation.drake_sdf import validate_sdf
-
-    try:
-        built = build_sdf(robot, SdfOptions(path_mode=PathMode.ABSOLUTE))
-    except RobodescError as exc:
-        return TargetResult("sdf", "no", exc.render(), blame="target")
-    report = validate_sdf(
-        robot,
-        built.text,
-        options,
-        link_names=built.names.by_kind.get("link", {}),
-        joint_names=built.names.by_kind.get("joint", {}),
-    )
-    return TargetResult("sdf", "yes", report=report)
-
-
-def run_usd(robot: Robot, options: ValidateOptions, workdir: str) -> TargetResult:
-    try:
-        from robodesc.emit.usd import emit_usd
-    except ImportError as exc:
-        return TargetResult("usd", "n/a", f"target not available ({exc})")
-    from robodesc.passes.options import PassOptions
-    from robodesc.passes.pipeline import run_passes
-    from robodesc.validation.mujoco_usd import validate_usd
-
-    # USD needs valid prim names; the pipeline sanitizes them before emitting, so do the same.
-    robot = copy.deepcopy(robot)
-    run_passes(robot, options=PassOptions(sanitize_names=True))
-    path = os.path.join(workdir, f"{_slug(robot.name)}.usdc")  # binary: mesh arrays as text would dominate
-    try:
-        emit_usd(robot, path)
-    except RobodescError as exc:
-        return TargetResult("usd", "no", exc.render(), blame="target")
-    return TargetResult("usd", "yes", report=validate_usd(robot, path, options))
-
-
-RUNNERS: dict[str, Callable[[Robot, ValidateOptions, str], TargetResult]] = {
-    "urdf": run_urdf,
-    "sdf": run_sdf,
-    "usd": run_usd,
-}
-
-
-def run_robot(robot: CorpusRobot, targets: list[str], options: ValidateOptions, workdir: str) -> RobotResult:
-    result = RobotResult(robot)
-    ir = load(robot, result)
-    if ir is None:
-        return result
-    result.links = len(ir.links)
-    structural = []
-    # As the compiler does: an element naming what does not exist is dropped with a warning.
-    found = verify(ir)
-    kept = drop_dangling(ir, found.errors, Findings())
-    for f in found:
+    options = LoadOptions(package_paths=robot.packages, xacro_args=robot.xacro_args, missing_mesh=MissingMesh.WARN)
+    ir = load_path(robot.path, options).robot
+    out.links = len(ir.links)
+    for f in verify(ir):
         if f.severity is Severity.ERROR:
             where = f" (line {f.loc.line})" if f.loc is not None and f.loc.line is not None else ""
-            result.defects.append(f"{f.element}: [{f.code}] {f.message}{where}")
-            result.defect_elements.add(f.element)
-            if f.code not in PHYSICAL_CODES and f in kept:
-                structural.append(f"{f.element}: {f.message}")
-    if structural:
-        # `robodesc compile` stops on structural errors (only physical ones can be let through).
-        why = f"source defect, the compiler stops: {structural[0]}" + (
-            f" (and {len(structural) - 1} more)" if len(structural) > 1 else ""
-        )
-        result.targets = [TargetResult(t, "no", why, blame="source") for t in targets]
-        return result
-    for target in targets:
-        started = time.perf_counter()
-        try:
-            tr = RUNNERS[target](ir, options, workdir)
-        except Exception as exc:  # a crash is a robodesc bug: record it, keep going
-            tr = TargetResult(target, "no", f"robodesc crashed: {type(exc).__name__}: {exc}", blame="robodesc")
-        tr.seconds = time.perf_counter() - started
-        result.targets.append(tr)
-    return result
+            out.defects.append(f"{f.element}: [{f.code}] {f.message}{where}")
+            out.defect_elements.add(f.element)
+
+
+def load_consumers(path: str = CONSUMERS) -> dict[str, dict[str, Any]]:
+    """robot -> consumer verdicts, from the consumer benchmarks' results (empty when absent)."""
+    if not os.path.exists(path):
+        return {}
+    with open(path, encoding="utf-8") as handle:
+        data = json.load(handle)
+    return {str(k): v for k, v in data.items() if isinstance(v, dict)} if isinstance(data, dict) else {}
+
+
+def consumer_cell(value: Any) -> str:
+    if value is None:
+        return "–"
+    if isinstance(value, bool):
+        return "pass" if value else "FAIL"
+    if isinstance(value, dict):
+        for key in ("status", "verdict", "result", "ok"):
+            if key in value:
+                return consumer_cell(value[key])
+        return "–"
+    return _short_path(str(value))
 
 
 # ---- rendering ---------------------------------------------------------------------------------
@@ -179,7 +204,7 @@ def _slug(name: str) -> str:
 
 
 def _short_path(text: str) -> str:
-    for prefix in sorted({sys.prefix, os.path.dirname(ROOT)}, key=len, reverse=True):
+    for prefix in sorted({sys.prefix, sys.base_prefix, os.path.dirname(ROOT)}, key=len, reverse=True):
         text = text.replace(prefix + os.sep, "")
     return text.replace("|", "\\|").replace("\n", " ")
 
@@ -228,7 +253,9 @@ def status_cells(tr: TargetResult) -> tuple[str, str, str, str, str]:
     return validated, fk, mi, sim, ""
 
 
-def render(results: list[RobotResult], targets: list[str], subset: str) -> str:
+def render(
+    results: list[RobotResult], targets: list[str], subset: str, consumers: dict[str, dict[str, Any]] | None = None
+) -> str:
     import mujoco
 
     versions = [f"mujoco {mujoco.__version__}"]
@@ -260,8 +287,8 @@ def render(results: list[RobotResult], targets: list[str], subset: str) -> str:
         "[validation.md](validation.md) for the checks and tolerances. Errors at machine precision show",
         "as ≤1e-12. *Cause* says whether a failure comes from the **source** (a defect the IR verifier or",
         "the consumer finds in the input: fix the input or compile with `--invalid-inertia repair`) or",
-        "from **robodesc** (the output differs from the input: a bug to report). *Converted* `yes*`: the",
-        "source reads only with `--missing-mesh warn` (a mesh file it names is missing).",
+        "from **robodesc** (the output differs from the input: a bug to report). *Converted* `yes*`: a",
+        "mesh file the source names is missing (a warning by default; the reference is kept).",
         "",
     ]
     # summary
@@ -315,17 +342,32 @@ def render(results: list[RobotResult], targets: list[str], subset: str) -> str:
     )
     out += ["", f"Robots whose source has defects (IR verifier errors): {len(defective)} of {n}.", ""]
 
+    consumers = consumers or {}
+    extra = [c for c in CONSUMER_COLUMNS if any(c in v for v in consumers.values())]
     out += [
         "## Robots",
         "",
-        "| corpus | robot | links | target | converted | validated | max FK error | max mass / inertia error (rel.) | simulation | note |",
-        "|---|---|---|---|---|---|---|---|---|---|",
+        "| corpus | robot | links | target | converted | validated | max FK error | max mass / inertia error (rel.) | simulation | note |"
+        + "".join(f" {c} |" for c in extra),
+        "|---|---|---|---|---|---|---|---|---|---|" + "---|" * len(extra),
     ]
+    if extra:
+        out[-3:-2] = [
+            f"Columns {', '.join(extra)}: the verdicts of those consumers on the robot "
+            "(`benchmarks/results/consumers.json`), on its first row.",
+            "",
+        ]
+
+    def consumer_cells(r: RobotResult) -> str:
+        verdicts = consumers.get(f"{r.robot.corpus}/{r.robot.name}", consumers.get(r.robot.name, {}))
+        return "".join(f" {consumer_cell(verdicts.get(c))} |" for c in extra)
+
     for r in results:
         name = r.robot.name
         if r.load_error:
             out.append(
                 f"| {r.robot.corpus} | {name} | – | all | no | – | – | – | – | NOT READ: {_short_path(r.load_error)} |"
+                + consumer_cells(r)
             )
             continue
         for t in r.targets:
@@ -337,6 +379,7 @@ def render(results: list[RobotResult], targets: list[str], subset: str) -> str:
                 note = f"{len(r.defects)} source defect(s), see below"
             out.append(
                 f"| {r.robot.corpus} | {name} | {r.links} | {t.target} | {conv} | {validated} | {fk} | {mi} | {sim} | {_short_path(note)} |"
+                + (consumer_cells(r) if t is r.targets[0] else " |" * len(extra))
             )
     out.append("")
     out += [
@@ -390,6 +433,11 @@ def main(argv: list[str] | None = None) -> int:
     )
     parser.add_argument("--targets", default="urdf,sdf,usd")
     parser.add_argument("--check", action="store_true", help="do not write; exit 1 if the file would change")
+    parser.add_argument("--jobs", type=int, help="parallel workers (default: the number of cores)")
+    parser.add_argument("--timeout", type=float, default=900.0, help="seconds one robot and target may take")
+    parser.add_argument(
+        "--workdir", help="keep the compiled robots here; a rerun then redoes only the robots whose files changed"
+    )
     args = parser.parse_args(argv)
     os.environ.setdefault("PXR_WORK_THREAD_LIMIT", "1")
     targets = [t for t in args.targets.split(",") if t]
@@ -399,25 +447,30 @@ def main(argv: list[str] | None = None) -> int:
     out = args.out or os.path.join(
         ROOT, "docs", "corpus-report.md" if args.subset == "all" else "corpus-report-small.md"
     )
-    options = ValidateOptions()
     started = time.perf_counter()
+    with tempfile.TemporaryDirectory(prefix="robodesc-corpus-") as tmp:
+        root = args.workdir or tmp
+        jobs = make_jobs(robots, targets, root)
+        run = run_batch(jobs, root, workers=args.jobs, timeout=args.timeout)
+    if run.interrupted:
+        print("interrupted", file=sys.stderr)
+        return 130
     results = []
-    with tempfile.TemporaryDirectory(prefix="robodesc-corpus-") as workdir:
-        for robot in robots:
-            t0 = time.perf_counter()
-            res = run_robot(robot, targets, options, workdir)
-            results.append(res)
-            per = ", ".join(f"{t.target} {t.seconds:.2f}s" for t in res.targets)
-            state = (
-                "NOT READ"
-                if res.load_error
-                else " ".join(
-                    f"{t.target}:{'ok' if t.report is not None and t.report.ok else t.converted if t.report is None else 'FAIL'}"
-                    for t in res.targets
-                )
+    for index, robot in enumerate(robots):
+        mine = [run.results[job.id] for job in jobs[index * len(targets) : (index + 1) * len(targets)]]
+        res = robot_result(robot, targets, mine)
+        results.append(res)
+        per = ", ".join(f"{t.target} {t.seconds:.2f}s" for t in res.targets)
+        state = (
+            "NOT READ"
+            if res.load_error
+            else " ".join(
+                f"{t.target}:{'ok' if t.report is not None and t.report.ok else t.converted if t.report is None else 'FAIL'}"
+                for t in res.targets
             )
-            print(f"{time.perf_counter() - t0:6.2f}s  {robot.corpus}/{robot.name}: {state} ({per})", flush=True)
-    text = render(results, targets, args.subset)
+        )
+        print(f"{robot.corpus}/{robot.name}: {state} ({per})", flush=True)
+    text = render(results, targets, args.subset, load_consumers())
     elapsed = time.perf_counter() - started
     print(f"{len(results)} robots in {elapsed:.1f} s", flush=True)
     if args.check:

@@ -23,7 +23,7 @@ from robodesc._version import __version__
 from robodesc.emit.common.paths import PathMode
 from robodesc.frontends.options import MissingMesh
 from robodesc.ir.diagnostics import ConfigError, Finding, RobodescError, Severity, SourceLoc, VerificationError
-from robodesc.options import InvalidInertia, build_options
+from robodesc.options import CompileOptions, InvalidInertia, build_options
 from robodesc.pipeline import TARGETS, compile_robot, target_options_class
 
 EPILOG = """\
@@ -326,6 +326,10 @@ def _parser() -> argparse.ArgumentParser:
     comp.add_argument(
         "-v", "--verbose", action="store_true", help="list every finding (informational ones too), not one per kind"
     )
+
+    from robodesc.batch.command import add_batch_parser
+
+    add_batch_parser(sub, comp)  # takes compile's own options
 
     insp = sub.add_parser(
         "inspect",
@@ -687,12 +691,19 @@ def _json_doc(
     return doc
 
 
-def _cmd_compile(args: argparse.Namespace) -> int:
-    from robodesc.pipeline import ValidationFailedError, check_output
-
+def _compile_options(args: argparse.Namespace) -> CompileOptions:
+    """The compile flags as options (every target's: each target keeps its own)."""
     opts = build_options({**_common_options(args), "mesh_paths": args.mesh_paths, "preset": args.preset})
     opts.target_options = _target_options(args)
     opts.passes = _pass_options(args)
+    opts.validate = args.validate
+    return opts
+
+
+def _cmd_compile(args: argparse.Namespace) -> int:
+    from robodesc.pipeline import ValidationFailedError, check_output
+
+    opts = _compile_options(args)
     target = "isaac" if args.isaac_sim else "ros2" if args.ros2 else args.target
     # Each target takes only its own options.
     opts.target_options = {k: v for k, v in opts.target_options.items() if k in _accepted(target)}
@@ -826,7 +837,19 @@ def _cmd_expand(args: argparse.Namespace) -> int:
     return 0
 
 
-COMMANDS = {"compile": _cmd_compile, "expand": _cmd_expand, "validate": _cmd_validate, "inspect": _cmd_inspect}
+def _cmd_batch(args: argparse.Namespace) -> int:
+    from robodesc.batch.command import run_command
+
+    return run_command(args, _compile_options)
+
+
+COMMANDS = {
+    "compile": _cmd_compile,
+    "batch": _cmd_batch,
+    "expand": _cmd_expand,
+    "validate": _cmd_validate,
+    "inspect": _cmd_inspect,
+}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

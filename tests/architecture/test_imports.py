@@ -88,10 +88,16 @@ GRAPH = {m: imports_of(m) for m in MODULES}
 LEAVES = {"robodesc._version"}
 
 
+# Packages of the driver layer: they may import everything, and only the CLI imports them.
+DRIVER_PACKAGES = {"batch"}
+
+
 def stage(module: str) -> str:
     if module in LEAVES:
         return "leaf"
     parts = module.split(".")
+    if len(parts) >= 2 and parts[1] in DRIVER_PACKAGES:
+        return DRIVER
     if len(parts) >= 3 or (len(parts) == 2 and (PACKAGE / parts[1]).is_dir()):
         return parts[1]
     return DRIVER
@@ -193,3 +199,15 @@ def test_public_import_paths_of_the_docs() -> None:
         )
     )
     assert {SdfOptions, UsdOptions, Ros2Options, UrdfOptions}
+
+
+def test_only_the_cli_imports_driver_packages() -> None:
+    def package(module: str) -> str:
+        parts = module.split(".")
+        return parts[1] if len(parts) > 1 and parts[1] in DRIVER_PACKAGES else ""
+
+    for module, targets in sorted(GRAPH.items()):
+        if module == "robodesc.cli":
+            continue
+        reached = {t for t in targets if package(t) and package(t) != package(module)}
+        assert not reached, f"{module} imports {sorted(reached)}: only robodesc.cli may"

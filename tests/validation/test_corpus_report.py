@@ -32,3 +32,21 @@ def test_small_subset_urdf_report(tmp_path: Path) -> None:
     assert "| not converted: robodesc crashed | 0 |" in text
     assert "robodesc crashed:" not in text
     assert script.main(["--subset", "small", "--targets", "urdf", "--out", str(out), "--check"]) == 0
+
+
+def test_consumer_verdicts_become_extra_columns(tmp_path: Path) -> None:
+    script = _script()
+    path = tmp_path / "consumers.json"
+    path.write_text(
+        '{"spirit": {"newton": "pass", "newton_isaac": {"status": "FAIL"}, "isaac_importer": null},'
+        ' "other": {"newton": true}}'
+    )
+    consumers = script.load_consumers(str(path))
+    robot = script.CorpusRobot("quadsdk", "spirit", "spirit.urdf.xacro")
+    result = script.RobotResult(robot, links=3, targets=[script.TargetResult("urdf", "yes")])
+    text = script.render([result], ["urdf"], "small", consumers)
+    assert "| note | newton | newton_isaac | isaac_importer |" in text
+    assert "| pass | FAIL | – |" in text
+    # Without the file the table keeps its columns.
+    assert script.load_consumers(str(tmp_path / "absent.json")) == {}
+    assert "newton" not in script.render([result], ["urdf"], "small", {})

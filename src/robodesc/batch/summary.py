@@ -1,0 +1,147 @@
+"""The batch's summary: JSON (``summary.json``, or standard output with ``--json``), Markdown
+(``summary.md``) and the final table on the terminal.
+
+Jobs are listed in plan order, whatever order they finished in, and paths are relative to the
+output folder, so that two runs of the same batch (on a local pool or on Ray) give the same summary
+apart from the measured times (``seconds``, ``wall_seconds``) and which jobs were ``cached``.
+"""
+
+from __future__ import annotations
+
+import os
+from collections import Counter
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from robodesc.batch.jobs import OUTCOMES, Job, JobResult
+
+NOT_RUN = "not-run"  # the batch was interrupted before this job finished
+SEVERITIES = ("error", "warning", "info")
+
+
+def _rel(path: str, root: str) -> str:
+    rel = os.path.relpath(path, root)
+    return rel.replace(os.sep, "/")
+
+
+def _validation(result: JobResult, validate: bool) -> str | None:
+    if result.validation is not None:
+        return "pass" if result.validation.get("ok") else "fail"
+    if result.status in ("ok", "validation-failed"):
+        return "off" if not validate else "none"
+    return None
+
+
+def job_entry(job: Job, result: JobResult | None, root: str) -> dict[str, Any]:
+    if result is None:
+        result = JobResult(job.id, NOT_RUN)
+    severities = Counter(str(f.get("severity", "")) for f in result.findings)
+    kinds = Counter(str(f.get("code", "")) for f in result.findings)
+    return {
+        "id": job.id,
+        "input": job.input,
+        "target": job.target,
+        "variant": job.variant,
+        "status": result.status,
+        "cached": result.cached,
+        "error": result.error,
+        "stage": result.stage,
+        "findings": {s: severities.get(s, 0) for s in SEVERITIES},
+        "finding_kinds": dict(sorted(kinds.items())),
+        "validation": _validation(result, job.options.validate),
+        "seconds": round(result.seconds, 3),
+        "output": _rel(job.output, root),
+        "files": {role: _rel(path, root) for role, path in sorted(result.files.items())},
+        "robot": dict(sorted(result.robot.items())) if result.robot else None,
+    }
+
+
+def build_summary(
+    jobs: Sequence[Job], results: Mapping[str, JobResult], root: str, *, wall_seconds: float, interrupted: bool
+) -> dict[str, Any]:
+    from robodesc._version import __version__
+
+    entries = [job_entry(job, results.get(job.id), root) for job in jobs]
+    by_outcome = Counter(e["status"] for e in entries)
+    kinds: Counter[str] = Counter()
+    severities: Counter[str] = Counter()
+    for e in entries:
+        kinds.update(e["finding_kinds"])
+        severities.update(e["findings"])
+    return {
+        "robodesc": __version__,
+        "interrupted": interrupted,
+        "totals": {
+            "jobs": len(entries),
+            "by_outcome": {o: by_outcome.get(o, 0) for o in (*OUTCOMES, NOT_RUN)},
+            "cached": sum(1 for e in entries if e["cached"]),
+            "findings": {s: severities.get(s, 0) for s in SEVERITIES},
+            "by_finding_kind": dict(sorted(kinds.items())),
+            "validation": dict(sorted(Counter(str(e["validation"]) for e in entries if e["validation"]).items())),
+            "seconds": round(sum(e["seconds"] for e in entries), 3),
+            "wall_seconds": round(wall_seconds, 3),
+        },
+        "jobs": entries,
+    }
+
+
+def _cell(text: Any) -> str:
+    return str(text).replace("|", "\\|").replace("\n", " ")
+
+
+def to_markdown(summary: Mapping[str, Any]) -> str:
+    totals = summary["totals"]
+    lines = [
+        "# robodesc batch summary",
+        "",
+        f"robodesc {summary['robodesc']}; {totals['jobs']} jobs"
+        + (" (interrupted: jobs marked not-run did not finish)" if summary["interrupted"] else "")
+        + f"; {totals['cached']} unchanged since their last run (skipped);"
+        f" {totals['wall_seconds']:.1f} s wall time, {totals['seconds']:.1f} s in jobs.",
+        "",
+        "| outcome | jobs |",
+        "|---|---|",
+    ]
+    lines += [f"| {name} | {count} |" for name, count in totals["by_outcome"].items() if count]
+    lines += ["", "| finding kind | count |", "|---|---|"]
+    lines += [f"| {_cell(kind)} | {count} |" for kind, count in totals["by_finding_kind"].items()] or ["| – | 0 |"]
+    lines += [
+        "",
+        "| job | input | target | status | errors | warnings | infos | validation | s | outputs | message |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for e in summary["jobs"]:
+        f = e["findings"]
+        status = e["status"] + (" (unchanged)" if e["cached"] else "")
+        outputs = ", ".join(e["files"].values()) if e["files"] else "–"
+        lines.append(
+            f"| {_cell(e['id'])} | {_cell(e['input'])} | {e['target']} | {status} | {f['error']} | {f['warning']} | "
+            f"{f['info']} | {e['validation'] or '–'} | {e['seconds']:.2f} | {_cell(outputs)} | {_cell(e['error'])} |"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def print_table(summary: Mapping[str, Any], console: Any, limit: int = 20) -> None:
+    """Counts by outcome, then the jobs that did not succeed (the first ``limit``)."""
+    from rich.table import Table
+
+    totals = summary["totals"]
+    table = Table(title=f"robodesc batch: {totals['jobs']} jobs in {totals['wall_seconds']:.1f} s")
+    table.add_column("outcome")
+    table.add_column("jobs", justify="right")
+    for name, count in totals["by_outcome"].items():
+        if count:
+            table.add_row(name, str(count))
+    if totals["cached"]:
+        table.add_row("(unchanged, skipped)", str(totals["cached"]))
+    console.print(table)
+    bad = [e for e in summary["jobs"] if e["status"] not in ("ok",)]
+    if not bad:
+        return
+    failed = Table(title="jobs that did not succeed" + (f" (first {limit} of {len(bad)})" if len(bad) > limit else ""))
+    for column in ("job", "status", "message"):
+        failed.add_column(column, overflow="fold")
+    for e in bad[:limit]:
+        message = e["error"] or ("a validation check failed" if e["status"] == "validation-failed" else "")
+        failed.add_row(e["id"], e["status"], message)
+    console.print(failed)
