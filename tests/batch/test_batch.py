@@ -18,6 +18,7 @@ from robodesc.batch import sweep
 from robodesc.batch.discover import discover
 from robodesc.batch.plan import plan
 from robodesc.cli import main
+from robodesc.frontends.options import MissingMesh
 from robodesc.ir.diagnostics import ConfigError
 from robodesc.options import CompileOptions
 
@@ -211,10 +212,12 @@ def test_failed_jobs_are_not_cached(tmp_path: Path) -> None:
     robots = make_collection(tmp_path)
     (robots / "meshes" / "b.stl").unlink()
     out = tmp_path / "out"
-    code, first = batch(str(robots), "-o", str(out), "--no-validate")
+    # A missing mesh is a warning by default; as an error it makes a job that fails.
+    args = (str(robots), "-o", str(out), "--no-validate", "--missing-mesh", "error")
+    code, first = batch(*args)
     assert code == 2 and by_id(first)["beta"]["status"] == "error"
     assert "b.stl" in by_id(first)["beta"]["error"] and first["totals"]["by_finding_kind"]["broken-reference"] == 1
-    _, second = batch(str(robots), "-o", str(out), "--no-validate")
+    _, second = batch(*args)
     assert rerun(second) == {"beta"}
 
 
@@ -340,7 +343,7 @@ def test_progress_bar_and_final_table_on_a_terminal(tmp_path: Path) -> None:
     robots = make_collection(tmp_path)
     (robots / "meshes" / "b.stl").unlink()
     out = tmp_path / "out"
-    options = CompileOptions(validate=False)
+    options = CompileOptions(validate=False, missing_mesh=MissingMesh.ERROR)  # beta fails
     jobs = plan([str(robots)], target="urdf", options=options, root=str(out))
     screen = io.StringIO()
     console = Console(file=screen, force_terminal=True, width=120)
