@@ -30,7 +30,8 @@ JOINT = (
 # Runs the CLI in a fresh interpreter and prints its own peak RSS (KiB) afterwards.
 RUNNER = (
     "import resource, sys\n"
-    "from robodesc.cli import main\n"
+    "from robodesc.cli import main, tune_gc\n"
+    "tune_gc()  # as the robodesc console script does\n"
     "code = main(sys.argv[1:])\n"
     "print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, file=sys.stderr)\n"
     "sys.exit(code)\n"

@@ -927,11 +927,26 @@ def main(argv: Sequence[str] | None = None) -> int:
         return fail(3, [{"severity": "error", "code": "internal", "message": message}])
 
 
+def tune_gc() -> None:
+    """Make the cyclic garbage collector run less often, for a process that compiles and exits.
+
+    A compile allocates millions of small objects (the IR, lxml proxies, findings) and frees few
+    cycles, so the default threshold of 700 allocations has the collector walk the growing heap
+    again and again: about a sixth of a 20,000-link chain's time. Objects alive after the imports
+    are moved out of its sight (``gc.freeze``). Only the console script calls it: a long-lived
+    process that imports robodesc keeps its own collector settings."""
+    import gc
+
+    gc.freeze()
+    gc.set_threshold(100_000, 50, 100)
+
+
 def run() -> NoReturn:
     """The ``robodesc`` console script: :func:`main`, then exit without the interpreter's teardown.
 
     Every output is written and closed (atomically) before ``main`` returns, so tearing down the
     loaded modules (numpy, lxml, usd-core when validating) would only cost 20-40 ms of each run."""
+    tune_gc()
     code = main()
     try:
         sys.stdout.flush()

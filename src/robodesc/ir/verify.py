@@ -499,13 +499,39 @@ def _fields(cls: type) -> tuple[tuple[str, tuple[float, float, str]], ...]:
     return names
 
 
+def _scan_fields(
+    obj: object,
+    fields: tuple[tuple[str, tuple[float, float, str]], ...],
+    loc: SourceLoc | None,
+    path: str,
+    bad: list[_Bad],
+) -> None:
+    """:func:`_scan` of one dataclass's fields, each against its own bounds."""
+    here = getattr(obj, "src", None) or loc
+    for name, field_bounds in fields:
+        value = getattr(obj, name)
+        if type(value) is float:
+            if not (-field_bounds[1] <= value <= field_bounds[1]) or (
+                field_bounds[0] and 0.0 < abs(value) < field_bounds[0]
+            ):
+                bad.append((f"{path}.{name}", here, value, field_bounds))
+        elif type(value) is str:
+            if _NOT_XML.search(value):
+                bad.append((f"{path}.{name}", here, value, None))
+        elif value is not None and type(value) is not bool:
+            _scan(value, here, f"{path}.{name}", field_bounds, bad)
+
+
 def _scan(obj: object, loc: SourceLoc | None, path: str, bounds: tuple[float, float, str], bad: list[_Bad]) -> None:
     """Collect every number under ``obj`` outside ``bounds`` (NaN and infinities included), and every
     string with a character XML cannot carry, with its path. Hot on large robots (it visits every
     value of the IR, twice per compile): the fields of a dataclass are checked in place by exact
     type, one chained comparison per float, and a path string is built only for containers entered
     and for offending values."""
-    if type(obj) is float:
+    known = _FIELDS.get(type(obj))
+    if known is not None:  # an IR dataclass seen before: most nodes, checked first
+        _scan_fields(obj, known, loc, path, bad)
+    elif type(obj) is float:
         if not (-bounds[1] <= obj <= bounds[1]) or (bounds[0] and 0.0 < abs(obj) < bounds[0]):
             bad.append((path, loc, obj, bounds))
     elif type(obj) is str:
@@ -532,19 +558,7 @@ def _scan(obj: object, loc: SourceLoc | None, path: str, bounds: tuple[float, fl
     elif type(obj) is bool or obj is None or isinstance(obj, enum.Enum):
         return
     elif dataclasses.is_dataclass(obj) and not isinstance(obj, type):
-        here = getattr(obj, "src", None) or loc
-        for name, field_bounds in _fields(type(obj)):
-            value = getattr(obj, name)
-            if type(value) is float:
-                if not (-field_bounds[1] <= value <= field_bounds[1]) or (
-                    field_bounds[0] and 0.0 < abs(value) < field_bounds[0]
-                ):
-                    bad.append((f"{path}.{name}", here, value, field_bounds))
-            elif type(value) is str:
-                if _NOT_XML.search(value):
-                    bad.append((f"{path}.{name}", here, value, None))
-            elif value is not None and type(value) is not bool:
-                _scan(value, here, f"{path}.{name}", field_bounds, bad)
+        _scan_fields(obj, _fields(type(obj)), loc, path, bad)
     elif isinstance(obj, int):  # an int subclass that is no bool or enum
         _scan(int(obj), loc, path, bounds, bad)
     elif isinstance(obj, float):
