@@ -190,7 +190,9 @@ def test_drive_units_and_extras(tmp_path: Path) -> None:
     assert math.isclose(elbow.GetAttribute("drive:angular:physics:stiffness").Get(), 300 * math.pi / 180, rel_tol=1e-6)
     assert math.isclose(elbow.GetAttribute("drive:angular:physics:damping").Get(), 3 * math.pi / 180, rel_tol=1e-6)
     assert math.isclose(elbow.GetAttribute("physxJoint:maxJointVelocity").Get(), 2.5 * 180 / math.pi, rel_tol=1e-6)
-    assert math.isclose(elbow.GetAttribute("newton:maxJointVelocity").Get(), 2.5 * 180 / math.pi, rel_tol=1e-6)
+    # newton-usd-schemas 0.6: NewtonJointAPI's velocity limit is newton:velocityLimit, in deg/s.
+    assert math.isclose(elbow.GetAttribute("newton:velocityLimit").Get(), 2.5 * 180 / math.pi, rel_tol=1e-6)
+    assert not elbow.GetAttribute("newton:maxJointVelocity").IsValid()
     slide = stage.GetPrimAtPath("/arm/joints/slide")
     assert slide.GetAttribute("drive:linear:physics:stiffness").Get() == 2000.0
     assert math.isclose(slide.GetAttribute("physxJoint:maxJointVelocity").Get(), 0.3, rel_tol=1e-6)
@@ -200,7 +202,8 @@ def test_drive_units_and_extras(tmp_path: Path) -> None:
     assert yaw.GetAttribute("drive:angular:physics:stiffness").Get() == pytest.approx(50 * math.pi / 180)
     assert yaw.GetAttribute("physxJoint:jointFriction").Get() == pytest.approx(0.2)
     assert yaw.GetAttribute("newton:friction").Get() == pytest.approx(0.2)
-    assert yaw.GetAttribute("newton:damping").Get() == pytest.approx(0.5)
+    # Passive damping is per degree for an angular DOF (NewtonJointAPI: effort·s/deg).
+    assert yaw.GetAttribute("newton:damping").Get() == pytest.approx(0.5 * math.pi / 180)
     schemas = yaw.GetPrimTypeInfo().GetAppliedAPISchemas()
     assert "PhysxJointAPI" in schemas and "NewtonJointAPI" in schemas and "PhysicsJointStateAPI:angular" in schemas
     assert not yaw.GetAttribute("physxJoint:armature").IsAuthored()
@@ -235,7 +238,11 @@ def test_mimic(tmp_path: Path) -> None:
     ref = follower.GetRelationship("physxMimicJoint:rotX:referenceJoint").GetTargets()
     assert ref == [Sdf.Path("/gripper/joints/finger")]
     assert follower.GetAttribute("physxMimicJoint:rotX:referenceJointAxis").Get() == "rotY"
-    assert not follower.HasAPI(UsdPhysics.DriveAPI, "angular")
+    # The follower keeps its effort limit on a drive without gains (as Isaac Sim 6.2's importer).
+    drive = UsdPhysics.DriveAPI(follower, "angular")
+    assert follower.HasAPI(UsdPhysics.DriveAPI, "angular")
+    assert drive.GetStiffnessAttr().Get() == 0.0 and drive.GetDampingAttr().Get() == 0.0
+    assert drive.GetMaxForceAttr().Get() > 0
     slide = stage.GetPrimAtPath("/gripper/joints/pad_slide")
     assert slide.GetAttribute("newton:mimicCoef0").Get() == pytest.approx(0.001)
 

@@ -46,6 +46,8 @@ class IsaacSettings:
     # Spawn pose for Isaac Lab: base position (m) and the initial joint positions (rad) by regex.
     init_pos: tuple[float, float, float] = (0.0, 0.0, 0.0)
     init_joint_pos: dict[str, float] = field(default_factory=dict)
+    # The Isaac Lab the generated module targets: "3" (quaternions x, y, z, w) or "2" (w, x, y, z).
+    isaac_lab_version: str = "3"
 
     def gains(self, joint: Joint) -> tuple[float, float]:
         """SI (stiffness, damping) for ``joint``; 0 where no rule matches."""

@@ -7,6 +7,7 @@ converts without importing numpy.
 from __future__ import annotations
 
 import math
+import struct
 from dataclasses import dataclass
 
 from robodesc.ir.geometry import Inertial, Vec3
@@ -96,6 +97,46 @@ def mass_properties(inertial: Inertial) -> MassProperties:
     if problem is None and min(diag) < 0:
         problem = f"inertia tensor has a negative principal moment ({min(diag):.6g})"
     return MassProperties(mass, com, diag, quat, problem)
+
+
+_F32 = struct.Struct("<f")
+_U32 = struct.Struct("<I")
+
+
+def to_float32(x: float) -> float:
+    """The float32 nearest ``x``, as a Python float."""
+    return float(_F32.unpack(_F32.pack(x))[0])
+
+
+def _next_float32_up(x: float) -> float:
+    """The next float32 above the float32 ``x`` (x >= 0)."""
+    bits = _U32.unpack(_F32.pack(x))[0]
+    return float(_F32.unpack(_U32.pack(bits + 1))[0])
+
+
+def float32_moments(diag: Vec3) -> Vec3:
+    """Principal moments as the float32 values the file will hold, each pair's sum strictly above
+    the third, both in float64 and in float32 arithmetic.
+
+    A tensor on the triangle inequality's boundary (a flat body, or one whose source moments were
+    computed as A + B = C) can break it once rounded to float32 (allegro_right_hand: A + B - C =
+    -1.9e-11), and MuJoCo then refuses the model. The two smaller moments move up by float32 steps
+    until the inequality holds; a tensor that breaks it by more than rounding is left alone (the
+    verifier reports it, and ``repair_inertia`` fixes it).
+    """
+    moments = [to_float32(x) for x in diag]
+    if not all(math.isfinite(x) and x > 0 for x in moments):
+        return (moments[0], moments[1], moments[2])
+    order = sorted(range(3), key=lambda i: moments[i])
+    for _ in range(64):
+        a, b, c = (moments[i] for i in order)
+        if a + b > c and to_float32(a + b) > c:
+            break
+        if c - (a + b) > 1e-6 * c:
+            break  # a real violation, not rounding
+        moments[order[0]] = _next_float32_up(a)
+        moments[order[1]] = _next_float32_up(b)
+    return (moments[0], moments[1], moments[2])
 
 
 def _is_diagonal(m: Mat3) -> bool:
