@@ -74,13 +74,16 @@ def _fit(cls: Any, values: dict[str, Any], aliases: dict[str, tuple[str, ...]]) 
     fields = {f.name for f in dataclasses.fields(cls)} if dataclasses.is_dataclass(cls) else set()
     kwargs: dict[str, Any] = {}
     for key, value in values.items():
-        for name in (key, *aliases.get(key, ())):
+        # 3.x keeps the 2.x limit names as deprecated aliases: the current name wins where it exists.
+        names = (*aliases.get(key, ()), key) if key in _DEPRECATED else (key, *aliases.get(key, ()))
+        for name in names:
             if not fields or name in fields:
                 kwargs[name] = value
                 break
     return cls(**kwargs)
 
 
+_DEPRECATED = {"effort_limit_sim", "velocity_limit_sim"}
 # The solver-level limits: Isaac Lab 3.x names first, 2.x names second.
 _ALIASES = {
     "joint_effort_limit": ("effort_limit_sim",),
@@ -94,7 +97,10 @@ def _spawn_rotation(state_cfg: Any) -> tuple[float, ...]:
     """``ROBOT``'s rotation in the order the installed Isaac Lab reads: its ``InitialStateCfg``
     default is the identity, (0, 0, 0, 1) in 3.x (x, y, z, w) and (1, 0, 0, 0) in 2.x (w, x, y, z)."""
     rot = tuple(ROBOT["init_state"]["rot"])
-    default = tuple(getattr(state_cfg, "rot", ROBOT_IDENTITY))
+    try:  # Isaac Lab's configclasses keep field defaults on instances, not on the class
+        default = tuple(state_cfg().rot)
+    except Exception:
+        default = tuple(getattr(state_cfg, "rot", ROBOT_IDENTITY))
     if default == ROBOT_IDENTITY:
         return rot
     return (rot[3], rot[0], rot[1], rot[2]) if ROBOT["quaternion_order"] == "xyzw" else (rot[1], rot[2], rot[3], rot[0])
