@@ -261,7 +261,7 @@ def check_against_ir(parsed: Parsed, robot: Robot, options: UsdOptions) -> None:
         expected_tensor = ir_tensor_in_link(robot, link.name)
         got = recomposed_tensor(prim)
         scale = max(float(np.abs(expected_tensor).max()), 1e-300)
-        # 1e-5: a tensor on the triangle inequality's boundary is moved TRIANGLE_MARGIN (4e-6) inside it.
+        # 1e-5: a tensor on the triangle inequality's boundary is moved TRIANGLE_MARGIN (1e-6) inside it.
         assert float(np.abs(got - expected_tensor).max()) <= 1e-5 * scale, (link.name, got, expected_tensor)
 
     robot_prim = stage.GetPrimAtPath(root)

@@ -116,8 +116,9 @@ def _next_float32_up(x: float) -> float:
 
 # How far inside the triangle inequality a boundary tensor is moved: consumers rebuild the tensor
 # from float32 moments and a float32 rotation (Newton: R diag(I) R^T in float32) and MuJoCo then
-# re-diagonalises it, which moves the moments by a few 1e-7 of the largest.
-TRIANGLE_MARGIN = 4e-6
+# re-diagonalises it, which moves the moments by a few 1e-7 of the largest (1e-6 also stays inside
+# the 1e-6 inertia tolerance of robodesc's own usd-core validation).
+TRIANGLE_MARGIN = 1e-6
 # A violation up to this fraction of the largest moment is rounding of a boundary tensor; a larger
 # one is the source's (the verifier reports it and repair_inertia fixes it).
 TRIANGLE_ROUNDING = 1e-5
