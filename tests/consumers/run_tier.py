@@ -22,6 +22,7 @@ Each engine has its own environment under ``--envs`` (``newton/``, ``isaacsim/``
 from __future__ import annotations
 
 import argparse
+import csv
 import json
 import os
 import re
@@ -44,6 +45,8 @@ FLOATING = re.compile(
     re.IGNORECASE,
 )
 KINDS = ("newton", "newton_isaac", "isaac_importer")
+# NVIDIA's SimReady physics rules that run on CPU (usd_validation_nvidia, from isacsim's env).
+SIMREADY_RULES = ("MassChecker", "RigidBodyChecker", "PhysicsJointChecker", "ArticulationChecker")
 
 
 def _run(cmd: list[str], timeout: float, log: str) -> subprocess.CompletedProcess[str]:
@@ -181,7 +184,34 @@ def run_robot(robot: CorpusRobot, envs: str, work: str) -> dict[str, object]:
         out[kind] = res["status"] if res else f"fail: Newton crashed ({_last_error(newton)})"
         if res and res.get("reference", "source URDF") != "source URDF":
             out[f"{kind}_reference"] = res["reference"]
+    out["simready"] = simready(usd, envs, log)
     return out
+
+
+def simready(usd: str, envs: str, log: str) -> str:
+    """``nvidia_usd_validate`` with the physics rules: "pass" or "fail: <rule> at <prims>"."""
+    csv_path = usd + ".simready.csv"
+    tool = os.path.join(envs, "isaacsim", "bin", "nvidia_usd_validate")
+    rules = [x for rule in SIMREADY_RULES for x in ("-r", rule)]
+    proc = _run([tool, *rules, "--csv-output", csv_path, usd], 600, log)
+    if not os.path.isfile(csv_path):
+        return f"fail: validator did not run ({_last_error(proc)})"
+    with open(csv_path, encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
+    bad = [r for r in rows if r.get("Severity") in ("Failure", "Error")]
+    if not bad:
+        return "pass"
+    where = ", ".join(sorted({r["Location"].removeprefix("Prim ") for r in bad})[:3])
+    return f"fail: {len(bad)} ({', '.join(sorted({r['Rule'] for r in bad}))}) at {where}"
+
+
+def add_simready(results: dict[str, dict[str, object]], envs: str, work: str) -> None:
+    """The SimReady column for robots already run (their files are in ``work``)."""
+    for name, result in results.items():
+        wdir = os.path.join(work, re.sub(r"[^A-Za-z0-9_.-]+", "_", name))
+        usd = os.path.join(wdir, os.path.basename(wdir) + ".usda")
+        if os.path.isfile(usd) and "simready" not in result:
+            result["simready"] = simready(usd, envs, os.path.join(wdir, "log.txt"))
 
 
 def markdown(results: dict[str, dict[str, object]]) -> str:
@@ -196,9 +226,15 @@ def markdown(results: dict[str, dict[str, object]]) -> str:
     ]
     counts = {k: sum(1 for r in results.values() if r.get(k) == "pass") for k in KINDS}
     lines.append(f"{len(results)} robots; pass: " + ", ".join(f"{k} {counts[k]}" for k in KINDS) + ".")
-    lines += ["", "| robot | base | newton | newton_isaac | isaac_importer |", "|---|---|---|---|---|"]
+    simready_pass = sum(1 for r in results.values() if r.get("simready") == "pass")
+    lines.append(f"SimReady physics rules ({', '.join(SIMREADY_RULES)}) on the `-t usd` output: {simready_pass} pass.")
+    lines += [
+        "",
+        "| robot | base | newton | newton_isaac | isaac_importer | simready |",
+        "|---|---|---|---|---|---|",
+    ]
     for name, r in results.items():
-        cells = [str(r.get(k, "not run")).replace("|", "\\|") for k in KINDS]
+        cells = [str(r.get(k, "not run")).replace("|", "\\|").replace("\n", " ") for k in (*KINDS, "simready")]
         base = "floating" if r.get("floating") else "fixed"
         if r.get("repaired"):
             base += ", inertia repaired"
@@ -212,6 +248,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--work", default=None, help="scratch folder (default: ENVS/work)")
     ap.add_argument("--robots", default=None, help="comma list of robot names (substring match); default all")
     ap.add_argument("--resume", action="store_true", help="keep results already in the JSON")
+    ap.add_argument("--simready-only", action="store_true", help="only add the SimReady column to --out")
+    ap.add_argument("--merge", action="append", default=[], help="also take robots from this results JSON")
     ap.add_argument("--out", default=os.path.join(ROOT, "benchmarks", "results", "consumers.json"))
     args = ap.parse_args(argv)
     sys.path.insert(0, os.path.join(ROOT, "src"))
@@ -224,22 +262,35 @@ def main(argv: list[str] | None = None) -> int:
         wanted = args.robots.split(",")
         robots = [r for r in robots if any(w in r.name for w in wanted)]
     results: dict[str, dict[str, object]] = {}
-    if args.resume and os.path.isfile(args.out):
+    if (args.resume or args.simready_only) and os.path.isfile(args.out):
         with open(args.out, encoding="utf-8") as f:
             results = json.load(f)
+    for extra in args.merge:
+        with open(extra, encoding="utf-8") as f:
+            for name, result in json.load(f).items():
+                results.setdefault(name, result)
+    if args.simready_only or args.merge:
+        if args.simready_only:
+            add_simready(results, args.envs, work)
+        _write(results, args.out)
+        return 0
     for robot in robots:
         if robot.name in results:
             continue
         start = time.perf_counter()
         results[robot.name] = run_robot(robot, args.envs, work)
         print(f"{robot.name}: {time.perf_counter() - start:.0f} s  " + json.dumps(results[robot.name]), flush=True)
-        os.makedirs(os.path.dirname(args.out), exist_ok=True)
-        with open(args.out, "w", encoding="utf-8") as f:
-            json.dump(results, f, indent=1, sort_keys=False)
-            f.write("\n")
-        with open(args.out[: -len(".json")] + ".md", "w", encoding="utf-8") as f:
-            f.write(markdown(results))
+        _write(results, args.out)
     return 0
+
+
+def _write(results: dict[str, dict[str, object]], out: str) -> None:
+    os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
+    with open(out, "w", encoding="utf-8") as f:
+        json.dump(results, f, indent=1, sort_keys=False)
+        f.write("\n")
+    with open(out[: -len(".json")] + ".md", "w", encoding="utf-8") as f:
+        f.write(markdown(results))
 
 
 if __name__ == "__main__":
