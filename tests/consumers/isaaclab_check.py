@@ -32,7 +32,7 @@ def run(folder: str, steps: int) -> dict[str, object]:
 
     import isaaclab.sim as sim_utils
     import torch
-    from isaaclab.assets import Articulation
+    from isaaclab.assets import Articulation, AssetBaseCfg
     from isaaclab.cloner import CloneCfg, clone_plan_from_env_0, replicate
     from isaaclab.sim import build_simulation_context
     from isaaclab.utils import replace
@@ -50,14 +50,16 @@ def run(folder: str, steps: int) -> dict[str, object]:
     cfg.init_state.pos = pos
     checks: dict[str, object] = {}
     with build_simulation_context(sim_cfg=sim_cfg, device="cpu", add_ground_plane=False) as sim:
-        ground = sim_utils.CuboidCfg(
-            size=(20.0, 20.0, 0.1),
-            collision_props=sim_utils.CollisionPropertiesCfg(),
+        # The ground is a static box declared like any asset, so the clone plan puts it in the model.
+        ground = AssetBaseCfg(
+            prim_path="/World/Ground",
+            spawn=sim_utils.CuboidCfg(size=(20.0, 20.0, 0.1), collision_props=sim_utils.CollisionPropertiesCfg()),
+            init_state=AssetBaseCfg.InitialStateCfg(pos=(0.0, 0.0, -0.05)),
         )
-        ground.func("/World/Ground", ground, translation=(0.0, 0.0, -0.05))
+        ground.spawn.func("/World/Ground", ground.spawn, translation=(0.0, 0.0, -0.05))
         # One environment, cloned the way Isaac Lab's own articulation tests do it.
         sim_utils.create_prim("/World/Env_0", "Xform", translation=(0.0, 0.0, 0.0))
-        clone_plan_from_env_0(CloneCfg(clone_template="/World/Env_{}"), [cfg], 1, 2.5)
+        clone_plan_from_env_0(CloneCfg(clone_template="/World/Env_{}"), [cfg, ground], 1, 2.5)
         robot = Articulation(cfg)
         replicate(sim.get_clone_plan())
         sim.reset()
