@@ -210,6 +210,10 @@ def _extras(joint: Joint, prim: Prim, angular: bool, *, passive_damping: bool) -
     """
     armature = joint.armature
     velocity = joint.limit.velocity if joint.limit is not None else None
+    if velocity is not None and not velocity > 0:
+        # URDF's placeholder 0 (as effort 0, which writes no maxForce): NewtonJointAPI's range is
+        # (0, inf], and 0 would freeze the joint in Newton.
+        velocity = None
     dyn = joint.dynamics
     friction = dyn.friction if dyn is not None else None
     damping = dyn.damping if dyn is not None and passive_damping else None
