@@ -42,7 +42,7 @@ def _build(kind: str, path: str, args: argparse.Namespace, names: set[str] | Non
         warnings.simplefilter("ignore")
         if kind == "urdf":
             builder.add_urdf(
-                path,
+                _without_geometry(path),
                 floating=args.floating,
                 enable_self_collisions=False,
                 package_dirs=args.package_dir or None,
@@ -60,6 +60,20 @@ def _build(kind: str, path: str, args: argparse.Namespace, names: set[str] | Non
     if kind == "usd":
         _rename_to_display_names(model, path if isinstance(stage, str) else stage, names or set())
     return builder, model, info
+
+
+def _without_geometry(path: str) -> str:
+    """The URDF's text without visuals and colliders: the comparison runs without contacts and
+    masses come from <inertial>, and Newton's own mesh reader refuses some corpus meshes
+    (anymal's foot DAE) that robodesc reads."""
+    import xml.etree.ElementTree as ET
+
+    tree = ET.parse(path)
+    for link in tree.getroot().iter("link"):
+        for tag in ("visual", "collision"):
+            for el in link.findall(tag):
+                link.remove(el)
+    return ET.tostring(tree.getroot(), encoding="unicode")
 
 
 def _rename_to_display_names(model, stage, names: set[str]) -> None:
@@ -247,8 +261,14 @@ def check(args: argparse.Namespace) -> dict:
         return out
 
     # Limits: degrees in float32 on the USD side.
-    rep.compare("limits lower", pairs("joint_limit_lower"), 2e-6, 1e-6)
-    rep.compare("limits upper", pairs("joint_limit_upper"), 2e-6, 1e-6)
+    # Newton's add_urdf leaves a continuous joint at lower = upper = 0 where add_usd gives +-1e10:
+    # both mean "no limit".
+    lo_pairs, hi_pairs = pairs("joint_limit_lower"), pairs("joint_limit_upper")
+    unlimited = {
+        n for (n, a, b), (_, c, d) in zip(lo_pairs, hi_pairs, strict=True) if a == c == 0.0 and b <= -1e9 and d >= 1e9
+    }
+    rep.compare("limits lower", [p for p in lo_pairs if p[0] not in unlimited], 2e-6, 1e-6)
+    rep.compare("limits upper", [p for p in hi_pairs if p[0] not in unlimited], 2e-6, 1e-6)
     driven = lambda n: n not in mimic_u  # noqa: E731
     rep.compare("drive stiffness", pairs("joint_target_ke", only=driven), 1e-5, 1e-9)
     rep.compare("drive damping", pairs("joint_target_kd", only=driven), 1e-5, 1e-9)
@@ -263,7 +283,19 @@ def check(args: argparse.Namespace) -> dict:
     rep.compare("passive damping", pairs("joint_damping"), 1e-5, 1e-12)
     rep.compare("friction", pairs("joint_friction"), 1e-5, 1e-12)
     rep.compare("velocity limit", pairs("joint_velocity_limit"), 1e-5, 1e-9)
+    # URDF effort 0 is a placeholder: UsdPhysics (and Isaac Sim's importer) write no maxForce for
+    # it, Newton's add_urdf reads it as "no force". Compared as "not given", and the URDF side
+    # takes the USD's (unlimited) value for the run.
+    eff_u, eff_s = mu.joint_effort_limit.numpy(), ms.joint_effort_limit.numpy()
+    zero_effort = [n for n in names if all(float(eff_u[i]) == 0.0 for i in dofs_u[n])]
+    for n in zero_effort:
+        for i, j in zip(dofs_u[n], dofs_s[n], strict=True):
+            eff_u[i] = eff_s[j]
+    if zero_effort:
+        mu.joint_effort_limit.assign(eff_u)
     rep.compare("effort limit", pairs("joint_effort_limit"), 1e-6, 1e-9)
+    if zero_effort:
+        rep.checks[-1]["detail"] = f"{len(zero_effort)} joints with URDF effort 0 read as 'not given'"
 
     # --- forward kinematics at random configurations --------------------------------------
     coords_u = _coord_table(mu)
