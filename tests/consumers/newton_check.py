@@ -261,11 +261,13 @@ def check(args: argparse.Namespace) -> dict:
         return out
 
     # Limits: degrees in float32 on the USD side.
-    # Newton's add_urdf leaves a continuous joint at lower = upper = 0 where add_usd gives +-1e10:
-    # both mean "no limit".
     lo_pairs, hi_pairs = pairs("joint_limit_lower"), pairs("joint_limit_upper")
+    # A continuous joint: Newton's add_urdf leaves it at lower = upper = 0, or keeps the <limit> a
+    # continuous joint may carry (URDF says to ignore it; kinova's +-2 pi), where add_usd has +-1e10.
     unlimited = {
-        n for (n, a, b), (_, c, d) in zip(lo_pairs, hi_pairs, strict=True) if a == c == 0.0 and b <= -1e9 and d >= 1e9
+        n
+        for (n, a, b), (_, c, d) in zip(lo_pairs, hi_pairs, strict=True)
+        if b <= -1e9 and d >= 1e9 and ((a == c == 0.0) or (a <= -6.283 and c >= 6.283))
     }
     rep.compare("limits lower", [p for p in lo_pairs if p[0] not in unlimited], 2e-6, 1e-6)
     rep.compare("limits upper", [p for p in hi_pairs if p[0] not in unlimited], 2e-6, 1e-6)
@@ -282,7 +284,12 @@ def check(args: argparse.Namespace) -> dict:
     rep.compare("armature", pairs("joint_armature"), 1e-5, 1e-12)
     rep.compare("passive damping", pairs("joint_damping"), 1e-5, 1e-12)
     rep.compare("friction", pairs("joint_friction"), 1e-5, 1e-12)
-    rep.compare("velocity limit", pairs("joint_velocity_limit"), 1e-5, 1e-9)
+    # URDF velocity 0 is a placeholder too (robodesc writes no velocity limit for it).
+    vel_pairs = pairs("joint_velocity_limit")
+    zero_velocity = [p for p in vel_pairs if p[1] == 0.0 and p[2] >= 1e5]
+    rep.compare("velocity limit", [p for p in vel_pairs if p not in zero_velocity], 1e-5, 1e-9)
+    if zero_velocity:
+        rep.checks[-1]["detail"] = f"{len(zero_velocity)} DOFs with URDF velocity 0 read as 'not given'"
     # URDF effort 0 is a placeholder: UsdPhysics (and Isaac Sim's importer) write no maxForce for
     # it, Newton's add_urdf reads it as "no force". Compared as "not given", and the URDF side
     # takes the USD's (unlimited) value for the run.

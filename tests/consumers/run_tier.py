@@ -248,6 +248,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--work", default=None, help="scratch folder (default: ENVS/work)")
     ap.add_argument("--robots", default=None, help="comma list of robot names (substring match); default all")
     ap.add_argument("--resume", action="store_true", help="keep results already in the JSON")
+    ap.add_argument("--reverse", action="store_true", help="last robot first (a second worker)")
     ap.add_argument("--simready-only", action="store_true", help="only add the SimReady column to --out")
     ap.add_argument("--merge", action="append", default=[], help="also take robots from this results JSON")
     ap.add_argument("--out", default=os.path.join(ROOT, "benchmarks", "results", "consumers.json"))
@@ -261,6 +262,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.robots:
         wanted = args.robots.split(",")
         robots = [r for r in robots if any(w in r.name for w in wanted)]
+    if args.reverse:
+        robots.reverse()
     results: dict[str, dict[str, object]] = {}
     if (args.resume or args.simready_only) and os.path.isfile(args.out):
         with open(args.out, encoding="utf-8") as f:
