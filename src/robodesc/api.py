@@ -162,7 +162,8 @@ def compile_for_isaac_sim(
     acceleration), ``target_type`` (none | position | velocity), ``stiffness``/``damping`` (SI, a
     number or ``{regex: value}``), ``armature`` (rules), ``self_collision``,
     ``collision_approximation``, ``solver_position_iterations``, ``solver_velocity_iterations``,
-    ``contact_offset``, ``rest_offset``, ``init_pos``, ``init_joint_pos``, ``layered``, and every
+    ``contact_offset``, ``rest_offset``, ``init_pos``, ``init_joint_pos``, ``layered``,
+    ``isaac_lab_version`` ("3", the default, or "2": the generated Isaac Lab module's target), and every
     pass and input option.
     """
     import tempfile

@@ -299,6 +299,12 @@ def _parser() -> argparse.ArgumentParser:
         metavar="REGEX=VALUE",
         help="Isaac Lab initial joint positions (rad; repeatable, first match wins)",
     )
+    isaac.add_argument(
+        "--isaac-lab-version",
+        choices=["3", "2"],
+        help="Isaac Lab the generated module targets (default 3: quaternions x,y,z,w and joint_*_limit; "
+        "2: w,x,y,z and *_limit_sim)",
+    )
     ros2 = comp.add_argument_group("ROS 2 (--ros2)")
     ros2.add_argument(
         "--command-interface",
@@ -619,6 +625,7 @@ def _target_options(args: argparse.Namespace) -> dict[str, Any]:
         "physics_scene": args.physics_scene,
         "init_pos": init_pos,
         "init_joint_pos": {".*": joint_pos} if isinstance(joint_pos, float) else joint_pos,
+        "isaac_lab_version": args.isaac_lab_version,
         "version": args.sdf_version,
         "world": args.world or None,
         "flavour": "classic" if args.gazebo_classic else None,

@@ -81,3 +81,20 @@ def _xml(text: str):  # type: ignore[no-untyped-def]
     from lxml import etree
 
     return etree.fromstring(text.encode("utf-8"), etree.XMLParser(remove_comments=True, resolve_entities=False))
+
+
+_FIXED_MIMIC = """<robot name="r">
+  <link name="a"/><link name="b"/><link name="c"/>
+  <joint name="lead" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="5" velocity="1"/></joint>
+  <joint name="weld" type="fixed"><parent link="b"/><child link="c"/>
+    <mimic joint="lead" multiplier="2"/></joint>
+</robot>"""
+
+
+def test_mimic_on_a_fixed_joint_is_left_out_of_urdf() -> None:
+    """It has no effect (the verifier's 'ignored-mimic'), and Newton's add_urdf refuses the file
+    (talos_reduced)."""
+    loaded = load_string(_FIXED_MIMIC)
+    text = emit_urdf(loaded.robot, UrdfOptions())
+    assert "<mimic" not in text and '<joint name="weld" type="fixed">' in text

@@ -125,7 +125,7 @@ def test_isaac_lab_module_imports_without_isaac_lab_and_matches_usd(
             if group["armature"] is not None:
                 assert physx_arm == pytest.approx(group["armature"], rel=1e-6)
                 assert newton_arm == pytest.approx(group["armature"], rel=1e-6)
-            assert group["effort_limit_sim"] == joint.limit.effort
+            assert group["joint_effort_limit"] == joint.limit.effort
     assert seen == set(actuated)
 
 
@@ -175,23 +175,42 @@ def test_isaac_urdf_flavour(folders: dict[str, robodesc.CompileResult]) -> None:
 
 
 @dataclass
-class _FakeCfg:
+class _FakeCfg3:
+    """The fields of Isaac Lab 3.0's ImplicitActuatorCfg the module uses (2.x names kept, deprecated)."""
+
     joint_names_expr: list[str] = field(default_factory=list)
     stiffness: Any = None
     damping: Any = None
-    actuator_effort_limit: Any = None  # Isaac Lab 3.0 spelling
-    actuator_velocity_limit: Any = None
+    joint_effort_limit: Any = None
+    joint_velocity_limit: Any = None
+    effort_limit_sim: Any = None
+    velocity_limit_sim: Any = None
     armature: Any = None
     friction: Any = None
 
 
-def test_isaac_lab_module_builds_a_cfg_when_isaac_lab_is_present(
-    folders: dict[str, robodesc.CompileResult], monkeypatch: pytest.MonkeyPatch
-) -> None:
+@dataclass
+class _FakeCfg2:
+    """Isaac Lab 2.x: only the *_limit_sim names."""
+
+    joint_names_expr: list[str] = field(default_factory=list)
+    stiffness: Any = None
+    damping: Any = None
+    effort_limit_sim: Any = None
+    velocity_limit_sim: Any = None
+    armature: Any = None
+    friction: Any = None
+
+
+def _run_with_fake_isaac_lab(
+    path: str, monkeypatch: pytest.MonkeyPatch, actuator_cls: type, identity: tuple[float, ...]
+) -> dict[str, Any]:
     made: dict[str, Any] = {}
 
     class ArticulationCfg:
         class InitialStateCfg:
+            rot = identity  # the class default tells the module which quaternion order it has
+
             def __init__(self, **kw: Any) -> None:
                 made["init"] = kw
 
@@ -202,17 +221,64 @@ def test_isaac_lab_module_builds_a_cfg_when_isaac_lab_is_present(
     fakes = {
         "isaaclab": types.ModuleType("isaaclab"),
         "isaaclab.sim": sim,
-        "isaaclab.actuators": types.SimpleNamespace(ImplicitActuatorCfg=_FakeCfg),
+        "isaaclab.actuators": types.SimpleNamespace(ImplicitActuatorCfg=actuator_cls),
         "isaaclab.assets": types.SimpleNamespace(ArticulationCfg=ArticulationCfg),
     }
     for name, module in fakes.items():
         monkeypatch.setitem(sys.modules, name, module)
-    module = runpy.run_path(folders["spirit"].files["isaaclab"])
+    module = runpy.run_path(path)
     assert module["ROBOT_CFG"] is not None
+    return made
+
+
+def test_isaac_lab_module_builds_a_cfg_when_isaac_lab_is_present(
+    folders: dict[str, robodesc.CompileResult], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    made = _run_with_fake_isaac_lab(folders["spirit"].files["isaaclab"], monkeypatch, _FakeCfg3, (0.0, 0.0, 0.0, 1.0))
     actuators = made["cfg"]["actuators"]
     knee = next(a for a in actuators.values() if "j_knee_0" in a.joint_names_expr)
-    assert knee.actuator_effort_limit == 32.0 and knee.armature == pytest.approx(1.77264e-2)
+    # 3.x: the current names, not the deprecated *_limit_sim ones; the identity as (x, y, z, w).
+    assert knee.joint_effort_limit == 32.0 and knee.effort_limit_sim is None
+    assert knee.armature == pytest.approx(1.77264e-2)
+    assert made["init"]["rot"] == (0.0, 0.0, 0.0, 1.0)
     assert made["cfg"]["spawn"]["articulation_props"]["solver_position_iteration_count"] == 64
+
+
+def test_isaac_lab_3_module_fits_an_installed_2x(
+    folders: dict[str, robodesc.CompileResult], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    made = _run_with_fake_isaac_lab(folders["spirit"].files["isaaclab"], monkeypatch, _FakeCfg2, (1.0, 0.0, 0.0, 0.0))
+    knee = next(a for a in made["cfg"]["actuators"].values() if "j_knee_0" in a.joint_names_expr)
+    assert knee.effort_limit_sim == 32.0
+    assert made["init"]["rot"] == (1.0, 0.0, 0.0, 0.0)  # reordered to 2.x's (w, x, y, z)
+
+
+def test_isaac_lab_version_2_module(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    out = tmp_path / "arm_isaac"
+    code = main(
+        [
+            "compile",
+            str(EXAMPLES / "urdf" / "gripper_arm.urdf"),
+            "--isaac-sim",
+            "-o",
+            str(out),
+            "-q",
+            "--no-validate",
+            "--isaac-lab-version",
+            "2",
+            "--init-pos",
+            "0,0,0.5",
+        ]
+    )
+    assert code == 0
+    path = str(out / "gripper_arm_isaaclab.py")
+    data = runpy.run_path(path)["ROBOT"]
+    assert data["init_state"]["rot"] == (1.0, 0.0, 0.0, 0.0) and data["quaternion_order"] == "wxyz"
+    assert all("effort_limit_sim" in g and "joint_effort_limit" not in g for g in data["actuators"].values())
+    made = _run_with_fake_isaac_lab(path, monkeypatch, _FakeCfg2, (1.0, 0.0, 0.0, 0.0))
+    assert made["init"]["rot"] == (1.0, 0.0, 0.0, 0.0)
+    made = _run_with_fake_isaac_lab(path, monkeypatch, _FakeCfg3, (0.0, 0.0, 0.0, 1.0))
+    assert made["init"]["rot"] == (0.0, 0.0, 0.0, 1.0)  # a 2.x module on 3.x: reordered, still upright
 
 
 def test_cli_isaac_sim_writes_the_folder(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -17,9 +17,10 @@ from usd_readback import (
 )
 
 from robodesc.emit.usd import UsdOptions, emit_usd
+from robodesc.emit.usd.quantities import TRIANGLE_MARGIN, float32_moments
 from robodesc.frontends.load import load_path
 from robodesc.ir.diagnostics import ConfigError, UnsupportedError
-from robodesc.ir.geometry import Inertia
+from robodesc.ir.geometry import Inertia, Inertial, Pose
 from robodesc.ir.model import Joint, JointType, Link, Robot
 from robodesc.ir.transforms import forward_kinematics
 
@@ -190,7 +191,9 @@ def test_drive_units_and_extras(tmp_path: Path) -> None:
     assert math.isclose(elbow.GetAttribute("drive:angular:physics:stiffness").Get(), 300 * math.pi / 180, rel_tol=1e-6)
     assert math.isclose(elbow.GetAttribute("drive:angular:physics:damping").Get(), 3 * math.pi / 180, rel_tol=1e-6)
     assert math.isclose(elbow.GetAttribute("physxJoint:maxJointVelocity").Get(), 2.5 * 180 / math.pi, rel_tol=1e-6)
-    assert math.isclose(elbow.GetAttribute("newton:maxJointVelocity").Get(), 2.5 * 180 / math.pi, rel_tol=1e-6)
+    # newton-usd-schemas 0.6: NewtonJointAPI's velocity limit is newton:velocityLimit, in deg/s.
+    assert math.isclose(elbow.GetAttribute("newton:velocityLimit").Get(), 2.5 * 180 / math.pi, rel_tol=1e-6)
+    assert not elbow.GetAttribute("newton:maxJointVelocity").IsValid()
     slide = stage.GetPrimAtPath("/arm/joints/slide")
     assert slide.GetAttribute("drive:linear:physics:stiffness").Get() == 2000.0
     assert math.isclose(slide.GetAttribute("physxJoint:maxJointVelocity").Get(), 0.3, rel_tol=1e-6)
@@ -200,7 +203,8 @@ def test_drive_units_and_extras(tmp_path: Path) -> None:
     assert yaw.GetAttribute("drive:angular:physics:stiffness").Get() == pytest.approx(50 * math.pi / 180)
     assert yaw.GetAttribute("physxJoint:jointFriction").Get() == pytest.approx(0.2)
     assert yaw.GetAttribute("newton:friction").Get() == pytest.approx(0.2)
-    assert yaw.GetAttribute("newton:damping").Get() == pytest.approx(0.5)
+    # Passive damping is per degree for an angular DOF (NewtonJointAPI: effort·s/deg).
+    assert yaw.GetAttribute("newton:damping").Get() == pytest.approx(0.5 * math.pi / 180)
     schemas = yaw.GetPrimTypeInfo().GetAppliedAPISchemas()
     assert "PhysxJointAPI" in schemas and "NewtonJointAPI" in schemas and "PhysicsJointStateAPI:angular" in schemas
     assert not yaw.GetAttribute("physxJoint:armature").IsAuthored()
@@ -235,7 +239,11 @@ def test_mimic(tmp_path: Path) -> None:
     ref = follower.GetRelationship("physxMimicJoint:rotX:referenceJoint").GetTargets()
     assert ref == [Sdf.Path("/gripper/joints/finger")]
     assert follower.GetAttribute("physxMimicJoint:rotX:referenceJointAxis").Get() == "rotY"
-    assert not follower.HasAPI(UsdPhysics.DriveAPI, "angular")
+    # The follower keeps its effort limit on a drive without gains (as Isaac Sim 6.2's importer).
+    drive = UsdPhysics.DriveAPI(follower, "angular")
+    assert follower.HasAPI(UsdPhysics.DriveAPI, "angular")
+    assert drive.GetStiffnessAttr().Get() == 0.0 and drive.GetDampingAttr().Get() == 0.0
+    assert drive.GetMaxForceAttr().Get() > 0
     slide = stage.GetPrimAtPath("/gripper/joints/pad_slide")
     assert slide.GetAttribute("newton:mimicCoef0").Get() == pytest.approx(0.001)
 
@@ -401,3 +409,58 @@ def test_missing_mesh_is_a_finding(tmp_path: Path) -> None:
     assert [f.code for f in findings] == ["usd-missing-mesh"]
     stage = Usd.Stage.Open(str(tmp_path / "arm.usda"))
     assert not stage.GetPrimAtPath("/arm/upper_arm/visuals/visual_0")
+
+
+@pytest.mark.parametrize(
+    "moments",
+    [
+        (1.822845e-05, 7.632537e-05, 9.455382e-05),  # allegro_right_hand link_1.0: A + B = C in the source
+        (1e-8, 1e-8, 2e-8),  # spirit's toes
+        (1.0, 1.0, 2.0),
+        (0.1, 0.2, 0.3000000001),
+    ],
+)
+def test_float32_moments_keep_the_triangle_inequality(moments: tuple[float, float, float]) -> None:
+    """Rounded to float32 and rebuilt by a consumer, a boundary tensor must still be physical."""
+    out = float32_moments(moments)
+    assert all(np.float32(x) == x for x in out)  # exactly the float32 values the file holds
+    a, b, c = sorted(out)
+    assert a + b > c and float(np.float32(a) + np.float32(b)) > c
+    assert (a + b - c) / c >= TRIANGLE_MARGIN * 0.999
+    assert max(abs(x - y) / y for x, y in zip(out, moments, strict=True)) < 1e-5
+
+
+def test_float32_moments_leave_real_violations_and_zero_alone() -> None:
+    bad = (2.3006407e-06, 3.4852651e-06, 7.2659022e-06)  # allegro link_3.0: 20 % off, the source's
+    assert float32_moments(bad) == tuple(float(np.float32(x)) for x in bad)
+    assert float32_moments((0.0, 0.0, 0.0)) == (0.0, 0.0, 0.0)
+    assert float32_moments((1e-4, 1e-4, 1e-4)) == tuple(float(np.float32(1e-4)) for _ in range(3))
+
+
+def test_zero_tensor_leaves_inertia_unauthored(tmp_path: Path) -> None:
+    """A massless link: UsdPhysics' fallback, which NVIDIA's SimReady MassChecker accepts only when
+    diagonalInertia and principalAxes are both unauthored (or both zero)."""
+    robot = load("arm")
+    link = robot.links[-1]
+    link.inertial = Inertial(mass=0.0, origin=Pose(), inertia=Inertia(ixx=0.0, iyy=0.0, izz=0.0))
+    out = tmp_path / "arm.usda"
+    emit_usd(robot, str(out), UsdOptions())
+    stage = Usd.Stage.Open(str(out))
+    prim = stage.GetPrimAtPath(f"/arm/{link.name}")
+    api = UsdPhysics.MassAPI(prim)
+    assert api.GetMassAttr().Get() == 0.0
+    assert not api.GetDiagonalInertiaAttr().IsAuthored() and not api.GetPrincipalAxesAttr().IsAuthored()
+
+
+def test_isaac_robot_schema(tmp_path: Path) -> None:
+    out = tmp_path / "gripper.usda"
+    robot = load("gripper")
+    emit_usd(robot, str(out), UsdOptions())
+    stage = Usd.Stage.Open(str(out))
+    root = stage.GetPrimAtPath("/gripper")
+    assert "IsaacRobotAPI" in root.GetPrimTypeInfo().GetAppliedAPISchemas()
+    links = [t.name for t in root.GetRelationship("isaac:physics:robotLinks").GetTargets()]
+    joints = [t.name for t in root.GetRelationship("isaac:physics:robotJoints").GetTargets()]
+    assert links == [x.name for x in robot.links] and joints == [j.name for j in robot.joints]
+    for name in links:
+        assert "IsaacLinkAPI" in stage.GetPrimAtPath(f"/gripper/{name}").GetPrimTypeInfo().GetAppliedAPISchemas()

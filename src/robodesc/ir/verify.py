@@ -188,7 +188,8 @@ def _references(robot: Robot, out: Findings) -> None:
                 _warn(
                     out,
                     "ignored-mimic",
-                    f"a {joint.type.value} joint cannot follow {leader.name!r}; its <mimic> has no effect",
+                    f"a {joint.type.value} joint cannot follow {leader.name!r}; its <mimic> has no effect "
+                    "and is left out of URDF output",
                     label,
                     joint.mimic.src or joint.src,
                 )

@@ -180,7 +180,10 @@ def _body(target: Any, body_names: dict[str, str]) -> str | None:
 
 def _quat(q: Any) -> Mat:
     x, y, z = q.GetImaginary()
-    return quat_wxyz_to_matrix((float(q.GetReal()), float(x), float(y), float(z)))
+    w = float(q.GetReal())
+    if w == 0.0 and x == 0.0 and y == 0.0 and z == 0.0:
+        return np.eye(3)  # UsdPhysics' unauthored fallback: robodesc leaves it with a zero tensor
+    return quat_wxyz_to_matrix((w, float(x), float(y), float(z)))
 
 
 def _frame(pos: Any, rot: Any) -> Mat:

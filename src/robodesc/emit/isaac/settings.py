@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from dataclasses import asdict, dataclass, field
 
 from robodesc.ir.model import Joint, Robot
@@ -46,6 +47,8 @@ class IsaacSettings:
     # Spawn pose for Isaac Lab: base position (m) and the initial joint positions (rad) by regex.
     init_pos: tuple[float, float, float] = (0.0, 0.0, 0.0)
     init_joint_pos: dict[str, float] = field(default_factory=dict)
+    # The Isaac Lab the generated module targets: "3" (quaternions x, y, z, w) or "2" (w, x, y, z).
+    isaac_lab_version: str = "3"
 
     def gains(self, joint: Joint) -> tuple[float, float]:
         """SI (stiffness, damping) for ``joint``; 0 where no rule matches."""
@@ -60,6 +63,11 @@ def usd_gain(value: float, joint: Joint) -> float:
 
 
 _APPROX_TO_LAB = {"convexHull": "Convex Hull", "convexDecomposition": "Convex Decomposition"}
+_APPROX_TO_SIM6 = {
+    **_APPROX_TO_LAB,
+    "boundingSphere": "Bounding Sphere",
+    "boundingCube": "Bounding Cube",
+}
 
 
 def importer_settings(robot: Robot, settings: IsaacSettings) -> dict[str, object]:
@@ -110,13 +118,31 @@ def importer_settings(robot: Robot, settings: IsaacSettings) -> dict[str, object
         "force_usd_conversion": True,
         "make_instanceable": False,
     }
+
+    # Isaac Sim 6.x: the fields of isaacsim.asset.importer.urdf.URDFImporterConfig (6.2). Gains are
+    # SI; its joint patterns are re.search patterns, so each name is anchored.
+    def anchored(values: dict[str, float]) -> dict[str, float]:
+        return {f"^{re.escape(name)}$": value for name, value in values.items()}
+
+    sim6: dict[str, object] = {
+        "merge_fixed_joints": settings.merge_fixed_joints,
+        "collision_type": _APPROX_TO_SIM6.get(settings.collision_approximation, "Convex Hull"),
+        "allow_self_collision": settings.self_collision,
+        "fix_base": settings.fix_base,
+        "joint_drive_type": settings.drive_type,
+        "joint_target_type": settings.target_type,
+        "override_joint_stiffness": anchored({n: v["stiffness"] for n, v in per_joint.items()}),
+        "override_joint_damping": anchored({n: v["damping"] for n, v in per_joint.items()}),
+    }
     doc: dict[str, object] = {
         "robot": robot.name,
         "units": {
             "isaac_sim_5_importer": "angular gains per degree (USD drive units), linear per metre",
             "isaaclab_urdf_converter_cfg": "gains in SI: N·m/rad, N·m·s/rad (Isaac Lab converts)",
+            "isaac_sim_6_importer": "gains in SI: N·m/rad, N·m·s/rad (URDFImporterConfig converts)",
         },
         "isaac_sim_5_importer": sim5,
+        "isaac_sim_6_importer": sim6,
         "isaaclab_urdf_converter_cfg": lab,
         "physx": {
             "solver_position_iteration_count": settings.solver_position_iterations,

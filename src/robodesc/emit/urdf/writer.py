@@ -195,7 +195,9 @@ class UrdfEmitter:
             # URDF has no armature; robodesc keeps it here (standard parsers ignore the attribute).
             if joint.armature is not None:
                 dyn.set("armature", fmt(joint.armature))
-        if joint.mimic is not None:
+        # A <mimic> on a fixed (or multi-DOF) joint has no effect (the verifier's 'ignored-mimic'
+        # warning) and Newton's URDF importer refuses the file: it is left out.
+        if joint.mimic is not None and joint.type.dof == 1:
             mim = E(el, "mimic", joint=joint.mimic.joint)
             if joint.mimic.multiplier is not None:
                 mim.set("multiplier", fmt(joint.mimic.multiplier))

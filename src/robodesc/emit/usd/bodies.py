@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from robodesc.emit.usd.context import GEOMETRY, JOINTS_SCOPE, PHYSICS, UsdContext, set_display_name, set_full_pose
-from robodesc.emit.usd.quantities import mass_properties
+from robodesc.emit.usd.quantities import float32_moments, mass_properties
 from robodesc.ir.model import Link
 from robodesc.usdfile.spec import Layer
 
@@ -37,7 +37,11 @@ def emit_body(ctx: UsdContext, link: Link) -> None:
     prim.apply("PhysicsMassAPI")
     prim.attr("physics:mass", "float", props.mass)
     prim.attr("physics:centerOfMass", "point3f", props.center_of_mass)
-    prim.attr("physics:diagonalInertia", "float3", props.diagonal_inertia)
+    if not any(props.diagonal_inertia):
+        # A zero tensor is UsdPhysics' fallback ("compute it"); NVIDIA's SimReady MassChecker accepts
+        # it only with a zero principalAxes too, so neither is authored: consumers read the same.
+        return
+    prim.attr("physics:diagonalInertia", "float3", float32_moments(props.diagonal_inertia))
     prim.attr("physics:principalAxes", "quatf", props.principal_axes)
 
 
@@ -69,6 +73,20 @@ def emit_articulation(ctx: UsdContext, root: Link) -> None:
         target.attr("physxArticulation:solverVelocityIterationCount", "int", options.solver_velocity_iterations)
     target.apply("NewtonArticulationRootAPI")
     target.attr("newton:selfCollisionEnabled", "bool", options.self_collision)
+
+
+def emit_robot_schema(ctx: UsdContext) -> None:
+    """Isaac Sim's robot schema (``isaacsim-robot-schema`` 6.2): ``IsaacRobotAPI`` on the robot prim
+    listing its links and joints in IR order, ``IsaacLinkAPI`` / ``IsaacJointAPI`` on each. Isaac
+    Sim 6.2's URDF importer applies the same APIs (it leaves both lists empty)."""
+    robot = ctx.over(PHYSICS, ctx.robot_path)
+    robot.apply("IsaacRobotAPI")
+    robot.rel("isaac:physics:robotLinks", list(ctx.link_paths.values()))
+    robot.rel("isaac:physics:robotJoints", list(ctx.joint_paths.values()))
+    for path in ctx.link_paths.values():
+        ctx.over(PHYSICS, path).apply("IsaacLinkAPI")
+    for path in ctx.joint_paths.values():
+        ctx.over(PHYSICS, path).apply("IsaacJointAPI")
 
 
 def emit_physics_scene(layer: Layer) -> None:

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import os
 
-from robodesc.emit.usd.bodies import emit_articulation, emit_body, emit_physics_scene
+from robodesc.emit.usd.bodies import emit_articulation, emit_body, emit_physics_scene, emit_robot_schema
 from robodesc.emit.usd.context import (
     JOINTS_SCOPE,
     LOOPS_SCOPE,
@@ -100,6 +100,7 @@ def build_layers(ctx: UsdContext, layers: LayerSet) -> None:
     for joint in robot.joints:
         emit_joint(ctx, joint)
     emit_articulation(ctx, root)
+    emit_robot_schema(ctx)
     loops = loop_scope_paths(ctx)
     if loops:
         ctx.define(PHYSICS, f"{ctx.robot_path}/{LOOPS_SCOPE}", "Scope")

@@ -93,13 +93,16 @@ def _one_dof(ctx: UsdContext, joint: Joint, prim: Prim, frame: AxisFrame) -> Non
     prim.attr(f"state:{kind}:physics:position", "float", start * unit)
     prim.attr(f"state:{kind}:physics:velocity", "float", 0.0)
     if joint.mimic is None:
-        _drive(ctx, joint, prim, kind, start)
+        drive_damps = _drive(ctx, joint, prim, kind, start)
     else:
         _mimic(ctx, joint, prim, frame)
-    _extras(joint, prim, unit)
+        _follower_effort(joint, prim, kind, ctx.options.drive_type)
+        drive_damps = False
+    _extras(joint, prim, angular, passive_damping=not drive_damps)
 
 
-def _drive(ctx: UsdContext, joint: Joint, prim: Prim, kind: str, start: float) -> None:
+def _drive(ctx: UsdContext, joint: Joint, prim: Prim, kind: str, start: float) -> bool:
+    """Author the drive; True when it already carries the URDF's passive damping (target type none)."""
     options = ctx.options
     angular = kind == "angular"
     per = PER_DEGREE if angular else 1.0
@@ -132,6 +135,20 @@ def _drive(ctx: UsdContext, joint: Joint, prim: Prim, kind: str, start: float) -
         prim.attr(f"{base}:targetPosition", "float", target_position * unit)
     if target_velocity is not None:
         prim.attr(f"{base}:targetVelocity", "float", target_velocity * unit)
+    return options.target_type == "none"
+
+
+def _follower_effort(joint: Joint, prim: Prim, kind: str, drive_type: str) -> None:
+    """A mimic follower keeps its effort limit: a drive without gains that only carries ``maxForce``,
+    as Isaac Sim 6.2's URDF importer writes it (Newton reads the limit from the drive)."""
+    if joint.limit is None or joint.limit.effort is None or not joint.limit.effort > 0:
+        return
+    prim.apply(f"PhysicsDriveAPI:{kind}")
+    base = f"drive:{kind}:physics"
+    prim.attr(f"{base}:type", "token", drive_type, uniform=True)
+    prim.attr(f"{base}:stiffness", "float", 0.0)
+    prim.attr(f"{base}:damping", "float", 0.0)
+    prim.attr(f"{base}:maxForce", "float", joint.limit.effort)
 
 
 def _gain(ctx: UsdContext, gain: object, joint: Joint, what: str) -> float:
@@ -183,14 +200,27 @@ def _mimic(ctx: UsdContext, joint: Joint, prim: Prim, frame: AxisFrame) -> None:
         )
 
 
-def _extras(joint: Joint, prim: Prim, unit: float) -> None:
+def _extras(joint: Joint, prim: Prim, angular: bool, *, passive_damping: bool) -> None:
+    """Armature, velocity limit, friction and passive damping in PhysX's and Newton's vocabularies.
+
+    Names, types and units are those of ``newton-usd-schemas`` 0.6 (``NewtonJointAPI``: angular
+    damping in effort·s/deg, velocity limit in deg/s, armature and friction unconverted) and of what
+    Isaac Sim 6.2's importer writes for PhysX (``physxJoint:maxJointVelocity`` in deg/s). With target
+    type ``none`` the drive already carries the URDF damping, so Newton is not given it twice.
+    """
     armature = joint.armature
     velocity = joint.limit.velocity if joint.limit is not None else None
+    if velocity is not None and not velocity > 0:
+        # URDF's placeholder 0 (as effort 0, which writes no maxForce): NewtonJointAPI's range is
+        # (0, inf], and 0 would freeze the joint in Newton.
+        velocity = None
     dyn = joint.dynamics
     friction = dyn.friction if dyn is not None else None
-    damping = dyn.damping if dyn is not None else None
+    damping = dyn.damping if dyn is not None and passive_damping else None
     if armature is None and velocity is None and friction is None and damping is None:
         return
+    unit = DEG if angular else 1.0
+    per = PER_DEGREE if angular else 1.0
     if armature is not None or velocity is not None or friction is not None:
         prim.apply("PhysxJointAPI")
         if armature is not None:
@@ -203,11 +233,11 @@ def _extras(joint: Joint, prim: Prim, unit: float) -> None:
     if armature is not None:
         prim.attr("newton:armature", "float", armature)
     if velocity is not None:
-        prim.attr("newton:maxJointVelocity", "float", velocity * unit)
+        prim.attr("newton:velocityLimit", "float", velocity * unit)
     if friction is not None:
         prim.attr("newton:friction", "float", friction)
     if damping is not None:
-        prim.attr("newton:damping", "float", damping)
+        prim.attr("newton:damping", "float", damping * per)
 
 
 def emit_loop_joint(ctx: UsdContext, loop: LoopJoint, path: str) -> None:

@@ -7,6 +7,7 @@ converts without importing numpy.
 from __future__ import annotations
 
 import math
+import struct
 from dataclasses import dataclass
 
 from robodesc.ir.geometry import Inertial, Vec3
@@ -96,6 +97,56 @@ def mass_properties(inertial: Inertial) -> MassProperties:
     if problem is None and min(diag) < 0:
         problem = f"inertia tensor has a negative principal moment ({min(diag):.6g})"
     return MassProperties(mass, com, diag, quat, problem)
+
+
+_F32 = struct.Struct("<f")
+_U32 = struct.Struct("<I")
+
+
+def to_float32(x: float) -> float:
+    """The float32 nearest ``x``, as a Python float."""
+    return float(_F32.unpack(_F32.pack(x))[0])
+
+
+def _next_float32_up(x: float) -> float:
+    """The next float32 above the float32 ``x`` (x >= 0)."""
+    bits = _U32.unpack(_F32.pack(x))[0]
+    return float(_F32.unpack(_U32.pack(bits + 1))[0])
+
+
+# How far inside the triangle inequality a boundary tensor is moved: consumers rebuild the tensor
+# from float32 moments and a float32 rotation (Newton: R diag(I) R^T in float32) and MuJoCo then
+# re-diagonalises it, which moves the moments by a few 1e-7 of the largest (1e-6 also stays inside
+# the 1e-6 inertia tolerance of robodesc's own usd-core validation).
+TRIANGLE_MARGIN = 1e-6
+# A violation up to this fraction of the largest moment is rounding of a boundary tensor; a larger
+# one is the source's (the verifier reports it and repair_inertia fixes it).
+TRIANGLE_ROUNDING = 1e-5
+
+
+def float32_moments(diag: Vec3) -> Vec3:
+    """Principal moments as the float32 values the file will hold, each pair's sum above the third
+    by ``TRIANGLE_MARGIN`` of it.
+
+    A tensor on the triangle inequality's boundary (a flat body, or one whose source moments were
+    computed as A + B = C) breaks it once rounded to float32 and rebuilt by a consumer
+    (allegro_right_hand: A + B - C = -1.9e-11, and MuJoCo refuses the model). The two smaller
+    moments grow by at most a few millionths until the inequality holds with that margin; a tensor
+    that breaks it by more than rounding is left as it is.
+    """
+    moments = [to_float32(x) for x in diag]
+    if not all(math.isfinite(x) and x > 0 for x in moments):
+        return (moments[0], moments[1], moments[2])
+    order = sorted(range(3), key=lambda i: moments[i])
+    a, b, c = (moments[i] for i in order)
+    need = c * (1.0 + TRIANGLE_MARGIN)
+    if a + b < need and c - (a + b) <= TRIANGLE_ROUNDING * c:
+        scale = need / (a + b)  # both by the same fraction: a few millionths at most
+        a, b = to_float32(a * scale), to_float32(b * scale)
+        while a + b < need:  # float32 rounding may leave it a step short
+            a, b = _next_float32_up(a), _next_float32_up(b)
+        moments[order[0]], moments[order[1]] = a, b
+    return (moments[0], moments[1], moments[2])
 
 
 def _is_diagonal(m: Mat3) -> bool:

@@ -16,8 +16,10 @@ USD_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'gripper_arm
 
 ROBOT: dict[str, Any] = {   'name': 'gripper_arm',
     'fix_base': True,
+    'isaac_lab_version': '3',
+    'quaternion_order': 'xyzw',
     'init_state': {   'pos': (0.0, 0.0, 0.0),
-                      'rot': (1.0, 0.0, 0.0, 0.0),
+                      'rot': (0.0, 0.0, 0.0, 1.0),
                       'joint_pos': {   'shoulder_yaw': 0.0,
                                        'shoulder_pitch': 0.0,
                                        'elbow': 0.0,
@@ -31,38 +33,40 @@ ROBOT: dict[str, Any] = {   'name': 'gripper_arm',
     'actuators': {   'shoulder_yaw': {   'joint_names_expr': ['shoulder_yaw'],
                                          'stiffness': 400.0,
                                          'damping': 40.0,
-                                         'effort_limit_sim': 40.0,
-                                         'velocity_limit_sim': 2.5,
+                                         'joint_effort_limit': 40.0,
+                                         'joint_velocity_limit': 2.5,
                                          'armature': None,
                                          'friction': 0.1},
                      'shoulder_pitch': {   'joint_names_expr': ['shoulder_pitch'],
                                            'stiffness': 400.0,
                                            'damping': 40.0,
-                                           'effort_limit_sim': 40.0,
-                                           'velocity_limit_sim': 2.5,
+                                           'joint_effort_limit': 40.0,
+                                           'joint_velocity_limit': 2.5,
                                            'armature': None,
                                            'friction': None},
                      'elbow': {   'joint_names_expr': ['elbow'],
                                   'stiffness': 100.0,
                                   'damping': 10.0,
-                                  'effort_limit_sim': 20.0,
-                                  'velocity_limit_sim': 3.0,
+                                  'joint_effort_limit': 20.0,
+                                  'joint_velocity_limit': 3.0,
                                   'armature': None,
                                   'friction': None},
                      'wrist_roll': {   'joint_names_expr': ['wrist_roll'],
                                        'stiffness': 100.0,
                                        'damping': 10.0,
-                                       'effort_limit_sim': 5.0,
-                                       'velocity_limit_sim': 4.0,
+                                       'joint_effort_limit': 5.0,
+                                       'joint_velocity_limit': 4.0,
                                        'armature': None,
                                        'friction': None},
                      'finger_left_joint': {   'joint_names_expr': ['finger_left_joint'],
                                               'stiffness': 100.0,
                                               'damping': 10.0,
-                                              'effort_limit_sim': 10.0,
-                                              'velocity_limit_sim': 0.2,
+                                              'joint_effort_limit': 10.0,
+                                              'joint_velocity_limit': 0.2,
                                               'armature': None,
                                               'friction': None}}}
+# The identity rotation in ROBOT's quaternion order (written for Isaac Lab 3.x).
+ROBOT_IDENTITY = (0.0, 0.0, 0.0, 1.0)
 
 
 def _fit(cls: Any, values: dict[str, Any], aliases: dict[str, tuple[str, ...]]) -> Any:
@@ -70,17 +74,36 @@ def _fit(cls: Any, values: dict[str, Any], aliases: dict[str, tuple[str, ...]]) 
     fields = {f.name for f in dataclasses.fields(cls)} if dataclasses.is_dataclass(cls) else set()
     kwargs: dict[str, Any] = {}
     for key, value in values.items():
-        for name in (key, *aliases.get(key, ())):
+        # 3.x keeps the 2.x limit names as deprecated aliases: the current name wins where it exists.
+        names = (*aliases.get(key, ()), key) if key in _DEPRECATED else (key, *aliases.get(key, ()))
+        for name in names:
             if not fields or name in fields:
                 kwargs[name] = value
                 break
     return cls(**kwargs)
 
 
+_DEPRECATED = {"effort_limit_sim", "velocity_limit_sim"}
+# The solver-level limits: Isaac Lab 3.x names first, 2.x names second.
 _ALIASES = {
-    "effort_limit_sim": ("actuator_effort_limit", "effort_limit"),
-    "velocity_limit_sim": ("actuator_velocity_limit", "velocity_limit"),
+    "joint_effort_limit": ("effort_limit_sim",),
+    "joint_velocity_limit": ("velocity_limit_sim",),
+    "effort_limit_sim": ("joint_effort_limit",),
+    "velocity_limit_sim": ("joint_velocity_limit",),
 }
+
+
+def _spawn_rotation(state_cfg: Any) -> tuple[float, ...]:
+    """``ROBOT``'s rotation in the order the installed Isaac Lab reads: its ``InitialStateCfg``
+    default is the identity, (0, 0, 0, 1) in 3.x (x, y, z, w) and (1, 0, 0, 0) in 2.x (w, x, y, z)."""
+    rot = tuple(ROBOT["init_state"]["rot"])
+    try:  # Isaac Lab's configclasses keep field defaults on instances, not on the class
+        default = tuple(state_cfg().rot)
+    except Exception:
+        default = tuple(getattr(state_cfg, "rot", ROBOT_IDENTITY))
+    if default == ROBOT_IDENTITY:
+        return rot
+    return (rot[3], rot[0], rot[1], rot[2]) if ROBOT["quaternion_order"] == "xyzw" else (rot[1], rot[2], rot[3], rot[0])
 
 
 def make_articulation_cfg(usd_path: str = USD_PATH) -> Any:
@@ -104,7 +127,9 @@ def make_articulation_cfg(usd_path: str = USD_PATH) -> Any:
                 fix_root_link=art["fix_root_link"],
             ),
         ),
-        init_state=ArticulationCfg.InitialStateCfg(**ROBOT["init_state"]),
+        init_state=ArticulationCfg.InitialStateCfg(
+            **{**ROBOT["init_state"], "rot": _spawn_rotation(ArticulationCfg.InitialStateCfg)}
+        ),
         actuators=actuators,
     )
 

@@ -16,8 +16,10 @@ USD_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'IsaacSimRob
 
 ROBOT: dict[str, Any] = {   'name': 'IsaacSimRobotArm',
     'fix_base': True,
+    'isaac_lab_version': '3',
+    'quaternion_order': 'xyzw',
     'init_state': {   'pos': (0.0, 0.0, 0.05),
-                      'rot': (1.0, 0.0, 0.0, 0.0),
+                      'rot': (0.0, 0.0, 0.0, 1.0),
                       'joint_pos': {'ShoulderJoint_joint': 0.0, 'ElbowJoint_joint': 0.0},
                       'joint_vel': {'.*': 0.0}},
     'articulation': {   'enabled_self_collisions': False,
@@ -27,17 +29,19 @@ ROBOT: dict[str, Any] = {   'name': 'IsaacSimRobotArm',
     'actuators': {   'ShoulderJoint_joint': {   'joint_names_expr': ['ShoulderJoint_joint'],
                                                 'stiffness': 100.0,
                                                 'damping': 1.0,
-                                                'effort_limit_sim': 10.0,
-                                                'velocity_limit_sim': 2.0,
+                                                'joint_effort_limit': 10.0,
+                                                'joint_velocity_limit': 2.0,
                                                 'armature': None,
                                                 'friction': 0.1},
                      'ElbowJoint_joint': {   'joint_names_expr': ['ElbowJoint_joint'],
                                              'stiffness': 100.0,
                                              'damping': 1.0,
-                                             'effort_limit_sim': 5.0,
-                                             'velocity_limit_sim': 1.5,
+                                             'joint_effort_limit': 5.0,
+                                             'joint_velocity_limit': 1.5,
                                              'armature': None,
                                              'friction': 0.05}}}
+# The identity rotation in ROBOT's quaternion order (written for Isaac Lab 3.x).
+ROBOT_IDENTITY = (0.0, 0.0, 0.0, 1.0)
 
 
 def _fit(cls: Any, values: dict[str, Any], aliases: dict[str, tuple[str, ...]]) -> Any:
@@ -45,17 +49,36 @@ def _fit(cls: Any, values: dict[str, Any], aliases: dict[str, tuple[str, ...]]) 
     fields = {f.name for f in dataclasses.fields(cls)} if dataclasses.is_dataclass(cls) else set()
     kwargs: dict[str, Any] = {}
     for key, value in values.items():
-        for name in (key, *aliases.get(key, ())):
+        # 3.x keeps the 2.x limit names as deprecated aliases: the current name wins where it exists.
+        names = (*aliases.get(key, ()), key) if key in _DEPRECATED else (key, *aliases.get(key, ()))
+        for name in names:
             if not fields or name in fields:
                 kwargs[name] = value
                 break
     return cls(**kwargs)
 
 
+_DEPRECATED = {"effort_limit_sim", "velocity_limit_sim"}
+# The solver-level limits: Isaac Lab 3.x names first, 2.x names second.
 _ALIASES = {
-    "effort_limit_sim": ("actuator_effort_limit", "effort_limit"),
-    "velocity_limit_sim": ("actuator_velocity_limit", "velocity_limit"),
+    "joint_effort_limit": ("effort_limit_sim",),
+    "joint_velocity_limit": ("velocity_limit_sim",),
+    "effort_limit_sim": ("joint_effort_limit",),
+    "velocity_limit_sim": ("joint_velocity_limit",),
 }
+
+
+def _spawn_rotation(state_cfg: Any) -> tuple[float, ...]:
+    """``ROBOT``'s rotation in the order the installed Isaac Lab reads: its ``InitialStateCfg``
+    default is the identity, (0, 0, 0, 1) in 3.x (x, y, z, w) and (1, 0, 0, 0) in 2.x (w, x, y, z)."""
+    rot = tuple(ROBOT["init_state"]["rot"])
+    try:  # Isaac Lab's configclasses keep field defaults on instances, not on the class
+        default = tuple(state_cfg().rot)
+    except Exception:
+        default = tuple(getattr(state_cfg, "rot", ROBOT_IDENTITY))
+    if default == ROBOT_IDENTITY:
+        return rot
+    return (rot[3], rot[0], rot[1], rot[2]) if ROBOT["quaternion_order"] == "xyzw" else (rot[1], rot[2], rot[3], rot[0])
 
 
 def make_articulation_cfg(usd_path: str = USD_PATH) -> Any:
@@ -79,7 +102,9 @@ def make_articulation_cfg(usd_path: str = USD_PATH) -> Any:
                 fix_root_link=art["fix_root_link"],
             ),
         ),
-        init_state=ArticulationCfg.InitialStateCfg(**ROBOT["init_state"]),
+        init_state=ArticulationCfg.InitialStateCfg(
+            **{**ROBOT["init_state"], "rot": _spawn_rotation(ArticulationCfg.InitialStateCfg)}
+        ),
         actuators=actuators,
     )
 

@@ -16,8 +16,10 @@ USD_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'spirit.usda
 
 ROBOT: dict[str, Any] = {   'name': 'spirit',
     'fix_base': False,
+    'isaac_lab_version': '3',
+    'quaternion_order': 'xyzw',
     'init_state': {   'pos': (0.0, 0.0, 0.3),
-                      'rot': (1.0, 0.0, 0.0, 0.0),
+                      'rot': (0.0, 0.0, 0.0, 1.0),
                       'joint_pos': {   'j_abad_0': 0.0,
                                        'j_hip_0': 0.0,
                                        'j_knee_0': 0.0,
@@ -45,8 +47,8 @@ ROBOT: dict[str, Any] = {   'name': 'spirit',
                                                             'j_hip_3'],
                                     'stiffness': 0.0,
                                     'damping': 0.0,
-                                    'effort_limit_sim': 21.0,
-                                    'velocity_limit_sim': 37.7,
+                                    'joint_effort_limit': 21.0,
+                                    'joint_velocity_limit': 37.7,
                                     'armature': 0.0044316,
                                     'friction': 0.0},
                      'j_knee': {   'joint_names_expr': [   'j_knee_0',
@@ -55,10 +57,12 @@ ROBOT: dict[str, Any] = {   'name': 'spirit',
                                                            'j_knee_3'],
                                    'stiffness': 0.0,
                                    'damping': 0.0,
-                                   'effort_limit_sim': 32.0,
-                                   'velocity_limit_sim': 25.1,
+                                   'joint_effort_limit': 32.0,
+                                   'joint_velocity_limit': 25.1,
                                    'armature': 0.0177264,
                                    'friction': 0.0}}}
+# The identity rotation in ROBOT's quaternion order (written for Isaac Lab 3.x).
+ROBOT_IDENTITY = (0.0, 0.0, 0.0, 1.0)
 
 
 def _fit(cls: Any, values: dict[str, Any], aliases: dict[str, tuple[str, ...]]) -> Any:
@@ -66,17 +70,36 @@ def _fit(cls: Any, values: dict[str, Any], aliases: dict[str, tuple[str, ...]]) 
     fields = {f.name for f in dataclasses.fields(cls)} if dataclasses.is_dataclass(cls) else set()
     kwargs: dict[str, Any] = {}
     for key, value in values.items():
-        for name in (key, *aliases.get(key, ())):
+        # 3.x keeps the 2.x limit names as deprecated aliases: the current name wins where it exists.
+        names = (*aliases.get(key, ()), key) if key in _DEPRECATED else (key, *aliases.get(key, ()))
+        for name in names:
             if not fields or name in fields:
                 kwargs[name] = value
                 break
     return cls(**kwargs)
 
 
+_DEPRECATED = {"effort_limit_sim", "velocity_limit_sim"}
+# The solver-level limits: Isaac Lab 3.x names first, 2.x names second.
 _ALIASES = {
-    "effort_limit_sim": ("actuator_effort_limit", "effort_limit"),
-    "velocity_limit_sim": ("actuator_velocity_limit", "velocity_limit"),
+    "joint_effort_limit": ("effort_limit_sim",),
+    "joint_velocity_limit": ("velocity_limit_sim",),
+    "effort_limit_sim": ("joint_effort_limit",),
+    "velocity_limit_sim": ("joint_velocity_limit",),
 }
+
+
+def _spawn_rotation(state_cfg: Any) -> tuple[float, ...]:
+    """``ROBOT``'s rotation in the order the installed Isaac Lab reads: its ``InitialStateCfg``
+    default is the identity, (0, 0, 0, 1) in 3.x (x, y, z, w) and (1, 0, 0, 0) in 2.x (w, x, y, z)."""
+    rot = tuple(ROBOT["init_state"]["rot"])
+    try:  # Isaac Lab's configclasses keep field defaults on instances, not on the class
+        default = tuple(state_cfg().rot)
+    except Exception:
+        default = tuple(getattr(state_cfg, "rot", ROBOT_IDENTITY))
+    if default == ROBOT_IDENTITY:
+        return rot
+    return (rot[3], rot[0], rot[1], rot[2]) if ROBOT["quaternion_order"] == "xyzw" else (rot[1], rot[2], rot[3], rot[0])
 
 
 def make_articulation_cfg(usd_path: str = USD_PATH) -> Any:
@@ -100,7 +123,9 @@ def make_articulation_cfg(usd_path: str = USD_PATH) -> Any:
                 fix_root_link=art["fix_root_link"],
             ),
         ),
-        init_state=ArticulationCfg.InitialStateCfg(**ROBOT["init_state"]),
+        init_state=ArticulationCfg.InitialStateCfg(
+            **{**ROBOT["init_state"], "rot": _spawn_rotation(ArticulationCfg.InitialStateCfg)}
+        ),
         actuators=actuators,
     )
 

@@ -1,0 +1,138 @@
+"""Spawn a robodesc Isaac folder in Isaac Lab 3.0 (kit-less, Newton MJWarp backend, CPU).
+
+Runs inside the Isaac Lab consumer environment (Python 3.12, ``isaaclab`` with torch). The folder's
+``<robot>_isaaclab.py`` builds a real ``ArticulationCfg``; the robot spawns above a local ground box
+(the stock ground plane is downloaded from the internet), steps 100 times, and must stay upright;
+its stiffness, damping, armature and joint limits must read back as the module wrote them.
+Writes one JSON object to ``--out``: ``{"status": "pass" | "fail: why", "checks": {...}}``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import runpy
+import traceback
+from typing import Any
+
+
+def run(folder: str, steps: int) -> dict[str, object]:
+    from isaaclab.sim import SimulationCfg
+    from isaaclab.test.utils import launch_test_simulation
+    from isaaclab_newton.physics import MJWarpSolverCfg, NewtonCfg
+
+    sim_cfg = SimulationCfg(
+        dt=1 / 200,
+        device="cpu",
+        physics=NewtonCfg(solver_cfg=MJWarpSolverCfg(njmax=300, nconmax=300, integrator="implicitfast")),
+    )
+    # A Newton physics config selects the kit-less runtime (no Isaac Sim, no GPU).
+    launch_test_simulation(sim_cfg, device="cpu")
+
+    import isaaclab.sim as sim_utils
+    import torch
+    from isaaclab.assets import Articulation, AssetBaseCfg
+    from isaaclab.cloner import CloneCfg, clone_plan_from_env_0, replicate
+    from isaaclab.sim import build_simulation_context
+    from isaaclab.utils import replace
+
+    module_path = next(os.path.join(folder, n) for n in os.listdir(folder) if n.endswith("_isaaclab.py"))
+    module = runpy.run_path(module_path)
+    cfg = module["ROBOT_CFG"]
+    data = module["ROBOT"]
+    if cfg is None:
+        return {"status": "fail: the module did not build an ArticulationCfg", "checks": {}}
+    floating = not data["fix_base"]
+    # Spawn high enough that a floating robot falls onto the box rather than into it.
+    pos = (0.0, 0.0, 0.6 if floating else 0.0)
+    cfg = replace(cfg, prim_path="/World/Env_[^/]*/Robot")
+    cfg.init_state.pos = pos
+    checks: dict[str, object] = {}
+    with build_simulation_context(sim_cfg=sim_cfg, device="cpu", add_ground_plane=False) as sim:
+        # The ground is a static box declared like any asset, so the clone plan puts it in the model.
+        ground = AssetBaseCfg(
+            prim_path="/World/Ground",
+            spawn=sim_utils.CuboidCfg(size=(20.0, 20.0, 0.1), collision_props=sim_utils.CollisionPropertiesCfg()),
+            init_state=AssetBaseCfg.InitialStateCfg(pos=(0.0, 0.0, -0.05)),
+        )
+        ground.spawn.func("/World/Ground", ground.spawn, translation=(0.0, 0.0, -0.05))
+        # One environment, cloned the way Isaac Lab's own articulation tests do it.
+        sim_utils.create_prim("/World/Env_0", "Xform", translation=(0.0, 0.0, 0.0))
+        clone_plan_from_env_0(CloneCfg(clone_template="/World/Env_{}"), [cfg, ground], 1, 2.5)
+        robot = Articulation(cfg)
+        replicate(sim.get_clone_plan())
+        sim.reset()
+        start_quat = robot.data.root_quat_w.clone() if hasattr(robot.data, "root_quat_w") else None
+        for _ in range(steps):
+            robot.write_data_to_sim()
+            sim.step()
+            robot.update(sim.get_physics_dt())
+        quat = _torch(robot.data.root_quat_w)[0]  # (x, y, z, w) in 3.0
+        # The body's up axis in the world: z of R(q) e_z; upright = close to +1.
+        x, y = float(quat[0]), float(quat[1])
+        up = 1.0 - 2.0 * (x * x + y * y)
+        checks["root_up_z"] = up
+        checks["root_pos"] = [float(v) for v in _torch(robot.data.root_pos_w)[0]]
+        checks["finite"] = bool(torch.isfinite(_torch(robot.data.joint_pos)).all())
+        names = list(robot.joint_names)
+        stiffness = _torch(robot.data.joint_stiffness)[0]
+        damping = _torch(robot.data.joint_damping)[0]
+        armature = _torch(robot.data.joint_armature)[0]
+        limits = _torch(robot.data.joint_pos_limits)[0]
+        worst = {"stiffness": 0.0, "damping": 0.0, "armature": 0.0}
+        for group in data["actuators"].values():
+            for expr in group["joint_names_expr"]:
+                name = expr.replace("\\", "")
+                if name not in names:
+                    continue
+                i = names.index(name)
+                for key, values in (("stiffness", stiffness), ("damping", damping), ("armature", armature)):
+                    want = group.get(key) or 0.0
+                    worst[key] = max(worst[key], abs(float(values[i]) - want) / max(1.0, abs(want)))
+        checks["gain_errors"] = worst
+        checks["limits_finite"] = int(torch.isfinite(limits).all(dim=-1).sum())
+        del start_quat
+    problems = []
+    if not checks["finite"]:
+        problems.append("joint state not finite")
+    if up < 0.9:
+        problems.append(f"root not upright (up·z = {up:.3f})")
+    if floating and checks["root_pos"][2] < 0.0:
+        problems.append(f"fell through the ground (root z = {checks['root_pos'][2]:.3f} m)")
+    bad = {k: v for k, v in worst.items() if v > 1e-4}
+    if bad:
+        problems.append(f"read back differs: {bad}")
+    return {"status": "pass" if not problems else "fail: " + "; ".join(problems), "checks": checks}
+
+
+def _torch(value: object) -> Any:  # torch.Tensor; a warp array is converted
+    import torch
+
+    if isinstance(value, torch.Tensor):
+        return value
+    import warp as wp
+
+    return wp.to_torch(value)
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--folder", required=True, help="robodesc's --isaac-sim folder")
+    ap.add_argument("--steps", type=int, default=100)
+    ap.add_argument("--out", required=True)
+    args = ap.parse_args(argv)
+    try:
+        result = run(os.path.abspath(args.folder), args.steps)
+    except Exception as exc:  # the failure is the result
+        result = {
+            "status": f"fail: {type(exc).__name__}: {str(exc)[:300]}",
+            "traceback": traceback.format_exc()[-3000:],
+        }
+    with open(args.out, "w", encoding="utf-8") as f:
+        f.write(json.dumps(result, default=str) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,506 @@
+"""Compare what Newton builds from robodesc's USD with what it builds from the source URDF.
+
+Runs inside the Newton consumer environment (Python >= 3.10 with ``newton[importers,sim]``),
+never inside robodesc's own. One robot per call; prints one JSON object on standard output:
+
+    python newton_check.py --urdf SRC.urdf --usd OUT.usda [--floating] [--stiffness K] [--damping D]
+
+Each check is ``{"name", "ok", "worst", "where", "detail"}``; ``status`` is ``pass`` or
+``fail: <first failing checks>``. The reference is Newton's own ``add_urdf`` of the source, with the
+same drive gains robodesc was asked for, so every difference is a difference in what robodesc wrote.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import sys
+import traceback
+import warnings
+
+import numpy as np
+
+SIM_DT = 0.002
+
+
+def _short(label: str) -> str:
+    """``panda/panda_link1`` and ``/panda/panda_link1`` and ``/panda/joints/j`` -> the last name."""
+    return label.rstrip("/").split("/")[-1]
+
+
+def _build(kind: str, path: str, args: argparse.Namespace, names: set[str] | None = None):
+    import newton
+
+    builder = newton.ModelBuilder()
+    # URDF carries no drive gains: give Newton the ones robodesc wrote to the USD.
+    builder.default_joint_cfg.target_ke = args.stiffness
+    builder.default_joint_cfg.target_kd = args.damping
+    info: dict = {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        if kind == "urdf":
+            builder.add_urdf(
+                _without_geometry(path),
+                floating=args.floating,
+                enable_self_collisions=False,
+                package_dirs=args.package_dir or None,
+            )
+        else:
+            stage = path
+            if args.variant:
+                from pxr import Usd
+
+                stage = Usd.Stage.Open(path)
+                vset = stage.GetDefaultPrim().GetVariantSets().GetVariantSet("Physics")
+                vset.SetVariantSelection(args.variant)
+            info = builder.add_usd(stage, enable_self_collisions=False, load_visual_shapes=False)
+    model = builder.finalize(device="cpu")
+    if kind == "usd":
+        _rename_to_display_names(model, path if isinstance(stage, str) else stage, names or set())
+    return builder, model, info
+
+
+def _without_geometry(path: str) -> str:
+    """The URDF's text without visuals and colliders: the comparison runs without contacts and
+    masses come from <inertial>, and Newton's own mesh reader refuses some corpus meshes
+    (anymal's foot DAE) that robodesc reads."""
+    import xml.etree.ElementTree as ET
+
+    tree = ET.parse(path)
+    for link in tree.getroot().iter("link"):
+        for tag in ("visual", "collision"):
+            for el in link.findall(tag):
+                link.remove(el)
+    return ET.tostring(tree.getroot(), encoding="unicode")
+
+
+def _rename_to_display_names(model, stage, names: set[str]) -> None:
+    """robodesc sanitises names for USD and keeps the original as ``displayName``: a prim whose
+    name the reference does not know is compared by its display name (the Isaac folder's URDF is
+    sanitised too, so there the prim name matches)."""
+    from pxr import Usd
+
+    if isinstance(stage, str):
+        stage = Usd.Stage.Open(stage)
+    for labels in (model.body_label, model.joint_label):
+        for i, label in enumerate(labels):
+            prim = stage.GetPrimAtPath(label) if label.startswith("/") else None
+            if prim is not None and prim.IsValid():
+                shown = prim.GetMetadata("displayName")
+                if shown and _short(label) not in names:
+                    labels[i] = label.rsplit("/", 1)[0] + "/" + shown
+
+
+class Report:
+    def __init__(self) -> None:
+        self.checks: list[dict] = []
+
+    def add(self, name: str, ok: bool, worst: float | None = None, where: str = "", detail: str = "") -> None:
+        self.checks.append(
+            {
+                "name": name,
+                "ok": bool(ok),
+                "worst": None if worst is None else float(worst),
+                "where": where,
+                "detail": detail,
+            }
+        )
+
+    def compare(self, name: str, pairs: list[tuple[str, float, float]], rtol: float, atol: float) -> None:
+        """Worst |a - b| - (atol + rtol |a|) over named pairs; infinities must match exactly."""
+        worst, where, ok = 0.0, "", True
+        for label, a, b in pairs:
+            a, b = float(a), float(b)
+            if math.isinf(a) or math.isinf(b) or a >= 1e5 or b >= 1e5:
+                # Newton's "unlimited" is 1e6 (velocity, effort) or inf: both must be unlimited.
+                big_a, big_b = math.isinf(a) or a >= 1e5, math.isinf(b) or b >= 1e5
+                if big_a != big_b:
+                    ok, where, worst = False, f"{label}: urdf {a:g} usd {b:g}", math.inf
+                continue
+            err = abs(a - b)
+            if err > atol + rtol * abs(a):
+                ok = False
+                if err > worst or where == "" or worst == 0.0:
+                    worst, where = err, f"{label}: urdf {a:.6g} usd {b:.6g}"
+            elif ok and err > worst:
+                worst, where = err, label
+        self.add(name, ok, worst, where)
+
+
+def _dof_table(builder, model, skip_base: bool) -> dict[str, list[int]]:
+    """Joint name -> its DOF indices (the base joint left out)."""
+    starts = model.joint_qd_start.numpy()
+    out: dict[str, list[int]] = {}
+    for j, label in enumerate(model.joint_label):
+        lo, hi = int(starts[j]), int(starts[j + 1])
+        if skip_base and j == 0 and int(model.joint_parent.numpy()[j]) == -1:
+            continue
+        out[_short(label)] = list(range(lo, hi))
+    return out
+
+
+def _coord_table(model) -> dict[str, list[int]]:
+    starts = model.joint_q_start.numpy()
+    return {_short(label): list(range(int(starts[j]), int(starts[j + 1]))) for j, label in enumerate(model.joint_label)}
+
+
+def check(args: argparse.Namespace) -> dict:
+    import newton
+
+    rep = Report()
+    bu, mu, _ = _build("urdf", args.urdf, args)
+    known = {_short(x) for x in (*mu.body_label, *mu.joint_label)}
+    bs, ms, _ = _build("usd", args.usd, args, known)
+
+    # --- structure ------------------------------------------------------------------------
+    bodies_u = [_short(b) for b in mu.body_label]
+    bodies_s = [_short(b) for b in ms.body_label]
+    rep.add(
+        "bodies",
+        sorted(bodies_u) == sorted(bodies_s),
+        detail=f"urdf {len(bodies_u)} usd {len(bodies_s)}"
+        + (
+            ""
+            if sorted(bodies_u) == sorted(bodies_s)
+            else f"; only urdf {sorted(set(bodies_u) - set(bodies_s))[:5]}, only usd {sorted(set(bodies_s) - set(bodies_u))[:5]}"
+        ),
+    )
+    base_u = [j for j in range(mu.joint_count) if int(mu.joint_parent.numpy()[j]) == -1]
+    base_s = [j for j in range(ms.joint_count) if int(ms.joint_parent.numpy()[j]) == -1]
+    jt_u = mu.joint_type.numpy()
+    jt_s = ms.joint_type.numpy()
+    base_types_u = sorted(int(jt_u[j]) for j in base_u)
+    base_types_s = sorted(int(jt_s[j]) for j in base_s)
+    rep.add("base joint", base_types_u == base_types_s, detail=f"urdf {base_types_u} usd {base_types_s}")
+    joints_u = {_short(mu.joint_label[j]): int(jt_u[j]) for j in range(mu.joint_count) if j not in base_u}
+    joints_s = {_short(ms.joint_label[j]): int(jt_s[j]) for j in range(ms.joint_count) if j not in base_s}
+    rep.add(
+        "joints",
+        set(joints_u) == set(joints_s),
+        detail=f"urdf {len(joints_u)} usd {len(joints_s)}"
+        + (
+            ""
+            if set(joints_u) == set(joints_s)
+            else f"; only urdf {sorted(set(joints_u) - set(joints_s))[:5]}, only usd {sorted(set(joints_s) - set(joints_u))[:5]}"
+        ),
+    )
+    rep.add(
+        "dof", mu.joint_dof_count == ms.joint_dof_count, detail=f"urdf {mu.joint_dof_count} usd {ms.joint_dof_count}"
+    )
+    bad_types = [n for n in joints_u if n in joints_s and joints_u[n] != joints_s[n]]
+    rep.add("joint types", not bad_types, where=", ".join(bad_types[:5]))
+    if not rep.checks[0]["ok"] or not rep.checks[2]["ok"] or bad_types:
+        return _finish(rep)
+
+    # --- mass properties ------------------------------------------------------------------
+    bi_u = {n: i for i, n in enumerate(bodies_u)}
+    bi_s = {n: i for i, n in enumerate(bodies_s)}
+    mass_u, mass_s = mu.body_mass.numpy(), ms.body_mass.numpy()
+    com_u, com_s = mu.body_com.numpy(), ms.body_com.numpy()
+    in_u, in_s = mu.body_inertia.numpy(), ms.body_inertia.numpy()
+    # UsdPhysics cannot say "zero mass" (0 means "compute it from the colliders"), and a zero
+    # tensor means the same: such source bodies are counted, not compared.
+    massless = [n for n in bodies_u if float(mass_u[bi_u[n]]) == 0.0]
+    no_tensor = [n for n in bodies_u if n not in massless and not np.any(in_u[bi_u[n]])]
+    weighed = [n for n in bodies_u if n not in massless]
+    rep.compare("mass", [(n, mass_u[bi_u[n]], mass_s[bi_s[n]]) for n in weighed], 1e-6, 1e-9)
+    if massless or no_tensor:
+        rep.checks[-1]["detail"] = (
+            f"{len(massless)} massless and {len(no_tensor)} zero-tensor source bodies not compared "
+            "(UsdPhysics reads 0 as 'compute from colliders')"
+        )
+    rep.compare(
+        "com", [(f"{n}[{k}]", com_u[bi_u[n]][k], com_s[bi_s[n]][k]) for n in weighed for k in range(3)], 0, 1e-6
+    )
+    inertia_pairs = []
+    for n in weighed:
+        if n in no_tensor:
+            continue
+        a, b = in_u[bi_u[n]], in_s[bi_s[n]]
+        scale = max(float(np.abs(a).max()), 1e-12)
+        for r in range(3):
+            for c in range(3):
+                # Relative to the body's largest moment: principal axes are float32 quaternions.
+                inertia_pairs.append((f"{n}[{r}{c}]", a[r][c] / scale, b[r][c] / scale))
+    rep.compare("inertia", inertia_pairs, 0, 2e-5)
+
+    # --- per-DOF parameters ---------------------------------------------------------------
+    dofs_u = _dof_table(bu, mu, skip_base=True)
+    dofs_s = _dof_table(bs, ms, skip_base=True)
+    mimic_u = (
+        {_short(mu.joint_label[j]) for j in range(mu.joint_count) if int(mu.joint_mimic_joint.numpy()[j]) >= 0}
+        if mu.joint_mimic_joint is not None
+        else set()
+    )
+    names = [n for n in dofs_u if n in dofs_s and len(dofs_u[n]) == len(dofs_s[n])]
+    # Newton's add_urdf gives a mimic follower the same position drive as every joint, which pulls
+    # it against its mimic constraint; robodesc's USD (like Isaac Sim's importer) gives it a drive
+    # without gains. For the runs below the URDF side's follower drives get the USD's gains.
+    if mimic_u:
+        ke, kd = mu.joint_target_ke.numpy(), mu.joint_target_kd.numpy()
+        mode = mu.joint_target_mode.numpy()
+        ke_s, kd_s, mode_s = ms.joint_target_ke.numpy(), ms.joint_target_kd.numpy(), ms.joint_target_mode.numpy()
+        for n in mimic_u:
+            if n in names:
+                for i, j in zip(dofs_u[n], dofs_s[n], strict=True):
+                    ke[i], kd[i], mode[i] = ke_s[j], kd_s[j], mode_s[j]
+        mu.joint_target_ke.assign(ke)
+        mu.joint_target_kd.assign(kd)
+        mu.joint_target_mode.assign(mode)
+
+    def pairs(attr: str, scale: float = 1.0, only=None):
+        a_u, a_s = getattr(mu, attr).numpy(), getattr(ms, attr).numpy()
+        out = []
+        for n in names:
+            if only is not None and not only(n):
+                continue
+            for k, (i, j) in enumerate(zip(dofs_u[n], dofs_s[n], strict=True)):
+                out.append((f"{n}[{k}]" if len(dofs_u[n]) > 1 else n, a_u[i] * scale, a_s[j] * scale))
+        return out
+
+    # Limits: degrees in float32 on the USD side.
+    lo_pairs, hi_pairs = pairs("joint_limit_lower"), pairs("joint_limit_upper")
+    # A continuous joint: Newton's add_urdf leaves it at lower = upper = 0, or keeps the <limit> a
+    # continuous joint may carry (URDF says to ignore it; kinova's +-2 pi), where add_usd has +-1e10.
+    unlimited = {
+        n
+        for (n, a, b), (_, c, d) in zip(lo_pairs, hi_pairs, strict=True)
+        if b <= -1e9 and d >= 1e9 and ((a == c == 0.0) or (a <= -6.283 and c >= 6.283))
+    }
+    rep.compare("limits lower", [p for p in lo_pairs if p[0] not in unlimited], 2e-6, 1e-6)
+    rep.compare("limits upper", [p for p in hi_pairs if p[0] not in unlimited], 2e-6, 1e-6)
+    driven = lambda n: n not in mimic_u  # noqa: E731
+    rep.compare("drive stiffness", pairs("joint_target_ke", only=driven), 1e-5, 1e-9)
+    rep.compare("drive damping", pairs("joint_target_kd", only=driven), 1e-5, 1e-9)
+    mode_u, mode_s = mu.joint_target_mode.numpy(), ms.joint_target_mode.numpy()
+    bad_modes = [
+        n
+        for n in names
+        if driven(n) and any(int(mode_u[i]) != int(mode_s[j]) for i, j in zip(dofs_u[n], dofs_s[n], strict=True))
+    ]
+    rep.add("drive modes", not bad_modes, where=", ".join(bad_modes[:5]))
+    rep.compare("armature", pairs("joint_armature"), 1e-5, 1e-12)
+    rep.compare("passive damping", pairs("joint_damping"), 1e-5, 1e-12)
+    rep.compare("friction", pairs("joint_friction"), 1e-5, 1e-12)
+    # URDF velocity 0 is a placeholder too (robodesc writes no velocity limit for it).
+    vel_pairs = pairs("joint_velocity_limit")
+    zero_velocity = [p for p in vel_pairs if p[1] == 0.0 and p[2] >= 1e5]
+    rep.compare("velocity limit", [p for p in vel_pairs if p not in zero_velocity], 1e-5, 1e-9)
+    if zero_velocity:
+        rep.checks[-1]["detail"] = f"{len(zero_velocity)} DOFs with URDF velocity 0 read as 'not given'"
+    # URDF effort 0 is a placeholder: UsdPhysics (and Isaac Sim's importer) write no maxForce for
+    # it, Newton's add_urdf reads it as "no force". Compared as "not given", and the URDF side
+    # takes the USD's (unlimited) value for the run.
+    eff_u, eff_s = mu.joint_effort_limit.numpy(), ms.joint_effort_limit.numpy()
+    zero_effort = [n for n in names if all(float(eff_u[i]) == 0.0 for i in dofs_u[n])]
+    for n in zero_effort:
+        for i, j in zip(dofs_u[n], dofs_s[n], strict=True):
+            eff_u[i] = eff_s[j]
+    if zero_effort:
+        mu.joint_effort_limit.assign(eff_u)
+    rep.compare("effort limit", pairs("joint_effort_limit"), 1e-6, 1e-9)
+    if zero_effort:
+        rep.checks[-1]["detail"] = f"{len(zero_effort)} joints with URDF effort 0 read as 'not given'"
+
+    # --- forward kinematics at random configurations --------------------------------------
+    coords_u = _coord_table(mu)
+    coords_s = _coord_table(ms)
+    rng = np.random.default_rng(7)
+    lo_u, hi_u = mu.joint_limit_lower.numpy(), mu.joint_limit_upper.numpy()
+    worst, where = 0.0, ""
+    for trial in range(5):
+        q_u = mu.joint_q.numpy().copy()
+        q_s = ms.joint_q.numpy().copy()
+        for n in names:
+            if n not in coords_u or n not in coords_s or len(coords_u[n]) != len(dofs_u[n]):
+                continue  # ball/free joints: coordinates are quaternions, left at rest
+            for ci, cj, d in zip(coords_u[n], coords_s[n], dofs_u[n], strict=True):
+                lo, hi = float(lo_u[d]), float(hi_u[d])
+                lo, hi = max(lo, -math.pi), min(hi, math.pi)
+                v = rng.uniform(lo, hi) if hi > lo else lo
+                q_u[ci] = v
+                q_s[cj] = v
+        su, ss = mu.state(), ms.state()
+        su.joint_q.assign(q_u)
+        ss.joint_q.assign(q_s)
+        newton.eval_fk(mu, su.joint_q, su.joint_qd, su)
+        newton.eval_fk(ms, ss.joint_q, ss.joint_qd, ss)
+        bq_u, bq_s = su.body_q.numpy(), ss.body_q.numpy()
+        for n in bodies_u:
+            a, b = bq_u[bi_u[n]], bq_s[bi_s[n]]
+            e = float(np.linalg.norm(a[:3] - b[:3]))
+            qa, qb = a[3:].astype(np.float64), b[3:].astype(np.float64)
+            # Twice the chord between the unit quaternions: the angle, without acos's noise near 1.
+            ang = 2 * min(float(np.linalg.norm(qa - qb)), float(np.linalg.norm(qa + qb)))
+            e = max(e, ang * 0.1)  # a radian of orientation error counts as 0.1 m
+            if e > worst:
+                worst, where = e, f"{n} (trial {trial})"
+    rep.add("fk", worst <= 1e-5, worst, where)
+
+    # --- 200 steps of SolverMuJoCo, same gains and targets on both ----------------------------
+    if args.steps > 0:
+        rep.checks.extend(_trajectory(mu, ms, names, dofs_u, dofs_s, coords_u, coords_s, bodies_u, bi_u, bi_s, args))
+    return _finish(rep)
+
+
+def _trajectory(mu, ms, names, dofs_u, dofs_s, coords_u, coords_s, bodies_u, bi_u, bi_s, args) -> list[dict]:
+    import newton
+
+    out: list[dict] = []
+    try:
+        solver_s = newton.solvers.SolverMuJoCo(ms, use_mujoco_cpu=True, disable_contacts=True)
+    except Exception as exc:
+        detail = f"{type(exc).__name__}: {exc}"[:300]
+        return [{"name": "mujoco build (USD)", "ok": False, "worst": None, "where": "", "detail": detail}]
+    refused = ""
+    try:
+        solver_u = newton.solvers.SolverMuJoCo(mu, use_mujoco_cpu=True, disable_contacts=True)
+    except Exception as exc:
+        # The reference itself cannot run (a boundary inertia that float32 breaks, say): the USD
+        # still has to run finite, but there is nothing to track.
+        refused = f"{type(exc).__name__}: {exc}".splitlines()[0][:200]
+        solver_u = None
+    su0, su1, ss0, ss1 = mu.state(), mu.state(), ms.state(), ms.state()
+    cu, cs = mu.control(), ms.control()
+    # The USD's initial state and targets (0 clamped into the limits) on both sides.
+    q_u = mu.joint_q.numpy().copy()
+    q_s = ms.joint_q.numpy().copy()
+    t_s = ms.joint_target_q.numpy()
+    tq_u = cu.joint_target_q.numpy().copy() if cu.joint_target_q is not None else None
+    # Positions and position targets are indexed by coordinate (joint_q_start), not by DOF.
+    for n in names:
+        if n in coords_u and n in coords_s and len(coords_u[n]) == len(dofs_u[n]):
+            for ci, cj in zip(coords_u[n], coords_s[n], strict=True):
+                q_u[ci] = q_s[cj]
+                if tq_u is not None:
+                    tq_u[ci] = t_s[cj]
+    su0.joint_q.assign(q_u)
+    if tq_u is not None:
+        cu.joint_target_q.assign(tq_u)
+    newton.eval_fk(mu, su0.joint_q, su0.joint_qd, su0)
+    newton.eval_fk(ms, ss0.joint_q, ss0.joint_qd, ss0)
+    fixed = not args.floating
+    tol = 1e-3 if fixed else 1e-2
+    worst, where, finite = 0.0, "", True
+    for step in range(args.steps):
+        ss0.clear_forces()
+        solver_s.step(ss0, ss1, cs, None, SIM_DT)
+        ss0, ss1 = ss1, ss0
+        bq_s = ss0.body_q.numpy()
+        if not np.all(np.isfinite(bq_s)):
+            finite = False
+            where = f"step {step}"
+            break
+        if solver_u is None:
+            continue
+        su0.clear_forces()
+        solver_u.step(su0, su1, cu, None, SIM_DT)
+        su0, su1 = su1, su0
+        bq_u = su0.body_q.numpy()
+        for n in bodies_u:
+            e = float(np.linalg.norm(bq_u[bi_u[n]][:3] - bq_s[bi_s[n]][:3]))
+            if e > worst:
+                worst, where = e, f"{n} at step {step + 1}"
+    out.append(
+        {"name": "trajectory finite", "ok": finite, "worst": None, "where": where if not finite else "", "detail": ""}
+    )
+    if solver_u is None:
+        detail = f"not compared: MuJoCo refuses the reference URDF ({refused})"
+        out.append({"name": "trajectory", "ok": finite, "worst": None, "where": "", "detail": detail})
+        return out
+    out.append(
+        {
+            "name": f"trajectory ({'fixed' if fixed else 'floating'}, {args.steps} steps)",
+            "ok": finite and worst <= tol,
+            "worst": worst,
+            "where": where,
+            "detail": f"tolerance {tol:g} m",
+        }
+    )
+    return out
+
+
+def _finish(rep: Report) -> dict:
+    failed = [c for c in rep.checks if not c["ok"]]
+    status = (
+        "pass"
+        if not failed
+        else "fail: "
+        + "; ".join(
+            f"{c['name']}"
+            + (f" ({c['where']})" if c["where"] else "")
+            + (f" {c['detail']}" if c["detail"] and not c["where"] else "")
+            for c in failed[:4]
+        )
+    )
+    notes = [c["detail"] for c in rep.checks if c["ok"] and c["detail"].startswith("not compared")]
+    if status == "pass" and notes:
+        status = "pass; trajectory " + notes[0]
+    return {"status": status, "checks": rep.checks}
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--urdf", help="the reference URDF (Newton's add_urdf of it is the reference)")
+    ap.add_argument("--usd", help="robodesc's USD, or an importer's")
+    ap.add_argument("--fallback-urdf", help="reference when Newton refuses --urdf (robodesc's own URDF)")
+    ap.add_argument("--floating", action="store_true", help="the robot floats (no fixed base)")
+    ap.add_argument("--stiffness", type=float, default=100.0, help="SI stiffness robodesc was given")
+    ap.add_argument("--damping", type=float, default=1.0, help="SI drive damping robodesc was given")
+    ap.add_argument("--package-dir", action="append", default=[], help="package roots for package:// URIs")
+    ap.add_argument("--variant", default=None, help="select this Physics variant first (Isaac importer output)")
+    ap.add_argument("--steps", type=int, default=200)
+    ap.add_argument("--cases", help="a JSON list of cases (keys: name, urdf, usd, and the options above)")
+    ap.add_argument("--out", default=None, help="write the JSON here (Warp prints to standard output)")
+    args = ap.parse_args(argv)
+    result: dict = {}
+    if args.cases:
+        with open(args.cases, encoding="utf-8") as f:
+            cases = json.load(f)
+        for case in cases:
+            one = argparse.Namespace(**{**vars(args), "cases": None, **case})
+            result[case["name"]] = _run_case(one)
+    elif args.urdf and args.usd:
+        result = _run_case(args)
+    else:
+        ap.error("give --urdf and --usd, or --cases")
+    text = json.dumps(result)
+    if args.out:
+        with open(args.out, "w", encoding="utf-8") as f:
+            f.write(text + "\n")
+    else:
+        sys.stdout.write(text + "\n")
+    return 0
+
+
+def _run_case(args: argparse.Namespace) -> dict:
+    args.floating = bool(args.floating)
+    reference = "source URDF"
+    try:
+        try:
+            result = check(args)
+        except Exception:
+            if not args.fallback_urdf:
+                raise
+            refused = traceback.format_exc().strip().splitlines()[-1]
+            args.urdf = args.fallback_urdf
+            reference = f"robodesc's URDF (Newton refuses the source: {refused[:200]})"
+            result = check(args)
+    except Exception as exc:  # one robot's failure is its result
+        result = {
+            "status": f"fail: {type(exc).__name__}: {str(exc)[:300]}",
+            "checks": [],
+            "traceback": traceback.format_exc()[-2000:],
+        }
+    result["reference"] = reference
+    return result
+
+
+if __name__ == "__main__":
+    os.environ.setdefault("PXR_WORK_THREAD_LIMIT", "1")
+    import warp as wp
+
+    wp.config.quiet = True
+    raise SystemExit(main())

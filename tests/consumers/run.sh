@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# The consumer tier: build one environment per engine, then load what robodesc writes in each.
+#
+#   tests/consumers/run.sh                      # build what is missing, run every corpus robot
+#   tests/consumers/run.sh --robots panda,a1    # a subset (substring match on corpus names)
+#   ROBODESC_CONSUMERS_ISAACLAB=1 tests/consumers/run.sh   # also build Isaac Lab 3.0 (~8 GB, torch)
+#
+# Environments live outside the repository, in $ROBODESC_CONSUMERS_DIR (default
+# ~/.cache/robodesc-consumers), one virtualenv per engine:
+#   newton/    Python 3.12, newton[importers,sim] 1.8, warp-lang, newton-usd-schemas (CPU)
+#   isaacsim/  Python 3.12, isaacsim-asset-isolated 6.2 (the URDF importer, no Kit, no GPU)
+#   isaaclab/  Python 3.12, isaaclab 3.0 (optional)
+# PYTHON312 names the interpreter used to create them (default: python3.12 on PATH, then pyenv's).
+# robodesc itself runs with the Python that runs this script's driver ($PYTHON, default python).
+# Results: benchmarks/results/consumers.json and consumers.md (see docs/usd.md, "Consumer tier").
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+ENVS="${ROBODESC_CONSUMERS_DIR:-$HOME/.cache/robodesc-consumers}"
+PYTHON="${PYTHON:-python}"
+if [ -z "${PYTHON312:-}" ]; then
+  PYTHON312="$(command -v python3.12 || true)"
+  if [ -z "$PYTHON312" ] && [ -x "$HOME/.pyenv/versions/3.12.1/bin/python" ]; then
+    PYTHON312="$HOME/.pyenv/versions/3.12.1/bin/python"
+  fi
+fi
+[ -n "$PYTHON312" ] || { echo "error: no Python 3.12 (set PYTHON312)" >&2; exit 2; }
+mkdir -p "$ENVS"
+
+build() {  # build NAME PACKAGES...: a venv with these packages, once (a marker file records success)
+  local name="$1"; shift
+  if [ -f "$ENVS/$name/.built" ]; then return; fi
+  echo "building $ENVS/$name: $*"
+  rm -rf "${ENVS:?}/$name"
+  "$PYTHON312" -m venv "$ENVS/$name"
+  "$ENVS/$name/bin/pip" install -q "$@"
+  touch "$ENVS/$name/.built"
+}
+
+build newton "newton[importers,sim]==1.8.0" warp-lang newton-usd-schemas
+build isaacsim "isaacsim-asset-isolated==6.2.0.0"
+if [ "${ROBODESC_CONSUMERS_ISAACLAB:-0}" = "1" ]; then
+  build isaaclab "isaaclab==3.0.0"
+fi
+
+"$PYTHON" tests/consumers/run_tier.py --envs "$ENVS" "$@"

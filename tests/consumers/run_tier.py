@@ -1,0 +1,300 @@
+"""The consumer tier: what robodesc writes, loaded in the engines users run.
+
+    python tests/consumers/run_tier.py --envs ~/.cache/robodesc-consumers [--robots panda,a1] [--resume]
+
+Run it through ``tests/consumers/run.sh``, which builds the engine environments first. For every
+robot of the corpus (``robodesc.validation.corpora``) it compiles, with this checkout's robodesc,
+``-t usd`` and ``--isaac-sim``, then:
+
+- ``newton``: Newton 1.8 loads the USD (``add_usd``) and the source URDF (``add_urdf``) and
+  newton_check.py compares them (structure, mass properties, FK, limits, drives, armature,
+  damping, friction, velocity and effort limits, a 200-step SolverMuJoCo run);
+- ``newton_isaac``: the same for the Isaac folder's USD against the folder's own URDF;
+- ``isaac_importer``: Isaac Sim 6.2's URDF importer imports the folder's URDF with the folder's
+  ``importer_settings.json``, and Newton compares the imported asset (``physx`` variant) with
+  that URDF.
+
+Each engine has its own environment under ``--envs`` (``newton/``, ``isaacsim/``). Results:
+``benchmarks/results/consumers.json`` (robot -> {"newton", "newton_isaac", "isaac_importer"}:
+"pass" or "fail: why") and ``consumers.md``; per-robot details in ``--work``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from robodesc.validation.corpora import CorpusRobot
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+HERE = os.path.dirname(os.path.abspath(__file__))
+# The robots the issue found the defects on run first.
+FIRST = ("ur5_robot", "panda", "solo12", "a1", "go1", "talos_reduced", "baxter", "allegro_right_hand", "spirit")
+# Legged robots, humanoids and mobile bases float; the rest are fixed to the world.
+FLOATING = re.compile(
+    r"(a1|go1|go2|b1|aliengo|laikago|anymal|solo|bolt|spirit|hyq|mini_cheetah|talos|romeo|valkyrie|icub|ergocub|"
+    r"atlas|g1|h1|upkie|cassie|tiago|pepper|nao|simple_humanoid|human|stretch|centauro|ur5_gripper_on_base)",
+    re.IGNORECASE,
+)
+KINDS = ("newton", "newton_isaac", "isaac_importer")
+# NVIDIA's SimReady physics rules that run on CPU (usd_validation_nvidia, from isacsim's env).
+SIMREADY_RULES = ("MassChecker", "RigidBodyChecker", "PhysicsJointChecker", "ArticulationChecker")
+
+
+def _run(cmd: list[str], timeout: float, log: str) -> subprocess.CompletedProcess[str]:
+    try:
+        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, check=False)
+    except subprocess.TimeoutExpired:
+        proc = subprocess.CompletedProcess(cmd, 124, "", f"timed out after {timeout:g} s")
+    with open(log, "a", encoding="utf-8") as f:
+        f.write("$ " + " ".join(cmd) + f"\n[rc {proc.returncode}]\n{proc.stdout[-4000:]}\n{proc.stderr[-4000:]}\n")
+    return proc
+
+
+def _last_error(proc: subprocess.CompletedProcess[str]) -> str:
+    lines = [x for x in (proc.stderr or proc.stdout).splitlines() if x.strip() and not x.startswith("#")]
+    return (lines[0] if lines else f"exit {proc.returncode}")[:300]
+
+
+def _read_json(path: str) -> dict[str, Any] | None:
+    if not os.path.isfile(path):
+        return None
+    with open(path, encoding="utf-8") as f:
+        data: dict[str, Any] = json.load(f)
+    return data
+
+
+def _compile_flags(robot: CorpusRobot) -> list[str]:
+    flags: list[str] = []
+    for name, path in robot.packages.items():
+        flags += ["--package", f"{name}={path}"]
+    for name, value in robot.xacro_args.items():
+        flags += ["--arg", f"{name}={value}"]
+    return flags
+
+
+def run_robot(robot: CorpusRobot, envs: str, work: str) -> dict[str, object]:
+    name = str(robot.name)
+    slug = re.sub(r"[^A-Za-z0-9_.-]+", "_", name)
+    wdir = os.path.join(work, slug)
+    os.makedirs(wdir, exist_ok=True)
+    log = os.path.join(wdir, "log.txt")
+    open(log, "w").close()
+    source = str(robot.path)
+    floating = bool(FLOATING.search(name))
+    py = [sys.executable, "-m", "robodesc"]
+    flags = _compile_flags(robot) + (["--no-fix-base"] if floating else [])
+    out: dict[str, object] = {"floating": floating}
+    usd = os.path.join(wdir, f"{slug}.usda")
+    extra: list[str] = []
+    proc = _run([*py, "compile", source, "-t", "usd", "-o", usd, "-q", "--no-validate", *flags], 300, log)
+    if proc.returncode != 0 and "--invalid-inertia repair" in (proc.stderr + proc.stdout):
+        # A physically invalid source: convert it the way the hint says, and compare with the
+        # URDF robodesc writes with the same repair (the source itself is what was refused).
+        extra = ["--invalid-inertia", "repair"]
+        out["repaired"] = True
+        proc = _run([*py, "compile", source, "-t", "usd", "-o", usd, "-q", "--no-validate", *flags, *extra], 300, log)
+    if proc.returncode != 0:
+        reason = f"not converted: {_last_error(proc)}"
+        return {**out, **{k: reason for k in KINDS}}
+    own_urdf = os.path.join(wdir, f"{slug}.robodesc.urdf")
+    _run([*py, "compile", source, "-t", "urdf", "-o", own_urdf, "-q", "--no-validate", *flags, *extra], 300, log)
+    reference = source
+    if extra:
+        reference = own_urdf
+    elif not source.endswith(".urdf"):
+        reference = os.path.join(wdir, f"{slug}.source.urdf")
+        exp = _run([*py, "expand", source, *_compile_flags(robot)], 300, log)
+        with open(reference, "w", encoding="utf-8") as f:
+            f.write(exp.stdout)
+    isaac = os.path.join(wdir, "isaac")
+    proc = _run([*py, "compile", source, "--isaac-sim", "-o", isaac, "-q", "--no-validate", *flags, *extra], 300, log)
+    cases: list[dict[str, object]] = []
+    # Newton resolves package:// from the folder that holds each package.
+    package_dirs = sorted({os.path.dirname(os.path.abspath(p)) for p in robot.packages.values()})
+    common = {"floating": floating, "package_dir": package_dirs, "fallback_urdf": own_urdf}
+    cases.append({"name": "newton", "urdf": reference, "usd": usd, **common})
+    if proc.returncode != 0:
+        out["newton_isaac"] = out["isaac_importer"] = f"not converted: {_last_error(proc)}"
+    else:
+        names = [n for n in os.listdir(isaac) if n.endswith(".usda")]
+        isaac_usd = os.path.join(isaac, names[0])
+        isaac_urdf = isaac_usd[: -len(".usda")] + ".urdf"
+        cases.append({"name": "newton_isaac", "urdf": isaac_urdf, "usd": isaac_usd, **common, "fallback_urdf": None})
+        imp_json = os.path.join(wdir, "isaac_import.json")
+        imp = _run(
+            [
+                os.path.join(envs, "isaacsim", "bin", "python"),
+                os.path.join(HERE, "isaac_import.py"),
+                "--urdf",
+                isaac_urdf,
+                "--settings",
+                os.path.join(isaac, "importer_settings.json"),
+                "--out-dir",
+                os.path.join(wdir, "imported"),
+                "--out",
+                imp_json,
+            ],
+            900,
+            log,
+        )
+        imported = _read_json(imp_json)
+        if imported is None or imported.get("status") != "pass":
+            why = imported["status"] if imported else f"fail: importer crashed ({_last_error(imp)})"
+            out["isaac_importer"] = why
+        else:
+            cases.append(
+                {
+                    "name": "isaac_importer",
+                    "urdf": isaac_urdf,
+                    "usd": imported["usd"],
+                    "variant": "physx",
+                    **common,
+                    "fallback_urdf": None,
+                }
+            )
+    cases_path = os.path.join(wdir, "cases.json")
+    with open(cases_path, "w", encoding="utf-8") as f:
+        json.dump(cases, f, indent=1)
+    result_path = os.path.join(wdir, "newton.json")
+    newton = _run(
+        [
+            os.path.join(envs, "newton", "bin", "python"),
+            os.path.join(HERE, "newton_check.py"),
+            "--cases",
+            cases_path,
+            "--out",
+            result_path,
+        ],
+        1800,
+        log,
+    )
+    results = _read_json(result_path) or {}
+    for case in cases:
+        kind = str(case["name"])
+        res = results.get(kind)
+        out[kind] = res["status"] if res else f"fail: Newton crashed ({_last_error(newton)})"
+        if res and res.get("reference", "source URDF") != "source URDF":
+            out[f"{kind}_reference"] = res["reference"]
+    out["simready"] = simready(usd, envs, log)
+    return out
+
+
+def simready(usd: str, envs: str, log: str) -> str:
+    """``nvidia_usd_validate`` with the physics rules: "pass" or "fail: <rule> at <prims>"."""
+    csv_path = usd + ".simready.csv"
+    tool = os.path.join(envs, "isaacsim", "bin", "nvidia_usd_validate")
+    rules = [x for rule in SIMREADY_RULES for x in ("-r", rule)]
+    proc = _run([tool, *rules, "--csv-output", csv_path, usd], 600, log)
+    if not os.path.isfile(csv_path):
+        return f"fail: validator did not run ({_last_error(proc)})"
+    with open(csv_path, encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
+    bad = [r for r in rows if r.get("Severity") in ("Failure", "Error")]
+    if not bad:
+        return "pass"
+    where = ", ".join(sorted({r["Location"].removeprefix("Prim ") for r in bad})[:3])
+    return f"fail: {len(bad)} ({', '.join(sorted({r['Rule'] for r in bad}))}) at {where}"
+
+
+def add_simready(results: dict[str, dict[str, object]], envs: str, work: str) -> None:
+    """The SimReady column for robots already run (their files are in ``work``)."""
+    for name, result in results.items():
+        wdir = os.path.join(work, re.sub(r"[^A-Za-z0-9_.-]+", "_", name))
+        usd = os.path.join(wdir, os.path.basename(wdir) + ".usda")
+        if os.path.isfile(usd) and "simready" not in result:
+            result["simready"] = simready(usd, envs, os.path.join(wdir, "log.txt"))
+
+
+def markdown(results: dict[str, dict[str, object]]) -> str:
+    lines = [
+        "# Consumer tier: robodesc's USD in Newton 1.8 and Isaac Sim 6.2's URDF importer",
+        "",
+        "Written by `tests/consumers/run_tier.py` (see docs/usd.md, 'Consumer tier'). `newton`: the",
+        "`-t usd` output against the source URDF, both loaded by Newton; `newton_isaac`: the `--isaac-sim`",
+        "folder's USD against the folder's URDF; `isaac_importer`: Isaac Sim 6.2's importer on the",
+        "folder's URDF, its `physx` variant loaded by Newton and compared with that URDF.",
+        "",
+    ]
+    counts = {k: sum(1 for r in results.values() if r.get(k) == "pass") for k in KINDS}
+    lines.append(f"{len(results)} robots; pass: " + ", ".join(f"{k} {counts[k]}" for k in KINDS) + ".")
+    simready_pass = sum(1 for r in results.values() if r.get("simready") == "pass")
+    lines.append(f"SimReady physics rules ({', '.join(SIMREADY_RULES)}) on the `-t usd` output: {simready_pass} pass.")
+    lines += [
+        "",
+        "| robot | base | newton | newton_isaac | isaac_importer | simready |",
+        "|---|---|---|---|---|---|",
+    ]
+    for name, r in results.items():
+        cells = [str(r.get(k, "not run")).replace("|", "\\|").replace("\n", " ") for k in (*KINDS, "simready")]
+        base = "floating" if r.get("floating") else "fixed"
+        if r.get("repaired"):
+            base += ", inertia repaired"
+        lines.append(f"| {name} | {base} | " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--envs", required=True, help="the folder run.sh built the engine environments in")
+    ap.add_argument("--work", default=None, help="scratch folder (default: ENVS/work)")
+    ap.add_argument("--robots", default=None, help="comma list of robot names (substring match); default all")
+    ap.add_argument("--resume", action="store_true", help="keep results already in the JSON")
+    ap.add_argument("--reverse", action="store_true", help="last robot first (a second worker)")
+    ap.add_argument("--simready-only", action="store_true", help="only add the SimReady column to --out")
+    ap.add_argument("--merge", action="append", default=[], help="also take robots from this results JSON")
+    ap.add_argument("--out", default=os.path.join(ROOT, "benchmarks", "results", "consumers.json"))
+    args = ap.parse_args(argv)
+    sys.path.insert(0, os.path.join(ROOT, "src"))
+    from robodesc.validation.corpora import all_robots
+
+    work = args.work or os.path.join(args.envs, "work")
+    robots = all_robots(os.path.join(os.path.dirname(ROOT), "shared", "corpus"))
+    robots.sort(key=lambda r: (0, FIRST.index(r.name.split("/")[-1])) if r.name.split("/")[-1] in FIRST else (1, 0))
+    if args.robots:
+        wanted = args.robots.split(",")
+        robots = [r for r in robots if any(w in r.name for w in wanted)]
+    if args.reverse:
+        robots.reverse()
+    results: dict[str, dict[str, object]] = {}
+    if (args.resume or args.simready_only) and os.path.isfile(args.out):
+        with open(args.out, encoding="utf-8") as f:
+            results = json.load(f)
+    for extra in args.merge:
+        with open(extra, encoding="utf-8") as f:
+            for name, result in json.load(f).items():
+                results.setdefault(name, result)
+    if args.simready_only or args.merge:
+        if args.simready_only:
+            add_simready(results, args.envs, work)
+        _write(results, args.out)
+        return 0
+    for robot in robots:
+        if robot.name in results:
+            continue
+        start = time.perf_counter()
+        results[robot.name] = run_robot(robot, args.envs, work)
+        print(f"{robot.name}: {time.perf_counter() - start:.0f} s  " + json.dumps(results[robot.name]), flush=True)
+        _write(results, args.out)
+    return 0
+
+
+def _write(results: dict[str, dict[str, object]], out: str) -> None:
+    os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
+    with open(out, "w", encoding="utf-8") as f:
+        json.dump(results, f, indent=1, sort_keys=False)
+        f.write("\n")
+    with open(out[: -len(".json")] + ".md", "w", encoding="utf-8") as f:
+        f.write(markdown(results))
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
