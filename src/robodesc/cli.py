@@ -517,6 +517,9 @@ def _verdict(result: Any) -> str:
     if report is None:
         return "not validated (--no-validate)"
     consumer = getattr(report, "consumer", "")
+    unloaded = next((c for c in report.checks if c.message.startswith("not loaded: ")), None)
+    if unloaded is not None:  # the consumer cannot take this model at all (MuJoCo's depth limit)
+        return f"not validated by {consumer}: {unloaded.message.removeprefix('not loaded: ').split(';')[0]}"
     largest = sorted(((v, k) for k, v in report.max_errors.items() if v is not None and k in _COMPARED), reverse=True)[
         :2
     ]

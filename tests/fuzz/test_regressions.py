@@ -12,6 +12,7 @@ from pathlib import Path
 
 import pytest
 
+import robodesc
 from robodesc.cli import main
 
 HERE = Path(__file__).parent / "regressions"
@@ -173,3 +174,24 @@ def test_hostile_collada_is_left_out_with_a_warning(
     err = capsys.readouterr().err
     assert code == 0 and "Traceback" not in err
     assert "could not be read" in err and ("exceeds the 9 values" in err or "instancing visits more than" in err)
+
+
+def test_a_chain_deeper_than_mujoco_takes_is_not_loaded_in_mujoco(tmp_path: Path) -> None:
+    """MuJoCo refuses trees deeper than 1,023 joints after superlinear work (15 s at 2,000 links,
+    without end at 50,000): validation says so at once instead of loading it."""
+    links = "".join(
+        f'<link name="l{i}"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1"/></inertial></link>'
+        for i in range(1100)
+    )
+    joints = "".join(
+        f'<joint name="j{i}" type="revolute"><parent link="l{i - 1}"/><child link="l{i}"/><axis xyz="0 0 1"/>'
+        '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+        for i in range(1, 1100)
+    )
+    source = tmp_path / "chain.urdf"
+    source.write_text(f'<robot name="chain">{links}{joints}</robot>')
+    out = tmp_path / "chain_out.urdf"
+    result = robodesc.compile_to_urdf(str(source), str(out))
+    check = result.validation.by_name("mujoco-compile")[0]
+    assert check.status.name == "WARN" and "1099 joints deep" in check.message
+    assert out.is_file()

@@ -237,9 +237,38 @@ def add_floating_base(spec: Any, robot: Robot) -> None:
         body.add_freejoint()
 
 
+# MuJoCo refuses a kinematic tree deeper than this ("depth limit exceeded in signature
+# computation"), and its compiler takes superlinear time to find out: 15 s at 2,000 links, longer
+# than anyone waits at 50,000.
+MUJOCO_MAX_DEPTH = 1023
+
+
+def tree_depth(robot: Robot) -> int:
+    """The number of joints on the longest path from a root link (iterative: chains can be long)."""
+    children = robot.child_joints()
+    deepest = 0
+    stack = [(link.name, 0) for link in robot.root_links()]
+    while stack:
+        link, depth = stack.pop()
+        deepest = max(deepest, depth)
+        stack.extend((joint.child, depth + 1) for joint in children.get(link, ()))
+    return deepest
+
+
 def load_urdf_in_mujoco(
     robot: Robot, urdf_text: str, base_dir: str | None, options: ValidateOptions, report: ValidationReport
 ) -> MujocoModel | None:
+    depth = tree_depth(robot) + (1 if options.floating_base else 0)
+    if depth > MUJOCO_MAX_DEPTH:
+        report.add(
+            "mujoco-compile",
+            Status.WARN,
+            "model",
+            f"not loaded: the kinematic tree is {depth} joints deep and MuJoCo refuses trees deeper than "
+            f"{MUJOCO_MAX_DEPTH} (its signature depth limit); the other targets' consumers (Drake for SDF, "
+            "usd-core for USD) do not have this limit",
+        )
+        return None
     try:
         text = with_compiler_options(urdf_text)
     except etree.XMLSyntaxError as exc:
