@@ -32,6 +32,7 @@ from robodesc.batch.jobs import CRASHED, TIMEOUT, WROTE_OUTPUTS, Job, JobResult,
 from robodesc.batch.runner import run_batch
 from robodesc.ir.verify import PHYSICAL_CODES
 from robodesc.options import CompileOptions
+from robodesc.pipeline import CARRIED, PASSED_THROUGH
 from robodesc.validation.corpora import CorpusRobot, all_robots
 from robodesc.validation.report import Check, Status, ValidationReport
 
@@ -49,9 +50,6 @@ SMALL = (
     "stretch_description_SE3_eoa_wrist_dw3_tool_sg3",
 )
 FLOOR = 1e-12  # below this an error is rounding, and its exact value differs between machines
-# The suffix the compiler adds to a physical defect it carries through (pipeline.verify_source).
-PASSED_THROUGH = " (passed through unchanged; --invalid-inertia repair fixes it from geometry)"
-CARRIED = " [a defect of the source, carried through unchanged]"
 
 
 @dataclass

@@ -156,7 +156,7 @@ def verify_source(robot: Robot, options: CompileOptions, findings: Findings, rep
         findings.add(
             Severity.WARNING,
             f.code,
-            f.message + " (passed through unchanged; --invalid-inertia repair fixes it from geometry)",
+            f.message + PASSED_THROUGH,
             element=f.element,
             loc=f.loc,
             stage=f.stage,
@@ -243,6 +243,11 @@ def _dropped(robot: Robot, f: Finding, shapes: set[tuple[str, str, int]]) -> str
         robot.loop_joints = [x for x in robot.loop_joints if x.name != name]
         return "the loop joint was dropped"
     return None
+
+
+# Suffixes on what the compile lets through; reports built on its output recognise them by these.
+PASSED_THROUGH = " (passed through unchanged; --invalid-inertia repair fixes it from geometry)"
+CARRIED = " [a defect of the source, carried through unchanged]"
 
 
 # ---- targets ---------------------------------------------------------------------------------
@@ -671,7 +676,7 @@ def source_defect_failures(findings: Findings | list[Finding], report: Any) -> l
     for check in report.checks:
         if check.status is Status.FAIL and (check.name in SOURCE_CHECKS or check.element in defective):
             check.status = Status.WARN
-            check.message += " [a defect of the source, carried through unchanged]"
+            check.message += CARRIED
             out.append(check)
     return out
 

@@ -244,15 +244,11 @@ MUJOCO_MAX_DEPTH = 1023
 
 
 def tree_depth(robot: Robot) -> int:
-    """The number of joints on the longest path from a root link (iterative: chains can be long)."""
-    children = robot.child_joints()
-    deepest = 0
-    stack = [(link.name, 0) for link in robot.root_links()]
-    while stack:
-        link, depth = stack.pop()
-        deepest = max(deepest, depth)
-        stack.extend((joint.child, depth + 1) for joint in children.get(link, ()))
-    return deepest
+    """The number of joints on the longest path from a root link."""
+    depth: dict[str, int] = {}
+    for joint in robot.topological_joints():  # parents before children
+        depth[joint.child] = depth.get(joint.parent, 0) + 1
+    return max(depth.values(), default=0)
 
 
 def load_urdf_in_mujoco(
