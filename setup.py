@@ -3,9 +3,11 @@
 - ``robodesc.meshes._numtext`` parses the numbers in mesh text (COLLADA, OBJ) about seven times faster
   than numpy;
 - ``robodesc.meshes._weld`` welds mesh corners into points and computes face normals about five times
-  faster than robodesc's numpy code.
+  faster than robodesc's numpy code;
+- ``robodesc.usdfile._intcode`` writes the integer coding of .usdc int arrays (mesh indices), which
+  Python would take seconds over.
 
-Both are optional: without a C compiler the install goes on and robodesc uses its numpy code
+All are optional: without a C compiler the install goes on and robodesc uses its numpy code
 instead, which gives the same numbers bit for bit, more slowly. FMA contraction is off so the
 normals are computed with exactly numpy's roundings.
 """
@@ -26,5 +28,6 @@ setup(
             extra_compile_args=STRICT_FP,
             optional=True,
         ),
+        Extension("robodesc.usdfile._intcode", sources=["src/robodesc/usdfile/_intcode.c"], optional=True),
     ]
 )

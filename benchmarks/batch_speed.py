@@ -14,11 +14,14 @@ peer's shape of output (layered asset + physics scene), in one run of this scrip
 Every time is wall time of the whole command (interpreter start, planning, workers, summary), the
 best of ``--repeat`` runs (default 3; runs of different tools alternate): other work on the machine
 only ever adds time. The loops run over the largest size; the smaller sizes' loop times are the
-sums over their first N robots in that same run. Setup (each tool in its own venv, as a user installs it)::
+sums over their first N robots in that same run. Setup (each tool in its own venv, as a user installs it:
+pip compiles both to bytecode at install, which an editable install under PYTHONDONTWRITEBYTECODE never
+has, costing every robodesc process about 0.07 s of compiling)::
 
     python -m venv /tmp/venv-peer && /tmp/venv-peer/bin/pip install urdf-usd-converter
-    pip install -e '.[ray]'
-    python benchmarks/batch_speed.py --peer /tmp/venv-peer/bin/urdf_usd_converter
+    python -m venv /tmp/venv-robodesc && /tmp/venv-robodesc/bin/pip install '.[ray]'
+    python benchmarks/batch_speed.py --peer /tmp/venv-peer/bin/urdf_usd_converter \
+        --robodesc /tmp/venv-robodesc/bin/robodesc
 
 Writes benchmarks/results/batch_speed.md (and .json).
 """
@@ -89,6 +92,7 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--sizes", default="10,100", help="robot counts to time the batch modes at (default 10,100)")
     parser.add_argument("--peer", default="/tmp/venv-peer/bin/urdf_usd_converter")
+    parser.add_argument("--robodesc", help="robodesc's console script (default: the one beside this Python)")
     parser.add_argument("--no-ray", action="store_true")
     parser.add_argument("--repeat", type=int, default=3, help="runs of each command; the fastest counts")
     parser.add_argument("--out", default=os.path.join(HERE, "results", "batch_speed.md"))
@@ -99,7 +103,7 @@ def main() -> int:
 
     sizes = sorted({int(s) for s in args.sizes.split(",") if s})
     robots = all_robots(SHARED_CORPUS)[: max(sizes)]
-    exe = _exe()
+    exe = args.robodesc or _exe()
     if not os.path.exists(args.peer):
         raise SystemExit(f"peer not installed at {args.peer} (see the module docstring)")
     load_before = os.getloadavg()[0]

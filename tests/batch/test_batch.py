@@ -12,6 +12,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+import pebble
 import pytest
 
 from robodesc.batch import sweep
@@ -234,6 +235,7 @@ def test_a_crash_an_exception_and_a_timeout_are_results_and_the_batch_goes_on(tm
     code, summary = batch(str(robots), "-o", str(out), "-j", "2", "--no-validate", "--timeout", "5")
     assert time.monotonic() - started < 60
     assert code == 2
+    assert pebble.common.CONSTS.sleep_unit == 0.1  # the finer tick of a batch's pools is put back
     jobs = by_id(summary)
     assert jobs["segfault"]["status"] == "crashed" and "SIGSEGV" in jobs["segfault"]["error"]
     assert jobs["raises"]["status"] == "crashed" and jobs["raises"]["error"] == "RuntimeError: boom"

@@ -114,6 +114,10 @@ def run_command(args: argparse.Namespace, compile_options: Callable[[argparse.Na
             import ray  # noqa: F401
         except ImportError:
             raise ConfigError("--executor ray needs Ray: pip install 'robodesc[ray]'") from None
+    if args.executor == "local":
+        from robodesc.batch.executors import prestart_local
+
+        prestart_local()  # its imports overlap the planning below
     target = "isaac" if args.isaac_sim else "ros2" if args.ros2 else args.target
     spec = sweep.from_cli(args.sweep, args.samples, args.seed)
     jobs = plan(

@@ -1,6 +1,7 @@
-"""Where jobs run: a local process pool (pebble) or Ray tasks. Both run :func:`run_job` and hand
-each :class:`JobResult` to ``done`` as it arrives; neither schedules anything itself beyond keeping
-as many jobs in flight as there are workers.
+"""Where jobs run: local worker processes (pebble) or Ray tasks. Both run :func:`run_job` and hand
+each :class:`JobResult` to ``done`` as it arrives. Ray places its tasks itself; locally, each
+worker gets the next job of its own share of the plan (:mod:`robodesc.batch.lanes`), so that
+neighbouring jobs, which share meshes, run in the same process.
 
 A job's timeout, a worker process that dies (a consumer's segfault) and an exception are that
 job's result; the other jobs go on. On Ctrl-C the workers are stopped and ``KeyboardInterrupt``
@@ -12,12 +13,13 @@ from __future__ import annotations
 import signal
 import time
 from collections.abc import Callable, Sequence
+from concurrent.futures import FIRST_COMPLETED, wait
 from concurrent.futures import TimeoutError as FutureTimeout
-from concurrent.futures import as_completed
 from typing import Any
 
 from robodesc.batch.jobs import CRASHED, TIMEOUT, Job, JobResult
-from robodesc.batch.worker import init_worker, run_job
+from robodesc.batch.lanes import Lanes
+from robodesc.batch.worker import init_worker, prepare_worker, run_job
 
 Done = Callable[[Job, JobResult], None]
 
@@ -32,34 +34,92 @@ def _signal_name(exitcode: int | None) -> str:
 
 
 def run_local(jobs: Sequence[Job], workers: int, timeout: float | None, done: Done) -> None:
-    """A pool of ``workers`` processes (spawned, so each imports robodesc once, free of the driver's
-    threads); a worker that times out or dies is replaced."""
-    import multiprocessing
-
+    """``workers`` worker processes, each in a one-process pebble pool of its own (pebble stops a job
+    at its timeout and replaces a worker that dies), fed by :class:`Lanes`: neighbouring jobs go to
+    the same worker, which keeps the meshes they share."""
     import pebble
 
-    pool: Any = pebble.ProcessPool(
-        max_workers=max(1, workers), initializer=init_worker, context=multiprocessing.get_context("spawn")
-    )
+    # A pool's manager thread checks its workers every CONSTS.sleep_unit (0.1 s) and a pool only ends
+    # at such a check: the last one delayed every batch by up to 0.1 s. A finer tick costs a few
+    # microseconds each (and makes the timeout finer too).
+    consts = getattr(getattr(pebble, "common", None), "CONSTS", None)
+    tick = getattr(consts, "sleep_unit", None)
+    if tick is not None:
+        consts.sleep_unit = min(tick, 0.01)  # type: ignore[union-attr]
+    lanes = Lanes(len(jobs), workers)
+    context = _context()
+    pools: list[Any] = [
+        pebble.ProcessPool(max_workers=1, initializer=init_worker, context=context) for _ in lanes.ranges
+    ]
+    running: dict[Any, tuple[int, Job]] = {}
+
+    def feed(lane: int) -> None:
+        index = lanes.take(lane)
+        if index is not None:
+            job = jobs[index]
+            running[pools[lane].schedule(run_job, args=(job,), timeout=timeout)] = (lane, job)
+
     try:
-        futures: dict[Any, Job] = {pool.schedule(run_job, args=(job,), timeout=timeout): job for job in jobs}
-        for future in as_completed(futures):
-            job = futures[future]
-            try:
-                result = future.result()
-            except FutureTimeout:
-                result = JobResult(job.id, TIMEOUT, seconds=timeout or 0.0, error=f"timed out after {timeout:g} s")
-            except pebble.ProcessExpired as exc:
-                result = JobResult(job.id, CRASHED, error=f"the worker process died ({_signal_name(exc.exitcode)})")
-            except Exception as exc:  # the job could not even be sent or returned (pickling)
-                result = JobResult(job.id, CRASHED, error=f"{type(exc).__name__}: {exc}")
-            done(job, result)
-    except BaseException:
-        pool.stop()
-        pool.join()
-        raise
-    pool.close()
-    pool.join()
+        for lane in range(len(pools)):
+            feed(lane)
+        while running:
+            finished, _ = wait(running, return_when=FIRST_COMPLETED)
+            for future in finished:
+                lane, job = running.pop(future)
+                done(job, _local_result(future, job, timeout))
+                feed(lane)
+    finally:
+        # Every job has its result (or the batch is being interrupted): stop all the pools, then
+        # wait for them. Each pool's manager wakes every 0.1 s to notice; closing and joining them
+        # one after another would wait that long once per worker.
+        for pool in pools:
+            pool.stop()
+        for pool in pools:
+            pool.join()
+        if tick is not None:
+            consts.sleep_unit = tick  # type: ignore[union-attr]
+
+
+def _local_result(future: Any, job: Job, timeout: float | None) -> JobResult:
+    import pebble
+
+    try:
+        result: JobResult = future.result()
+        return result
+    except FutureTimeout:
+        return JobResult(job.id, TIMEOUT, seconds=timeout or 0.0, error=f"timed out after {timeout:g} s")
+    except pebble.ProcessExpired as exc:
+        return JobResult(job.id, CRASHED, error=f"the worker process died ({_signal_name(exc.exitcode)})")
+    except Exception as exc:  # the job could not even be sent or returned (pickling)
+        return JobResult(job.id, CRASHED, error=f"{type(exc).__name__}: {exc}")
+
+
+# What a fork server imports once, before it forks each worker: the per-job function and the pipeline
+# behind it, and the CLI that the console script (the driver's main module) imports, so that a
+# worker's start (which re-imports the main module) finds them all loaded.
+_PRELOAD = ["robodesc.batch.worker", "robodesc.pipeline", "robodesc.cli"]
+
+
+def _context() -> Any:
+    """Workers forked from a fork server: one clean, single-threaded process that has imported
+    robodesc once (a fork of the driver would copy its threads' locks). Spawned workers, each
+    importing robodesc for itself, where there is no fork server (Windows)."""
+    import multiprocessing
+
+    if "forkserver" not in multiprocessing.get_all_start_methods():
+        return multiprocessing.get_context("spawn")
+    context = multiprocessing.get_context("forkserver")
+    context.set_forkserver_preload(_PRELOAD)
+    return context
+
+
+def prestart_local() -> None:
+    """Start the fork server now, so that its imports overlap the driver's planning and cache checks
+    instead of delaying the first job (it exits with the driver, used or not)."""
+    from multiprocessing import forkserver
+
+    if _context().get_start_method() == "forkserver":
+        forkserver.ensure_running()
 
 
 def run_ray(jobs: Sequence[Job], workers: int | None, timeout: float | None, done: Done, address: str | None) -> None:
@@ -110,9 +170,7 @@ def run_ray(jobs: Sequence[Job], workers: int | None, timeout: float | None, don
 
 
 def _ray_job(job: Job) -> JobResult:
-    import os
-
-    os.environ.setdefault("PXR_WORK_THREAD_LIMIT", "1")
+    prepare_worker()  # once per Ray worker process: it keeps what it set up for the next task
     return run_job(job)
 
 

@@ -213,11 +213,25 @@ def run_job(job: Job) -> JobResult:
     return result
 
 
+# Meshes a worker keeps between its jobs: a family of robots, or a sweep's variants, share them.
+MESH_BUDGET = 256 * 1024 * 1024
+
+
+def prepare_worker() -> None:
+    """What every worker (a local pool's process, a Ray worker) sets up once: one USD work thread
+    per worker, the pipeline imported, meshes kept across jobs."""
+    os.environ.setdefault("PXR_WORK_THREAD_LIMIT", "1")
+    import robodesc.pipeline  # noqa: F401
+    from robodesc.meshes.data import keep_across_runs, keeping
+
+    if not keeping():
+        keep_across_runs(MESH_BUDGET)
+
+
 def init_worker() -> None:
     """Start of a local worker process: Ctrl-C goes to the driver alone, which stops the pool; the
     pipeline is imported here once, not once per job."""
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    os.environ.setdefault("PXR_WORK_THREAD_LIMIT", "1")
-    import robodesc.pipeline  # noqa: F401
+    prepare_worker()

@@ -485,6 +485,27 @@ static PyObject *shift(PyObject *self, PyObject *args) {
     return out;
 }
 
+/* (min, max) of int64 values; None when there are none. */
+static PyObject *bounds(PyObject *self, PyObject *args) {
+    Py_buffer view;
+    if (!PyArg_ParseTuple(args, "y*", &view)) {
+        return NULL;
+    }
+    Py_ssize_t count = view.len / 8;
+    if (count == 0) {
+        PyBuffer_Release(&view);
+        Py_RETURN_NONE;
+    }
+    const int64_t *values = (const int64_t *)view.buf;
+    int64_t low = values[0], high = values[0];
+    for (Py_ssize_t i = 1; i < count; i++) {
+        low = values[i] < low ? values[i] : low;
+        high = values[i] > high ? values[i] : high;
+    }
+    PyBuffer_Release(&view);
+    return Py_BuildValue("(LL)", (long long)low, (long long)high);
+}
+
 static PyMethodDef methods[] = {
     {"weld", weld, METH_VARARGS, "weld(rows, corners) -> (first rows int64, corner indices int32)"},
     {"face_normals", face_normals, METH_VARARGS, "face_normals(points, triangles) -> float32 normals"},
@@ -493,6 +514,7 @@ static PyMethodDef methods[] = {
     {"columns", columns, METH_VARARGS, "columns(values, offset, stride, count, (c0, c1, c2)) -> float32 points"},
     {"place", place, METH_VARARGS, "place(points float32, matrix 3x4, unit) -> float64 points"},
     {"shift", shift, METH_VARARGS, "shift(int64 values, offset) -> int64 values"},
+    {"bounds", bounds, METH_VARARGS, "bounds(int64 values) -> (min, max), or None when empty"},
     {"finish", finish, METH_VARARGS, "finish(points, triangles, scale, flip) -> (points, indices, normals, extent)"},
     {NULL, NULL, 0, NULL},
 };

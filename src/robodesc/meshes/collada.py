@@ -353,6 +353,15 @@ def _place(positions: Floats, matrix: Matrix, unit: float) -> bytes | bytearray:
     return out.tobytes()
 
 
+def _bounds(values: Ints) -> tuple[int, int]:
+    """Smallest and largest of non-empty int64 values (min() and max() would box each one)."""
+    if _cweld is not None:
+        found = _cweld.bounds(values)
+        assert found is not None  # the caller skips empty lists
+        return found
+    return min(values), max(values)
+
+
 def _shift(values: Ints, offset: int) -> bytes | bytearray:
     if _cweld is not None:
         return _cweld.shift(values, offset)
@@ -405,7 +414,7 @@ def _read_mesh(doc: _Document, geometry: etree._Element) -> _Mesh | None:
             positions[sid] = _positions(doc, source, f"geometry '{gid}' source '{sid}'")
         points = positions[sid]
         count = len(points) // 3
-        low, high = min(tri), max(tri)
+        low, high = _bounds(tri)
         if low < 0 or high >= count:
             bad = low if low < 0 else high
             raise MeshReadError(f"{where}: vertex index {bad} out of range for {count} positions")

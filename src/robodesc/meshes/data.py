@@ -10,11 +10,14 @@ a C compiler) goes through
 (tests/usd/test_mesh_native.py).
 
 Results are cached per (file, scale) for one emitter run: visuals and colliders often share a file.
+A process that compiles many robots (a ``robodesc batch`` worker) can also keep them across runs
+(:func:`keep_across_runs`): a robot family, or the variants of a sweep, read the same meshes.
 """
 
 from __future__ import annotations
 
 import os
+from collections import OrderedDict
 
 from robodesc.ir.geometry import Vec3
 from robodesc.meshes.buffers import MeshData, MeshReadError, finish, obj_text
@@ -68,6 +71,79 @@ def _ascii_stl(data: bytes) -> tuple[bytearray, bytearray] | None:
     return _cweld.weld_take(values, None)
 
 
+def _nbytes(data: MeshData | MeshReadError) -> int:
+    if isinstance(data, MeshReadError):
+        return 256
+    arrays = (data.points, data.face_vertex_counts, data.face_vertex_indices, data.normals, data.uv)
+    return 256 + sum(a.itemsize * len(a) for a in arrays if a is not None)
+
+
+class _SharedStore:
+    """Meshes kept across emitter runs, least recently used out first, up to a size in bytes.
+
+    A key names the file's identity, size and modification time besides its path and scale: a file
+    rewritten between two robots is read again. MeshData is frozen and its arrays are only ever read
+    (the writers copy them out), so runs can share one object.
+    """
+
+    def __init__(self, budget: int) -> None:
+        self.budget = budget
+        self.size = 0
+        self._items: OrderedDict[tuple[object, ...], MeshData | MeshReadError] = OrderedDict()
+
+    def get(self, key: tuple[object, ...]) -> MeshData | MeshReadError | None:
+        hit = self._items.get(key)
+        if hit is not None:
+            self._items.move_to_end(key)
+        return hit
+
+    def put(self, key: tuple[object, ...], data: MeshData | MeshReadError) -> None:
+        size = _nbytes(data)
+        if size > self.budget:
+            return
+        self._items[key] = data
+        self.size += size
+        while self.size > self.budget:
+            _, old = self._items.popitem(last=False)
+            self.size -= _nbytes(old)
+
+
+_shared: _SharedStore | None = None
+
+
+def keep_across_runs(budget_bytes: int) -> None:
+    """Keep up to ``budget_bytes`` of meshes in this process across emitter runs (0: stop keeping)."""
+    global _shared
+    _shared = _SharedStore(budget_bytes) if budget_bytes > 0 else None
+
+
+def keeping() -> bool:
+    return _shared is not None
+
+
+def _build(path: str, scale: Vec3 | None) -> MeshData | MeshReadError:
+    try:
+        return build_mesh(path, scale)
+    except MeshReadError as exc:
+        return exc
+    except (OSError, ValueError, IndexError) as exc:
+        return MeshReadError(f"{type(exc).__name__}: {exc}")
+
+
+def _shared_get(path: str, scale: Vec3 | None) -> MeshData | MeshReadError:
+    assert _shared is not None
+    try:
+        info = os.stat(path)
+    except OSError:
+        return _build(path, scale)  # the reader names what is wrong with the path
+    key = (path, scale, info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns)
+    hit = _shared.get(key)
+    if hit is None:
+        hit = _build(path, scale)
+        _shared.put(key, hit)
+    return hit
+
+
 class MeshCache:
     def __init__(self) -> None:
         self._data: dict[tuple[str, Vec3 | None], MeshData | MeshReadError] = {}
@@ -76,13 +152,8 @@ class MeshCache:
         key = (path, scale)
         hit = self._data.get(key)
         if hit is None:
-            try:
-                hit = build_mesh(path, scale)
-            except MeshReadError as exc:
-                hit = exc
-            except (OSError, ValueError, IndexError) as exc:
-                hit = MeshReadError(f"{type(exc).__name__}: {exc}")
+            hit = _build(path, scale) if _shared is None else _shared_get(path, scale)
             self._data[key] = hit
         if isinstance(hit, MeshReadError):
-            raise hit
+            raise MeshReadError(str(hit))  # a new one: raising the kept one again would grow its traceback
         return hit

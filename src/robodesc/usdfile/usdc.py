@@ -1,7 +1,8 @@
 """The binary ``.usdc`` ("crate") serialisation of a :class:`~robodesc.usdfile.spec.Layer`.
 
-Pure Python, following Sdf's ``crateFile.cpp``: no usd-core, and numpy only when a value already is
-a numpy array, whose bytes then go to the file at memcpy speed. This module maps the layer model
+Python, following Sdf's ``crateFile.cpp``: no usd-core, and numpy only when a value already is a
+numpy array, whose bytes then go to the file at memcpy speed (or, installed without a C compiler,
+to code a long int array, which the C extension ``_intcode`` does otherwise). This module maps the layer model
 onto crate specs, fields and values; :mod:`robodesc.usdfile.usdc_encoding` lays out the file.
 
 Crate version 0.8.0: the payload list op needs it, and nothing newer is needed. It is still the
@@ -14,8 +15,10 @@ kilogramsPerUnit, upAxis, subLayers with their identity offsets); prims (specifi
 apiSchemas as a prepended list op, kind, assetInfo name, displayName, prepended payloads,
 property and child order); attributes (typeName, custom, uniform, a default of every
 :data:`~robodesc.usdfile.spec.VALUE_TYPES` type as scalar or array, interpolation, explicit
-connections); relationships (explicit targets, custom). Not written: time samples, references,
-variants, array compression (optional in the format). Scalars are inlined into their ValueRep
+connections); relationships (explicit targets, custom). Int arrays of 16 or more elements are
+compressed as Sdf compresses them (mesh indices: a third of a geometry layer's bytes saved); float
+arrays are not (Sdf's float compression only applies to integral values or a few distinct ones).
+Not written: time samples, references, variants. Scalars are inlined into their ValueRep
 exactly where Sdf inlines them (numbers, names, doubles a float holds exactly, vectors of small
 integers), so the file reads back the way one written by usd-core does.
 """
@@ -25,16 +28,21 @@ from __future__ import annotations
 import math
 import struct
 import sys
+import weakref
 from array import array
+from functools import partial
 from itertools import chain
 from typing import Any, NamedTuple
 
 from robodesc.usdfile.spec import Attribute, Layer, Prim, Relationship, ValueType, value_type
-from robodesc.usdfile.usdc_encoding import U64, Crate, Misfit, short, uint32s
+from robodesc.usdfile.usdc_encoding import U64, Crate, Misfit, compressed_int32_bytes, short, uint32s
 
 # ValueRep: 1 array bit, 1 inlined bit, 1 compressed bit, (5 unused), 8-bit type, 48-bit payload.
 _ARRAY = 1 << 63
 _INLINED = 1 << 62
+_COMPRESSED = 1 << 61
+# Sdf compresses int arrays of at least this many elements (crateFile.cpp, MinCompressedArraySize).
+_MIN_COMPRESSED = 16
 
 # Type enum values from Sdf's crateDataTypes.h: part of the file format.
 _BOOL, _INT, _FLOAT, _DOUBLE, _STRING, _TOKEN, _ASSET = 1, 3, 8, 9, 10, 11, 12
@@ -176,7 +184,11 @@ def _attribute_fields(crate: Crate, attr: Attribute) -> list[tuple[str, int]]:
     if attr.uniform:  # varying is the fallback, so Sdf writes variability only when uniform
         fields.append(("variability", _rep(_VARIABILITY, _UNIFORM, _INLINED)))
     if attr.value is not None:
-        rep = _array_rep(crate, vtype, attr.value) if is_array else _scalar_rep(crate, vtype, attr.value)
+        rep = (
+            _shared_array_rep(crate, attr.type_name, vtype, attr.value)
+            if is_array
+            else _scalar_rep(crate, vtype, attr.value)
+        )
         fields.append(("default", rep))
     if attr.interpolation is not None:
         fields.append(("interpolation", _token_rep(crate, attr.interpolation)))
@@ -334,7 +346,66 @@ def _text(value: Any) -> str:
     return value
 
 
+class _Packed(NamedTuple):
+    """An array value's bytes in the file and the ValueRep bits that go with them."""
+
+    enum: int
+    head: bytes
+    body: bytes
+    align: bool
+    flags: int
+
+
+# Arrays whose owner never modifies them (meshes a batch worker shares between robots): their packed
+# bytes by type name, kept while the array lives, so that every later layer reuses them.
+_kept: dict[int, tuple[weakref.ref[Any], dict[str, _Packed | int]]] = {}
+
+
+def keep_packed(*values: array[Any]) -> None:
+    """Promise that these arrays are never modified: their packed bytes are kept for later layers
+    (without the promise a changed array would be written as it was)."""
+    for value in values:
+        key = id(value)
+        entry = _kept.get(key)
+        if entry is None or entry[0]() is not value:
+            _kept[key] = (weakref.ref(value, partial(_forget, key)), {})
+
+
+def _forget(key: int, ref: weakref.ref[Any]) -> None:
+    entry = _kept.get(key)
+    if entry is not None and entry[0] is ref:  # not a newer array that took the same id
+        del _kept[key]
+
+
+def _shared_array_rep(crate: Crate, type_name: str, vtype: ValueType, value: Any) -> int:
+    if not isinstance(value, array):  # lists and tuples are built per attribute: nothing to share
+        return _array_rep(crate, vtype, value)
+    key = (id(value), type_name)
+    found = crate.arrays.get(key)
+    if found is None:
+        kept = _kept.get(id(value))
+        if kept is not None and kept[0]() is value and vtype.scalar not in _TEXT:
+            packed = kept[1].get(type_name)
+            if packed is None:
+                packed = kept[1][type_name] = _pack_array(crate, vtype, value)
+            rep = packed if isinstance(packed, int) else _place(crate, packed)
+        else:
+            rep = _array_rep(crate, vtype, value)
+        found = crate.arrays[key] = (value, rep)
+    return found[1]
+
+
 def _array_rep(crate: Crate, vtype: ValueType, value: Any) -> int:
+    packed = _pack_array(crate, vtype, value)
+    return packed if isinstance(packed, int) else _place(crate, packed)
+
+
+def _place(crate: Crate, packed: _Packed) -> int:
+    return _rep(packed.enum, crate.blob(packed.head, packed.body, align=packed.align), packed.flags)
+
+
+def _pack_array(crate: Crate, vtype: ValueType, value: Any) -> _Packed | int:
+    """The array's bytes, or the ValueRep itself for an empty array (nothing is written for it)."""
     enum = _TEXT[vtype.scalar] if vtype.scalar in _TEXT else _numeric(vtype).enum
     if isinstance(value, str | bytes):
         raise Misfit(f"{short(value)} is not an array")
@@ -350,8 +421,12 @@ def _array_rep(crate: Crate, vtype: ValueType, value: Any) -> int:
         body = _text_array_bytes(crate, vtype.scalar, value)
     else:
         body = _numeric_array_bytes(_numeric(vtype), value)
+    if enum == _INT and count >= _MIN_COMPRESSED:
+        # As Sdf writes int arrays (mesh indices): the count, then the integer coding, in a third
+        # to a sixteenth of the bytes; unaligned, since readers decode them rather than map them.
+        return _Packed(enum, U64.pack(count), compressed_int32_bytes(body), False, _ARRAY | _COMPRESSED)
     # Aligned so that readers can map the elements in place (Sdf's zero-copy arrays).
-    return _rep(enum, crate.blob(U64.pack(count), body, align=True), _ARRAY)
+    return _Packed(enum, U64.pack(count), body, True, _ARRAY)
 
 
 def _text_array_bytes(crate: Crate, scalar: str, value: Any) -> bytes:

@@ -33,6 +33,11 @@ from collections import Counter
 from collections.abc import Callable, Sequence
 from typing import Any
 
+try:
+    from robodesc.usdfile import _intcode
+except ImportError:  # installed without a C compiler: numpy codes the large arrays, Python the rest
+    _intcode = None  # type: ignore[assignment]
+
 VERSION = (0, 8, 0)
 BOOTSTRAP_SIZE = 88  # ident[8], version[8], tocOffset, reserved[8]
 # LZ4_MAX_INPUT_SIZE: one chunk holds up to this many bytes; more would need the multi-chunk framing.
@@ -72,6 +77,10 @@ class Crate:
         # Token 0 must never name a property: the PATHS section marks those by negating the index.
         self.token(";-)")
         self.paths = PathTable(self.token)
+        # ValueRep of an array object already written, by identity: a mesh shared by a visual and a
+        # collider is one MeshData, whose arrays need packing once. The object is kept alive with
+        # its rep, so its id is not reused while the crate exists.
+        self.arrays: dict[tuple[int, str], tuple[object, int]] = {}
 
     def token(self, text: str) -> int:
         if not isinstance(text, str):
@@ -288,5 +297,51 @@ def encode_ints(values: Sequence[int]) -> bytes:
 
 def compressed_ints(values: Sequence[int]) -> bytes:
     """``uint64 size`` + compressed integer coding of ``values``: how the sections store every list."""
-    block = fast_compress(encode_ints(values))
+    return compressed_int32_bytes(uint32s([v & 0xFFFFFFFF for v in values]))
+
+
+def compressed_int32_bytes(data: bytes) -> bytes:
+    """:func:`compressed_ints` of little-endian int32 ``data`` (an int array's bytes in the file)."""
+    block = fast_compress(encode_int32_bytes(data))
     return U64.pack(len(block)) + block
+
+
+# Below this many values the Python coder is as quick as loading numpy.
+_PYTHON_CODER_LIMIT = 4096
+
+
+def encode_int32_bytes(data: bytes) -> bytes:
+    """:func:`encode_ints` of little-endian int32 ``data``: through the C extension, else numpy for a
+    long list; all three give the same bytes."""
+    if _intcode is not None:
+        coded: bytes = _intcode.encode(data)
+        return coded
+    count = len(data) // 4
+    if count <= _PYTHON_CODER_LIMIT:
+        return encode_ints(struct.unpack(f"<{count}i", data))
+    return _encode_numpy(data)
+
+
+def _encode_numpy(data: bytes) -> bytes:
+    import numpy as np
+
+    values = np.frombuffer(data, dtype="<u4")
+    deltas = np.diff(values, prepend=np.uint32(0)).astype("<u4").view("<i4")  # wrapping, as int32
+    distinct, counts = np.unique(deltas, return_counts=True)
+    common = int(distinct[counts == counts.max()].max())
+    small = (deltas >= -0x80) & (deltas < 0x80)
+    medium = (deltas >= -0x8000) & (deltas < 0x8000)
+    codes = np.where(deltas == common, 0, np.where(small, 1, np.where(medium, 2, 3))).astype(np.uint8)
+    padded = np.zeros(-(-len(codes) // 4) * 4, dtype=np.uint8)
+    padded[: len(codes)] = codes
+    quads = padded.reshape(-1, 4)
+    packed = quads[:, 0] | quads[:, 1] << 2 | quads[:, 2] << 4 | quads[:, 3] << 6
+    widths = np.array([0, 1, 2, 4], dtype=np.int64)[codes]
+    starts = np.cumsum(widths) - widths
+    out = np.zeros(int(widths.sum()), dtype=np.uint8)
+    low_bytes = deltas.view(np.uint8).reshape(-1, 4)  # little-endian: byte k is bits 8k..8k+7
+    for width in (1, 2, 4):
+        chosen = widths == width
+        for k in range(width):
+            out[starts[chosen] + k] = low_bytes[chosen, k]
+    return struct.pack("<i", common) + packed.astype(np.uint8).tobytes() + out.tobytes()

@@ -62,9 +62,12 @@ def folder_mode() -> int:
 
 def write_files(directory: str, files: Mapping[str, str | bytes]) -> None:
     """Write ``{relative name: text or bytes}`` under ``directory``."""
+    # Each folder made once: a file system call per file costs more than writing a small layer.
+    folders = {os.path.dirname(os.path.join(directory, name)) for name in files}
+    for folder in sorted(folders):
+        os.makedirs(folder, exist_ok=True)
     for name, data in sorted(files.items()):
         path = os.path.join(directory, name)
-        os.makedirs(os.path.dirname(path), exist_ok=True)
         with open(path, "wb") as handle:
             handle.write(data.encode("utf-8") if isinstance(data, str) else data)
 

@@ -15,6 +15,7 @@ from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Mesh, Sphere
 from robodesc.ir.model import Collision, Link, Visual
 from robodesc.ir.rigid import pose_frame
 from robodesc.usdfile.spec import Prim
+from robodesc.usdfile.usdc import keep_packed
 
 if TYPE_CHECKING:
     from robodesc.meshes.buffers import MeshData
@@ -92,12 +93,18 @@ def _mesh_data(ctx: UsdContext, mesh: Mesh, label: str) -> MeshData | None:
         ctx.warn("usd-missing-mesh", f"mesh {mesh.uri!r} was not found; this geometry is left out", label, mesh.src)
         return None
     try:
-        return ctx.meshes.get(mesh.path, mesh.scale)
+        data = ctx.meshes.get(mesh.path, mesh.scale)
     except MeshReadError as exc:
         ctx.warn(
             "usd-bad-mesh", f"mesh {mesh.path!r} could not be read ({exc}); this geometry is left out", label, mesh.src
         )
         return None
+    # MeshData's arrays are never modified: the integer coding of its indices (the costly part of
+    # packing them) can serve every robot that uses the mesh in this process (a batch worker keeps
+    # meshes across robots). Points and normals are a copy to pack: keeping a second copy of them
+    # costs more memory traffic than it saves.
+    keep_packed(data.face_vertex_counts, data.face_vertex_indices)
+    return data
 
 
 def _author_mesh(prim: Prim, data: MeshData) -> None:
