@@ -25,7 +25,7 @@ from robodesc.batch.jobs import WROTE_OUTPUTS, Job, JobResult
 from robodesc.batch.worker import file_hash, output_stamp
 
 RECORDS = os.path.join(".robodesc-batch", "jobs")
-FORMAT = 1
+FORMAT = 2  # 2: file hashes are BLAKE3
 
 
 def build_fingerprint() -> str:

@@ -64,8 +64,15 @@ def _install_hook() -> None:
 
 
 def file_hash(path: str) -> str:
+    """The file's BLAKE3 content hash: a cryptographic hash, several times faster than SHA-256 on
+    the meshes a batch rehashes (``blake3:`` names it in the records)."""
+    import blake3
+
+    digest = blake3.blake3()
     with open(path, "rb") as handle:
-        return hashlib.file_digest(handle, "sha256").hexdigest()
+        while chunk := handle.read(1 << 20):
+            digest.update(chunk)
+    return "blake3:" + digest.hexdigest()
 
 
 # A worker hashes a mesh many robots share once: keyed by the file's identity, size and time,

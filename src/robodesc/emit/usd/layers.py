@@ -113,6 +113,11 @@ def _beyond_float32(value: object) -> float | None:
     if isinstance(value, float | int) and not isinstance(value, bool):
         return float(value) if math.isfinite(value) and abs(value) > FLOAT32_MAX else None
     if isinstance(value, tuple | list | array):
+        try:  # a flat vector of numbers, as nearly all are: one pass in C
+            if max(map(abs, value), default=0.0) <= FLOAT32_MAX:
+                return None
+        except TypeError:  # nested (an array of tuples) or not numbers: item by item
+            pass
         for item in value:
             found = _beyond_float32(item)
             if found is not None:
