@@ -116,3 +116,20 @@ def test_kept_arrays_are_packed_once_and_forgotten_with_them(monkeypatch: pytest
     del layer, indices
     gc.collect()  # a layer's prims refer to their parents
     assert key not in usdc._kept  # gone with the array
+
+
+def test_chunks_view_float_arrays_and_join_to_the_file(tmp_path: Path) -> None:
+    from robodesc.emit.common.files import write_atomic
+    from robodesc.usdfile.usdc import usdc_chunks
+
+    points = array("f", np.random.default_rng(2).standard_normal(30_000).astype(np.float32).tobytes())
+    layer = Layer()
+    layer.prim("/Mesh", "Mesh").attr("points", "point3f[]", points)
+    chunks = usdc_chunks(layer)
+    assert any(isinstance(c, memoryview) and c.obj is points for c in chunks)  # not a copy
+    path = tmp_path / "m.usdc"
+    write_atomic(str(path), chunks)
+    assert path.read_bytes() == usdc_bytes(layer)
+    sdf = Sdf.Layer.FindOrOpen(str(path))  # held: a spec does not keep its layer alive
+    got = np.asarray(sdf.GetAttributeAtPath("/Mesh.points").default, dtype=np.float32)
+    assert got.tobytes() == points.tobytes()

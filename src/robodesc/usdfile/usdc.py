@@ -79,6 +79,13 @@ _BIG_ENDIAN = sys.byteorder == "big"
 
 def usdc_bytes(layer: Layer) -> bytes:
     """The layer as a crate file; ValueError (naming the spec) for a value that does not fit its type."""
+    return b"".join(usdc_chunks(layer))
+
+
+def usdc_chunks(layer: Layer) -> list[bytes | memoryview]:
+    """:func:`usdc_bytes` as pieces to write one after another: float arrays (mesh points and
+    normals, most of a geometry layer) are views of the layer's own arrays, not copies. The layer's
+    arrays must stay unchanged until the pieces are written."""
     crate = Crate()
     if layer.root.properties:
         raise ValueError("the pseudo-root of a layer cannot hold properties")
@@ -351,7 +358,7 @@ class _Packed(NamedTuple):
 
     enum: int
     head: bytes
-    body: bytes
+    body: bytes | memoryview
     align: bool
     flags: int
 
@@ -368,13 +375,16 @@ def keep_packed(*values: array[Any]) -> None:
         key = id(value)
         entry = _kept.get(key)
         if entry is None or entry[0]() is not value:
-            _kept[key] = (weakref.ref(value, partial(_forget, key)), {})
+            _kept[key] = (weakref.ref(value, partial(_forget, _kept, key)), {})
 
 
-def _forget(key: int, ref: weakref.ref[Any]) -> None:
-    entry = _kept.get(key)
+def _forget(
+    kept: dict[int, tuple[weakref.ref[Any], dict[str, _Packed | int]]], key: int, ref: weakref.ref[Any]
+) -> None:
+    # ``kept`` is bound when the callback is made: at interpreter exit the module's names are gone.
+    entry = kept.get(key)
     if entry is not None and entry[0] is ref:  # not a newer array that took the same id
-        del _kept[key]
+        del kept[key]
 
 
 def _shared_array_rep(crate: Crate, type_name: str, vtype: ValueType, value: Any) -> int:
@@ -417,6 +427,7 @@ def _pack_array(crate: Crate, vtype: ValueType, value: Any) -> _Packed | int:
         count //= vtype.width  # flat: the elements' scalars one after another
     if count == 0:
         return _rep(enum, 0, _ARRAY)  # the empty array is payload 0, nothing written
+    body: bytes | memoryview
     if vtype.scalar in _TEXT:
         body = _text_array_bytes(crate, vtype.scalar, value)
     else:
@@ -439,7 +450,7 @@ def _text_array_bytes(crate: Crate, scalar: str, value: Any) -> bytes:
     return _native_to_little(indexes)
 
 
-def _numeric_array_bytes(num: _Numeric, value: Any) -> bytes:
+def _numeric_array_bytes(num: _Numeric, value: Any) -> bytes | memoryview:
     if isinstance(value, array):
         return _packed_bytes(num, value)
     if hasattr(value, "dtype") and hasattr(value, "tobytes") and value.dtype.kind != "O":
@@ -472,13 +483,14 @@ def _flatten(num: _Numeric, items: Any) -> list[Any]:
     return list(chain.from_iterable(rows))
 
 
-def _packed_bytes(num: _Numeric, values: array[Any]) -> bytes:
-    """A flat ``array.array`` of the element type's own C scalars: its bytes are the payload."""
+def _packed_bytes(num: _Numeric, values: array[Any]) -> bytes | memoryview:
+    """A flat ``array.array`` of the element type's own C scalars: its memory is the payload, as a
+    view (no copy; the array cannot be resized while the view exists)."""
     if values.typecode != num.code or num.quat:
         raise Misfit(f"array('{values.typecode}') for {num.code!r} elements, expected array('{num.code}')")
     if len(values) % num.width:
         raise Misfit(f"array of {len(values)} scalars is not a whole number of {num.width}-tuples")
-    return _native_to_little(array(values.typecode, values)) if _BIG_ENDIAN else values.tobytes()
+    return _native_to_little(array(values.typecode, values)) if _BIG_ENDIAN else memoryview(values).cast("B")
 
 
 def _numpy_bytes(num: _Numeric, arr: Any) -> bytes:

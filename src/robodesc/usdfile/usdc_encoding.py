@@ -63,7 +63,9 @@ class Crate:
     """Deduplicating tables and value data, serialised by :meth:`finish`."""
 
     def __init__(self) -> None:
-        self._chunks: list[bytes] = [b""]  # [0]: the bootstrap, written last
+        # Pieces of the file in order; an array's elements may be a memoryview of the caller's array,
+        # which goes to the file without a copy. [0]: the bootstrap, written last.
+        self._chunks: list[bytes | memoryview] = [b""]
         self._size = BOOTSTRAP_SIZE
         self._blobs: dict[tuple[bytes, bytes, bool], int] = {}
         self._tokens: dict[str, int] = {}
@@ -108,15 +110,19 @@ class Crate:
         self._string_tokens.append(token)
         return index
 
-    def blob(self, head: bytes, body: bytes = b"", align: bool = False) -> int:
-        """File offset of these value bytes (``head + body``), written once however many fields share them."""
-        key = (head, body, align)
-        found = self._blobs.get(key)
+    def blob(self, head: bytes, body: bytes | memoryview = b"", align: bool = False) -> int:
+        """File offset of these value bytes (``head + body``), written once however many fields share
+        them. A memoryview body (an array's own memory) is not compared with others: the writer
+        already stores one array object once, and hashing it would cost the copy it avoids."""
+        key = (head, body, align) if isinstance(body, bytes) else None
+        found = self._blobs.get(key) if key is not None else None
         if found is not None:
             return found
         if align and self._size % 8:
             self._append(bytes(8 - self._size % 8))
-        offset = self._blobs[key] = self._size
+        offset = self._size
+        if key is not None:
+            self._blobs[key] = offset
         self._append(head)
         self._append(body)
         return offset
@@ -133,7 +139,8 @@ class Crate:
             self._field_set_data += [*indexes, -1]  # ~0 ends each run
         self._specs.append((self.paths.add(path), field_set, spec_type))
 
-    def finish(self) -> bytes:
+    def finish(self) -> list[bytes | memoryview]:
+        """The file as its pieces in order (``b"".join`` them, or write them one after another)."""
         toc = [U64.pack(6)]
         for name, section in self._sections():
             toc.append(name.encode().ljust(16, b"\0") + struct.pack("<qq", self._size, len(section)))
@@ -141,11 +148,11 @@ class Crate:
         toc_offset = self._size
         self._append(b"".join(toc))
         self._chunks[0] = b"PXR-USDC" + bytes(VERSION).ljust(8, b"\0") + struct.pack("<q", toc_offset) + bytes(64)
-        return b"".join(self._chunks)
+        return self._chunks
 
-    def _append(self, data: bytes) -> None:
+    def _append(self, data: bytes | memoryview) -> None:
         self._chunks.append(data)
-        self._size += len(data)
+        self._size += data.nbytes if isinstance(data, memoryview) else len(data)
 
     def _sections(self) -> list[tuple[str, bytes]]:
         token_data = b"".join(t + b"\0" for t in self._token_bytes)
@@ -300,7 +307,7 @@ def compressed_ints(values: Sequence[int]) -> bytes:
     return compressed_int32_bytes(uint32s([v & 0xFFFFFFFF for v in values]))
 
 
-def compressed_int32_bytes(data: bytes) -> bytes:
+def compressed_int32_bytes(data: bytes | memoryview) -> bytes:
     """:func:`compressed_ints` of little-endian int32 ``data`` (an int array's bytes in the file)."""
     block = fast_compress(encode_int32_bytes(data))
     return U64.pack(len(block)) + block
@@ -310,7 +317,7 @@ def compressed_int32_bytes(data: bytes) -> bytes:
 _PYTHON_CODER_LIMIT = 4096
 
 
-def encode_int32_bytes(data: bytes) -> bytes:
+def encode_int32_bytes(data: bytes | memoryview) -> bytes:
     """:func:`encode_ints` of little-endian int32 ``data``: through the C extension, else numpy for a
     long list; all three give the same bytes."""
     if _intcode is not None:
@@ -322,7 +329,7 @@ def encode_int32_bytes(data: bytes) -> bytes:
     return _encode_numpy(data)
 
 
-def _encode_numpy(data: bytes) -> bytes:
+def _encode_numpy(data: bytes | memoryview) -> bytes:
     import numpy as np
 
     values = np.frombuffer(data, dtype="<u4")

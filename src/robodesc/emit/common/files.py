@@ -6,18 +6,31 @@ from __future__ import annotations
 import os
 import shutil
 import tempfile
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterator, Mapping, Sequence
 from contextlib import contextmanager
+from typing import BinaryIO
+
+# A file's content: text (written as UTF-8), bytes, or pieces of bytes written one after another
+# (a .usdc layer whose mesh arrays are views of the meshes' own memory, never joined into a copy).
+Content = str | bytes | Sequence[bytes | memoryview]
 
 
-def write_atomic(path: str, data: str | bytes) -> None:
+def _write(handle: BinaryIO, data: Content) -> None:
+    if isinstance(data, str):
+        handle.write(data.encode("utf-8"))
+    elif isinstance(data, bytes):
+        handle.write(data)
+    else:
+        handle.writelines(data)
+
+
+def write_atomic(path: str, data: Content) -> None:
     directory = os.path.dirname(os.path.abspath(path))
     os.makedirs(directory, exist_ok=True)
-    raw = data.encode("utf-8") if isinstance(data, str) else data
     fd, tmp = tempfile.mkstemp(prefix=".robodesc-", suffix=".tmp", dir=directory)
     try:
         with os.fdopen(fd, "wb") as handle:
-            handle.write(raw)
+            _write(handle, data)
         os.chmod(tmp, 0o644)
         os.replace(tmp, path)
     except BaseException:
@@ -60,7 +73,7 @@ def folder_mode() -> int:
     return 0o777 & ~mask
 
 
-def write_files(directory: str, files: Mapping[str, str | bytes]) -> None:
+def write_files(directory: str, files: Mapping[str, Content]) -> None:
     """Write ``{relative name: text or bytes}`` under ``directory``."""
     # Each folder made once: a file system call per file costs more than writing a small layer.
     folders = {os.path.dirname(os.path.join(directory, name)) for name in files}
@@ -69,10 +82,10 @@ def write_files(directory: str, files: Mapping[str, str | bytes]) -> None:
     for name, data in sorted(files.items()):
         path = os.path.join(directory, name)
         with open(path, "wb") as handle:
-            handle.write(data.encode("utf-8") if isinstance(data, str) else data)
+            _write(handle, data)
 
 
-def write_folder(out: str, files: Mapping[str, str | bytes]) -> dict[str, str]:
+def write_folder(out: str, files: Mapping[str, Content]) -> dict[str, str]:
     """Write ``files`` into folder ``out`` as one unit; role (the file name) -> path."""
     with staged_folder(out) as staging:
         write_files(staging, files)

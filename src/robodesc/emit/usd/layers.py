@@ -22,7 +22,7 @@ import os
 from array import array
 from dataclasses import dataclass, field
 
-from robodesc.emit.common.files import staged_folder, write_atomic, write_files
+from robodesc.emit.common.files import Content, staged_folder, write_atomic, write_files
 from robodesc.emit.usd.context import GEOMETRY, MATERIALS, PHYSICS, ROLES
 from robodesc.ir.diagnostics import ConfigError
 from robodesc.usdfile.spec import Attribute, Layer, Payload, Prim, value_type
@@ -125,13 +125,14 @@ def _beyond_float32(value: object) -> float | None:
     return None
 
 
-def encode(layer: Layer, ext: str) -> str | bytes:
+def encode(layer: Layer, ext: str) -> Content:
+    """The layer's file content; a .usdc layer as pieces, its mesh arrays views of the meshes."""
     check_float32(layer)
     if ext == ".usda":
         return usda_text(layer)
-    from robodesc.usdfile.usdc import usdc_bytes
+    from robodesc.usdfile.usdc import usdc_chunks
 
-    return usdc_bytes(layer)
+    return usdc_chunks(layer)
 
 
 def write_layers(layers: LayerSet, path: str, robot_name: str) -> None:
@@ -141,7 +142,7 @@ def write_layers(layers: LayerSet, path: str, robot_name: str) -> None:
         return
     assert layers.interface is not None
     contents = CONTENTS + layers.sub_ext(None)
-    files: dict[str, str | bytes] = {}
+    files: dict[str, Content] = {}
     for stem, role in SUBLAYERS:
         name = stem + layers.sub_ext(role)
         layers.main.sublayers.append(f"./{name}")
