@@ -40,3 +40,32 @@ def test_shares_are_contiguous_and_a_free_worker_steals_the_back_half() -> None:
 def test_more_workers_than_jobs() -> None:
     lanes = Lanes(2, 8)
     assert len(lanes.ranges) == 2
+
+
+def test_a_queued_job_never_takes_a_share_s_last_job_or_steals() -> None:
+    lanes = Lanes(6, 2)  # [0, 3) and [3, 6)
+    assert lanes.take(0) == 0 and lanes.take(0, ahead=True) == 1
+    assert lanes.take(0, ahead=True) is None  # 2 is the share's last: left for whoever is idle
+    assert lanes.take(1) == 3 and lanes.take(1, ahead=True) == 4
+    assert lanes.take(1, ahead=True) is None
+    assert lanes.take(1) == 5
+    assert lanes.take(1) == 2  # worker 1, idle, takes the job worker 0 did not queue
+    assert lanes.take(0, ahead=True) is None and lanes.take(0) is None
+
+
+@pytest.mark.parametrize(
+    "argv, starts",
+    [
+        (["batch", "robots/", "-o", "out"], True),
+        (["batch", "robots/", "-o", "out", "--executor", "local"], True),
+        (["batch", "robots/", "-o", "out", "--executor", "ray"], False),
+        (["batch", "robots/", "--executor=ray"], False),
+        (["batch", "--help"], False),
+        (["compile", "robot.urdf", "-o", "r.usda"], False),
+        ([], False),
+    ],
+)
+def test_the_console_script_starts_the_fork_server_for_local_batches_only(argv: list[str], starts: bool) -> None:
+    from robodesc._console import _runs_local_workers
+
+    assert _runs_local_workers(argv) is starts

@@ -17,6 +17,7 @@ from concurrent.futures import FIRST_COMPLETED, wait
 from concurrent.futures import TimeoutError as FutureTimeout
 from typing import Any
 
+from robodesc._forkserver import WORKER_PRELOAD, start_worker_server
 from robodesc.batch.jobs import CRASHED, TIMEOUT, Job, JobResult
 from robodesc.batch.lanes import Lanes
 from robodesc.batch.worker import init_worker, prepare_worker, run_job
@@ -53,26 +54,30 @@ def run_local(jobs: Sequence[Job], workers: int, timeout: float | None, done: Do
     ]
     running: dict[Any, tuple[int, Job]] = {}
 
-    def feed(lane: int) -> None:
-        index = lanes.take(lane)
+    def feed(lane: int, ahead: bool = False) -> None:
+        index = lanes.take(lane, ahead)
         if index is not None:
             job = jobs[index]
             # pebble counts the timeout from the moment the worker starts the job, not from here.
             running[pools[lane].schedule(run_job, args=(job,), timeout=timeout)] = (lane, job)
 
     try:
-        # Two jobs per worker: the next one waits in its pool's queue, so that a worker goes on as
-        # soon as it has sent a result instead of idling while the driver records it and sends
-        # another (about 4 ms a job).
-        for _ in range(2):
-            for lane in range(len(pools)):
-                feed(lane)
+        # Up to two jobs per worker: the next one waits in its pool's queue, so that a worker goes
+        # on as soon as it has sent a result instead of idling while the driver records it and
+        # sends another (about 4 ms a job).
+        for lane in range(len(pools)):
+            feed(lane)
+        for lane in range(len(pools)):
+            feed(lane, ahead=True)
         while running:
             finished, _ = wait(running, return_when=FIRST_COMPLETED)
             for future in finished:
                 lane, job = running.pop(future)
                 done(job, _local_result(future, job, timeout))
-                feed(lane)
+                # Its queued job (if any) is running now: queue the next, else (nothing queued,
+                # the worker is idle) give it one, stolen if need be.
+                queued = any(other == lane for other, _ in running.values())
+                feed(lane, ahead=queued)
     finally:
         # Every job has its result (or the batch is being interrupted): stop all the pools, then
         # wait for them. Each pool's manager wakes every 0.1 s to notice; closing and joining them
@@ -99,12 +104,6 @@ def _local_result(future: Any, job: Job, timeout: float | None) -> JobResult:
         return JobResult(job.id, CRASHED, error=f"{type(exc).__name__}: {exc}")
 
 
-# What a fork server imports once, before it forks each worker: the per-job function and the pipeline
-# behind it, and the CLI that the console script (the driver's main module) imports, so that a
-# worker's start (which re-imports the main module) finds them all loaded.
-_PRELOAD = ["robodesc.batch.worker", "robodesc.pipeline", "robodesc.cli"]
-
-
 def _context() -> Any:
     """Workers forked from a fork server: one clean, single-threaded process that has imported
     robodesc once (a fork of the driver would copy its threads' locks). Spawned workers, each
@@ -114,17 +113,14 @@ def _context() -> Any:
     if "forkserver" not in multiprocessing.get_all_start_methods():
         return multiprocessing.get_context("spawn")
     context = multiprocessing.get_context("forkserver")
-    context.set_forkserver_preload(_PRELOAD)
+    context.set_forkserver_preload(WORKER_PRELOAD)
     return context
 
 
 def prestart_local() -> None:
-    """Start the fork server now, so that its imports overlap the driver's planning and cache checks
-    instead of delaying the first job (it exits with the driver, used or not)."""
-    from multiprocessing import forkserver
-
-    if _context().get_start_method() == "forkserver":
-        forkserver.ensure_running()
+    """Start the fork server now (if the console script has not), so that its imports overlap the
+    driver's planning and cache checks instead of delaying the first job."""
+    start_worker_server()
 
 
 def run_ray(jobs: Sequence[Job], workers: int | None, timeout: float | None, done: Done, address: str | None) -> None:

@@ -22,10 +22,17 @@ class Lanes:
         bounds = [total * lane // count for lane in range(count + 1)]
         self.ranges = [[bounds[lane], bounds[lane + 1]] for lane in range(count)]
 
-    def take(self, lane: int) -> int | None:
-        """The index of the next job for ``lane``, or None when no job is left for anyone."""
+    def take(self, lane: int, ahead: bool = False) -> int | None:
+        """The index of the next job for ``lane``, or None when no job is left for anyone.
+
+        ``ahead``: a job to queue behind the one the worker is running. Only from its own share,
+        and never the share's last job, which stays free for a worker that runs dry to take
+        rather than wait behind another worker's queue at the end of the batch."""
         share = self.ranges[lane]
-        if share[0] == share[1]:
+        if ahead:
+            if share[1] - share[0] < 2:
+                return None
+        elif share[0] == share[1]:
             victim = max(self.ranges, key=lambda r: r[1] - r[0])
             left = victim[1] - victim[0]
             if left == 0:
