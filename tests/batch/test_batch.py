@@ -263,11 +263,15 @@ def test_ctrl_c_stops_cleanly_keeps_finished_jobs_and_the_next_run_resumes(tmp_p
     out = tmp_path / "out"
     cmd = [sys.executable, "-m", "robodesc", "batch", str(robots), "-o", str(out), "-j", "1", "--no-validate", "-q"]
     proc = subprocess.Popen(cmd, stderr=subprocess.PIPE, text=True)
-    records = out / ".robodesc-batch" / "jobs"
+    records = out / ".robodesc-batch" / "records.jsonl"
+
+    def finished() -> int:
+        return len(records.read_text().splitlines()) if records.is_file() else 0
+
     deadline = time.monotonic() + 120
-    while time.monotonic() < deadline and (not records.is_dir() or len(list(records.glob("*.json"))) < 4):
+    while time.monotonic() < deadline and finished() < 4:
         time.sleep(0.2)
-    assert len(list(records.glob("*.json"))) == 4, "the four quick jobs did not finish"
+    assert finished() == 4, "the four quick jobs did not finish"
     time.sleep(0.5)  # the slow one is running now
     proc.send_signal(stop)
     _, err = proc.communicate(timeout=30)

@@ -10,8 +10,9 @@ A job is skipped when its last run wrote its outputs and nothing it depends on c
 - every output it wrote, by size and modification time (an output deleted or edited by hand is
   rewritten; outputs are not inputs, so a stamp is enough and costs no hashing).
 
-Records live in ``ROOT/.robodesc-batch/jobs/``, one JSON file per job, written as each job ends,
-so a batch killed at any point keeps every finished job.
+Records live in ``ROOT/.robodesc-batch/records.jsonl``, one JSON line per job, appended (and
+flushed) as each job ends, so a batch killed at any point keeps every finished job; a line a kill
+cut short is ignored. Each run starts by rewriting the file with the last record of every job.
 """
 
 from __future__ import annotations
@@ -24,8 +25,8 @@ from typing import Any
 from robodesc.batch.jobs import WROTE_OUTPUTS, Job, JobResult
 from robodesc.batch.worker import file_hash, output_stamp
 
-RECORDS = os.path.join(".robodesc-batch", "jobs")
-FORMAT = 2  # 2: file hashes are BLAKE3
+RECORDS = os.path.join(".robodesc-batch", "records.jsonl")
+FORMAT = 3  # 2: file hashes are BLAKE3; 3: one file of JSON lines
 
 
 def build_fingerprint() -> str:
@@ -57,25 +58,47 @@ def job_key(job: Job, fingerprint: str) -> str:
     return hashlib.sha256(json.dumps(data, sort_keys=True, default=str).encode()).hexdigest()
 
 
-def record_path(root: str, job_id: str) -> str:
-    name = hashlib.sha256(job_id.encode()).hexdigest()[:24] + ".json"
-    return os.path.join(root, RECORDS, name)
+class Records:
+    """Every job's last record; :meth:`add` appends one as a job ends."""
 
+    def __init__(self, root: str) -> None:
+        self.path = os.path.join(root, RECORDS)
+        self.known: dict[str, dict[str, Any]] = {}
+        self._handle: Any = None
+        try:
+            with open(self.path, encoding="utf-8") as handle:
+                for line in handle:
+                    try:
+                        data = json.loads(line)
+                    except ValueError:  # a line a kill cut short
+                        continue
+                    if isinstance(data, dict) and data.get("format") == FORMAT and isinstance(data.get("id"), str):
+                        self.known[data["id"]] = data
+        except (OSError, UnicodeDecodeError):
+            pass
 
-def write_record(root: str, job: Job, key: str, result: JobResult) -> None:
-    from robodesc.emit.common.files import write_atomic
+    def get(self, job_id: str) -> dict[str, Any] | None:
+        return self.known.get(job_id)
 
-    data = {"format": FORMAT, "id": job.id, "key": key, "result": result.as_dict()}
-    write_atomic(record_path(root, job.id), json.dumps(data, indent=1, sort_keys=True))
+    def open(self) -> None:
+        """Rewrite the file with one line per job (dropping older lines and a cut one), then append."""
+        from robodesc.emit.common.files import write_atomic
 
+        write_atomic(self.path, "".join(json.dumps(r, sort_keys=True) + "\n" for r in self.known.values()))
+        self._handle = open(self.path, "a", encoding="utf-8")  # noqa: SIM115 (closed by close())
 
-def read_record(root: str, job_id: str) -> dict[str, Any] | None:
-    try:
-        with open(record_path(root, job_id), encoding="utf-8") as handle:
-            data = json.load(handle)
-    except (OSError, ValueError):
-        return None
-    return data if isinstance(data, dict) and data.get("format") == FORMAT and data.get("id") == job_id else None
+    def add(self, job: Job, key: str, result: JobResult) -> None:
+        data = {"format": FORMAT, "id": job.id, "key": key, "result": result.as_dict()}
+        self.known[job.id] = data
+        if self._handle is not None:
+            # One line, flushed at once: json's C encoder (an indent would take the pure-Python one).
+            self._handle.write(json.dumps(data, sort_keys=True) + "\n")
+            self._handle.flush()
+
+    def close(self) -> None:
+        if self._handle is not None:
+            self._handle.close()
+            self._handle = None
 
 
 class Hashes:
@@ -93,9 +116,9 @@ class Hashes:
         return self._known[path]
 
 
-def fresh_result(root: str, job: Job, key: str, hashes: Hashes) -> JobResult | None:
+def fresh_result(records: Records, job: Job, key: str, hashes: Hashes) -> JobResult | None:
     """The recorded result when the job may be skipped, else ``None``."""
-    record = read_record(root, job.id)
+    record = records.get(job.id)
     if record is None or record.get("key") != key:
         return None
     result = JobResult.from_dict(record.get("result") or {})

@@ -41,12 +41,12 @@ def run_local(jobs: Sequence[Job], workers: int, timeout: float | None, done: Do
     import pebble
 
     # A pool's manager thread checks its workers every CONSTS.sleep_unit (0.1 s) and a pool only ends
-    # at such a check: the last one delayed every batch by up to 0.1 s. A finer tick costs a few
-    # microseconds each (and makes the timeout finer too).
+    # at such a check: the last one delayed every batch by up to 0.1 s. 0.02 s ends it sooner for
+    # about 0.02 s of the driver's time per worker over a 100-robot batch (0.01 s would double it).
     consts = getattr(getattr(pebble, "common", None), "CONSTS", None)
     tick = getattr(consts, "sleep_unit", None)
     if tick is not None:
-        consts.sleep_unit = min(tick, 0.01)  # type: ignore[union-attr]
+        consts.sleep_unit = min(tick, 0.02)  # type: ignore[union-attr]
     lanes = Lanes(len(jobs), workers)
     context = _context()
     pools: list[Any] = [

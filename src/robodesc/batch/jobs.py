@@ -67,7 +67,9 @@ class JobResult:
     cached: bool = False
 
     def as_dict(self) -> dict[str, Any]:
-        return dataclasses.asdict(self)
+        """The fields as they are (already plain data), not deep-copied as ``dataclasses.asdict``
+        would: the driver records every result, and copying each finding cost more than the rest."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> JobResult:

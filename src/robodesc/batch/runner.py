@@ -94,10 +94,11 @@ def run_batch(
     fingerprint = cache.build_fingerprint()
     hashes = cache.Hashes()
     keys = {job.id: cache.job_key(job, fingerprint) for job in jobs}
+    records = cache.Records(root)
     results: dict[str, JobResult] = {}
     todo: list[Job] = []
     for job in jobs:
-        previous = None if force else cache.fresh_result(root, job, keys[job.id], hashes)
+        previous = None if force else cache.fresh_result(records, job, keys[job.id], hashes)
         if previous is not None:
             results[job.id] = previous
         else:
@@ -107,11 +108,13 @@ def run_batch(
         bar.advance(result)
 
     def done(job: Job, result: JobResult) -> None:
-        cache.write_record(root, job, keys[job.id], result)
+        records.add(job, keys[job.id], result)
         results[job.id] = result
         bar.advance(result)
 
     interrupted = False
+    if todo:
+        records.open()
     previous_term = _stop_on_sigterm()
     try:
         if todo:
@@ -126,6 +129,7 @@ def run_batch(
     except KeyboardInterrupt:
         interrupted = True
     finally:
+        records.close()
         bar.stop()
         if previous_term is not None:
             signal.signal(signal.SIGTERM, previous_term)
