@@ -115,9 +115,9 @@ def run_command(args: argparse.Namespace, compile_options: Callable[[argparse.Na
         except ImportError:
             raise ConfigError("--executor ray needs Ray: pip install 'robodesc[ray]'") from None
     if args.executor == "local":
-        from robodesc.batch.executors import prestart_local
+        from robodesc._forkserver import start_worker_server
 
-        prestart_local()  # its imports overlap the planning below
+        start_worker_server()  # if the console script has not: its imports overlap the planning below
     target = "isaac" if args.isaac_sim else "ros2" if args.ros2 else args.target
     spec = sweep.from_cli(args.sweep, args.samples, args.seed)
     jobs = plan(

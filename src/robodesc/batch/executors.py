@@ -17,7 +17,7 @@ from concurrent.futures import FIRST_COMPLETED, wait
 from concurrent.futures import TimeoutError as FutureTimeout
 from typing import Any
 
-from robodesc._forkserver import WORKER_PRELOAD, start_worker_server
+from robodesc._forkserver import worker_context
 from robodesc.batch.jobs import CRASHED, TIMEOUT, Job, JobResult
 from robodesc.batch.lanes import Lanes
 from robodesc.batch.worker import init_worker, prepare_worker, run_job
@@ -48,7 +48,7 @@ def run_local(jobs: Sequence[Job], workers: int, timeout: float | None, done: Do
     if tick is not None:
         consts.sleep_unit = min(tick, 0.02)  # type: ignore[union-attr]
     lanes = Lanes(len(jobs), workers)
-    context = _context()
+    context = worker_context()
     pools: list[Any] = [
         pebble.ProcessPool(max_workers=1, initializer=init_worker, context=context) for _ in lanes.ranges
     ]
@@ -80,8 +80,8 @@ def run_local(jobs: Sequence[Job], workers: int, timeout: float | None, done: Do
                 feed(lane, ahead=queued)
     finally:
         # Every job has its result (or the batch is being interrupted): stop all the pools, then
-        # wait for them. Each pool's manager wakes every 0.1 s to notice; closing and joining them
-        # one after another would wait that long once per worker.
+        # wait for them. Each pool's manager notices at its next tick; closing and joining them
+        # one after another would wait a tick once per worker.
         for pool in pools:
             pool.stop()
         for pool in pools:
@@ -102,25 +102,6 @@ def _local_result(future: Any, job: Job, timeout: float | None) -> JobResult:
         return JobResult(job.id, CRASHED, error=f"the worker process died ({_signal_name(exc.exitcode)})")
     except Exception as exc:  # the job could not even be sent or returned (pickling)
         return JobResult(job.id, CRASHED, error=f"{type(exc).__name__}: {exc}")
-
-
-def _context() -> Any:
-    """Workers forked from a fork server: one clean, single-threaded process that has imported
-    robodesc once (a fork of the driver would copy its threads' locks). Spawned workers, each
-    importing robodesc for itself, where there is no fork server (Windows)."""
-    import multiprocessing
-
-    if "forkserver" not in multiprocessing.get_all_start_methods():
-        return multiprocessing.get_context("spawn")
-    context = multiprocessing.get_context("forkserver")
-    context.set_forkserver_preload(WORKER_PRELOAD)
-    return context
-
-
-def prestart_local() -> None:
-    """Start the fork server now (if the console script has not), so that its imports overlap the
-    driver's planning and cache checks instead of delaying the first job."""
-    start_worker_server()
 
 
 def run_ray(jobs: Sequence[Job], workers: int | None, timeout: float | None, done: Done, address: str | None) -> None:

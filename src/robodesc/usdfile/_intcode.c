@@ -1,7 +1,7 @@
 /* Sdf's integer coding (integerCoding.cpp) of 32-bit integers, for .usdc int arrays and sections.
  *
  * The Python version in usdc_encoding.encode_ints is the reference; this one gives the same bytes
- * (tests/usd/test_usdc_intcode.py) for the millions of mesh indices a robot's geometry layer holds,
+ * (tests/usdfile/test_usdc_intcode.py) for the millions of mesh indices a robot's geometry layer holds,
  * where the Python loop would take seconds.
  *
  * Output: int32 most common delta, 2-bit codes (four per byte, low bits first), then each delta that

@@ -2,8 +2,9 @@
 
 Python, following Sdf's ``crateFile.cpp``: no usd-core, and numpy only when a value already is a
 numpy array, whose bytes then go to the file at memcpy speed (or, installed without a C compiler,
-to code a long int array, which the C extension ``_intcode`` does otherwise). This module maps the layer model
-onto crate specs, fields and values; :mod:`robodesc.usdfile.usdc_encoding` lays out the file.
+to code a long int array, which the C extension ``_intcode`` does otherwise). This module maps the
+layer model onto crate specs, fields and values; :mod:`robodesc.usdfile.usdc_encoding` lays out
+the file.
 
 Crate version 0.8.0: the payload list op needs it, and nothing newer is needed. It is still the
 version usd-core writes new files in (``USD_WRITE_NEW_USDC_FILES_AS_VERSION`` defaults to it in

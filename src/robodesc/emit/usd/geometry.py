@@ -101,8 +101,8 @@ def _mesh_data(ctx: UsdContext, mesh: Mesh, label: str) -> MeshData | None:
         return None
     # MeshData's arrays are never modified: the integer coding of its indices (the costly part of
     # packing them) can serve every robot that uses the mesh in this process (a batch worker keeps
-    # meshes across robots). Points and normals are a copy to pack: keeping a second copy of them
-    # costs more memory traffic than it saves.
+    # meshes across robots). Points and normals need no packing: the writer hands the file views
+    # of their memory.
     keep_packed(data.face_vertex_counts, data.face_vertex_indices)
     return data
 
