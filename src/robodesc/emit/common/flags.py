@@ -1,0 +1,60 @@
+"""Command-line flags declared where the option lives: on the options dataclass's field.
+
+A target's new option is one field::
+
+    actuator: str = field(default="position", metadata=flag("actuator kind", choices=ACTUATORS, name="--mjcf-actuator"))
+
+The CLI builds its flags from these declarations (the flag defaults to ``--field-name``); the API
+takes the field by name. Several targets may declare the same field (``stiffness`` for USD and
+MJCF): the CLI makes one flag of it and hands the value to whichever target runs.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from typing import Any
+
+# How a flag's text becomes the option's value.
+#  "value": as argparse gives it (with ``type``/``choices``);
+#  "switch": a boolean, --x / --no-x;
+#  "on": a boolean that can only be switched on (--x);
+#  "rules": one number for every joint, or repeated REGEX=NUMBER rules (first full match wins);
+#  "vector": comma-separated numbers (X,Y,Z).
+KINDS = ("value", "switch", "on", "rules", "vector")
+
+
+@dataclass(frozen=True, slots=True)
+class Flag:
+    help: str
+    name: str | None = None  # default: "--" + the field name with '-' for '_'
+    kind: str = "value"
+    type: Callable[[str], Any] | None = None
+    choices: tuple[str, ...] | None = None
+    metavar: str | None = None
+    # For "rules": a bare number means this one rule (``{".*": value}``) rather than a number.
+    rules_only: bool = False
+    # For "vector": how many numbers.
+    size: int = 3
+
+
+def flag(help: str, **kwargs: Any) -> dict[str, Flag]:
+    """Field metadata that declares the field's command-line flag."""
+    spec = Flag(help=help, **kwargs)
+    if spec.kind not in KINDS:
+        raise ValueError(f"flag kind {spec.kind!r}: one of {KINDS}")
+    return {"flag": spec}
+
+
+def flag_name(field: dataclasses.Field[Any]) -> str:
+    spec: Flag = field.metadata["flag"]
+    return spec.name or "--" + field.name.replace("_", "-")
+
+
+def declared_flags(cls: type[Any]) -> Iterator[tuple[dataclasses.Field[Any], Flag]]:
+    """The fields of an options dataclass that declare a flag, in declaration order."""
+    for f in dataclasses.fields(cls):
+        spec = f.metadata.get("flag")
+        if isinstance(spec, Flag):
+            yield f, spec
