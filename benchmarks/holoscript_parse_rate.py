@@ -62,7 +62,7 @@ def reason_key(message: str) -> str:
 
 
 def measure(path: str, rel: str, compile_targets: bool) -> Outcome:
-    from robodesc.compose.holo_lower import load_holo
+    from robodesc.frontends.holo.lower import load_holo
     from robodesc.frontends.options import LoadOptions, MissingMesh
 
     with open(path, encoding="utf-8", errors="replace") as handle:

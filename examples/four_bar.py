@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import math
 
-from robodesc.compose import builder as rb
-from robodesc.compose.shapes import box, cylinder
-from robodesc.compose.units import deg
+from robodesc.frontends.compose import builder as rb
+from robodesc.frontends.compose.shapes import box, cylinder
+from robodesc.frontends.compose.units import deg
 from robodesc.ir.model import Robot
 
 # Pivots on the ground, and the two moving pivots at the zero pose (x, z in metres, y = 0).

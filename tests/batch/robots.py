@@ -80,8 +80,8 @@ joints:
   swing: {type: revolute, parent: base, child: bob, axis: y, limits: {lower: -1, upper: 1}}
 """
 
-PYTHON_ROBOT = """from robodesc.compose.builder import RobotBuilder
-from robodesc.compose.shapes import box
+PYTHON_ROBOT = """from robodesc.frontends.compose.builder import RobotBuilder
+from robodesc.frontends.compose.shapes import box
 
 {prelude}
 

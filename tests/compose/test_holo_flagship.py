@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from robodesc.compose.holo_lower import load_holo
+from robodesc.frontends.holo.lower import load_holo
 from robodesc.frontends.load import load_path
 from robodesc.frontends.options import LoadOptions, MissingMesh
 from robodesc.ir.diagnostics import BrokenReferenceError

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from robodesc.compose.holo_lower import HoloResult, load_holo_text
+from robodesc.frontends.holo.lower import HoloResult, load_holo_text
 from robodesc.frontends.options import LoadOptions
 from robodesc.ir.diagnostics import BrokenReferenceError, ParseError
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Sphere

@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 import robodesc
-from robodesc.compose.holo_lower import HoloResult, load_holo, load_holo_text
-from robodesc.compose.holo_parser import MAX_DEPTH, Expr, parse
+from robodesc.frontends.holo.lower import HoloResult, load_holo, load_holo_text
+from robodesc.frontends.holo.parser import MAX_DEPTH, Expr, parse
 from robodesc.frontends.options import LoadOptions, MissingMesh
 from robodesc.ir.diagnostics import Findings, ParseError
 from robodesc.ir.model import JointType, Robot

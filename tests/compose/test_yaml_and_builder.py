@@ -6,10 +6,10 @@ import math
 
 import pytest
 
-from robodesc.compose.builder import Part, RobotBuilder, pose
-from robodesc.compose.shapes import box, cylinder, sphere
-from robodesc.compose.units import deg, mm
-from robodesc.compose.yaml_format import load_yaml_text
+from robodesc.frontends.compose.builder import Part, RobotBuilder, pose
+from robodesc.frontends.compose.shapes import box, cylinder, sphere
+from robodesc.frontends.compose.units import deg, mm
+from robodesc.frontends.compose.yaml_format import load_yaml_text
 from robodesc.ir.diagnostics import BrokenReferenceError, Findings, ParseError
 from robodesc.ir.model import JointType
 from robodesc.ir.transforms import forward_kinematics

@@ -55,7 +55,7 @@ FRONTENDS: dict[str, Frontend] = {
 def _composition_frontends() -> None:
     """Register composition frontends lazily (they import optional parsers)."""
     try:
-        from robodesc.compose import register
+        from robodesc.frontends.compose import register
     except ImportError:
         return
     register(FRONTENDS)

@@ -1,7 +1,7 @@
 """Declarations read from a composition file, before they go to the builder.
 
 They are plain values in SI, so that templates can be renamed and mirrored without knowing the
-file's units, and then fed to :class:`~robodesc.compose.builder.RobotBuilder` in one place.
+file's units, and then fed to :class:`~robodesc.frontends.compose.builder.RobotBuilder` in one place.
 """
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from robodesc.compose.builder import Frame, Part, RobotBuilder
+from robodesc.frontends.compose.builder import Frame, Part, RobotBuilder
 from robodesc.ir.diagnostics import Findings, SourceLoc
 from robodesc.ir.geometry import Inertia, Mesh, Pose, Vec3
 from robodesc.ir.inertia import from_tensor, tensor

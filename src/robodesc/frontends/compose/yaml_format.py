@@ -19,9 +19,9 @@ import os
 
 from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 
-from robodesc.compose.builder import JOINT_TYPES, SENSOR_TYPES, Frame, Part, RobotBuilder, axis_vector
-from robodesc.compose.colors import ColorError, parse_color
-from robodesc.compose.decls import (
+from robodesc.frontends.compose.builder import JOINT_TYPES, SENSOR_TYPES, Frame, Part, RobotBuilder, axis_vector
+from robodesc.frontends.compose.colors import ColorError, parse_color
+from robodesc.frontends.compose.decls import (
     ActuatorDecl,
     Decls,
     FrameDecl,
@@ -33,9 +33,9 @@ from robodesc.compose.decls import (
     mirrored,
     renamed,
 )
-from robodesc.compose.shapes import box, capsule, cylinder, mesh, sphere
-from robodesc.compose.units import ANGLE_UNITS, LENGTH_UNITS
-from robodesc.compose.yaml_nodes import NodeReader, compose_text, merge_nodes
+from robodesc.frontends.compose.shapes import box, capsule, cylinder, mesh, sphere
+from robodesc.frontends.compose.units import ANGLE_UNITS, LENGTH_UNITS
+from robodesc.frontends.compose.yaml_nodes import NodeReader, compose_text, merge_nodes
 from robodesc.frontends.options import LoadOptions
 from robodesc.ir.diagnostics import Findings, ParseError, SourceLoc
 from robodesc.ir.geometry import Geometry, Inertia, Pose

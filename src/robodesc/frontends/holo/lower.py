@@ -35,11 +35,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from robodesc.compose.builder import JOINT_TYPES, Part, RobotBuilder, joint_type
-from robodesc.compose.colors import ColorError, parse_color
-from robodesc.compose.holo_parser import Block, Document, Expr, Trait, Value, parse
-from robodesc.compose.meshes import resolve_mesh
-from robodesc.compose.solids import POLYHEDRA, cone, polyhedron, torus
+from robodesc.frontends.compose.builder import JOINT_TYPES, Part, RobotBuilder, joint_type
+from robodesc.frontends.compose.colors import ColorError, parse_color
+from robodesc.frontends.compose.meshes import resolve_mesh
+from robodesc.frontends.compose.solids import POLYHEDRA, cone, polyhedron, torus
+from robodesc.frontends.holo.parser import Block, Document, Expr, Trait, Value, parse
 from robodesc.frontends.options import LoadOptions, MissingMesh
 from robodesc.frontends.packages import PackageResolver
 from robodesc.ir.diagnostics import BrokenReferenceError, Findings, ParseError, SourceLoc
@@ -1019,7 +1019,7 @@ class _Lowerer:
         if "axis" in p:
             axis = self.vec3(p["axis"], f"{spec.notation}.axis", label) if not isinstance(p["axis"].data, str) else None
             if isinstance(p["axis"].data, str):
-                from robodesc.compose.builder import axis_vector
+                from robodesc.frontends.compose.builder import axis_vector
 
                 try:
                     axis = axis_vector(p["axis"].data)

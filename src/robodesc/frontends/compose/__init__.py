@@ -16,8 +16,8 @@ Frontend = Callable[[str, LoadOptions, Findings], Robot]
 
 def register(frontends: MutableMapping[str, Frontend]) -> None:
     """Register ``.yaml``, ``.yml`` and ``.holo``."""
-    from robodesc.compose.holo_lower import holo_frontend
-    from robodesc.compose.yaml_format import load_yaml
+    from robodesc.frontends.compose.yaml_format import load_yaml
+    from robodesc.frontends.holo.lower import holo_frontend
 
     frontends[".yaml"] = load_yaml
     frontends[".yml"] = load_yaml

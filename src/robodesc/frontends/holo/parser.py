@@ -29,7 +29,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from robodesc.compose.holo_lexer import Kind, Token, tokenize
+from robodesc.frontends.holo.lexer import Kind, Token, tokenize
 from robodesc.ir.diagnostics import ParseError, SourceLoc
 
 MAX_DEPTH = 100

@@ -1,8 +1,8 @@
 """Build a robot from parts in a few readable lines; the YAML and ``.holo`` readers lower to this too.
 
->>> from robodesc.compose.builder import RobotBuilder
->>> from robodesc.compose.shapes import box, cylinder
->>> from robodesc.compose.units import deg
+>>> from robodesc.frontends.compose.builder import RobotBuilder
+>>> from robodesc.frontends.compose.shapes import box, cylinder
+>>> from robodesc.frontends.compose.units import deg
 >>> b = RobotBuilder("arm")
 >>> b.link("base", box(0.2, 0.2, 0.1), mass=5.0, color="#333")
 >>> b.link("upper", cylinder(0.03, 0.4), mass=1.0, pose=(0, 0, 0.25), frame="world")
@@ -26,10 +26,10 @@ from typing import Literal
 
 import numpy as np
 
-from robodesc.compose.colors import ColorError, color_hex, parse_color
-from robodesc.compose.meshes import resolve_mesh
-from robodesc.compose.shapes import mesh_volume, volume
-from robodesc.compose.units import ANGLE_UNITS, LENGTH_UNITS, Range
+from robodesc.frontends.compose.colors import ColorError, color_hex, parse_color
+from robodesc.frontends.compose.meshes import resolve_mesh
+from robodesc.frontends.compose.shapes import mesh_volume, volume
+from robodesc.frontends.compose.units import ANGLE_UNITS, LENGTH_UNITS, Range
 from robodesc.frontends.options import LoadOptions
 from robodesc.frontends.packages import PackageResolver
 from robodesc.ir.diagnostics import BrokenReferenceError, Findings, ParseError, SourceLoc
