@@ -89,7 +89,7 @@ def make_jobs(robots: list[CorpusRobot], targets: list[str], root: str) -> list[
             job_id = f"{_slug(robot.corpus)}/{_slug(robot.name)}/{target}"
             jobs.append(Job(job_id, robot.path, os.path.abspath(robot.path), target, "", options))
     # USD as .usdc: mesh arrays written as text would dominate the time.
-    return finalize(jobs, root, usd_format="usdc")
+    return finalize(jobs, root, suffix=".usdc")
 
 
 def report_from_json(data: dict[str, Any]) -> ValidationReport:
@@ -480,7 +480,7 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{out} is out of date; regenerate it with {' '.join(sys.argv)}", file=sys.stderr)
             return 1
         return 0
-    from robodesc.emit.common.files import write_atomic
+    from robodesc._files import write_atomic
 
     write_atomic(out, text)
     print(f"wrote {out}")

@@ -14,9 +14,11 @@ from robodesc._version import __version__
 if TYPE_CHECKING:
     from robodesc.api import (
         CompileResult,
+        check,
         compile_for_gazebo,
         compile_for_isaac_sim,
         compile_for_ros2,
+        compile_to,
         compile_to_sdf,
         compile_to_urdf,
         compile_to_usd,
@@ -27,9 +29,11 @@ if TYPE_CHECKING:
 __all__ = [
     "CompileResult",
     "__version__",
+    "check",
     "compile_for_gazebo",
     "compile_for_isaac_sim",
     "compile_for_ros2",
+    "compile_to",
     "compile_to_sdf",
     "compile_to_urdf",
     "compile_to_usd",
@@ -39,8 +43,13 @@ __all__ = [
 
 
 def __getattr__(name: str) -> Any:
-    if name in __all__:
+    # compile_to_<target> exists for every target of the table (robodesc.api.__getattr__).
+    if name in __all__ or name.startswith("compile_to_"):
         from robodesc import api
 
         return getattr(api, name)
     raise AttributeError(f"module 'robodesc' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

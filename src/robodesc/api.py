@@ -22,28 +22,26 @@ import dataclasses
 import os
 from typing import Any
 
+from robodesc.frontends.load import Source, load_source
+from robodesc.inspect_robot import InspectReport
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
 from robodesc.options import build_options
-from robodesc.pipeline import (
-    CompileResult,
-    Progress,
-    Source,
-    ValidationFailedError,
-    compile_robot,
-    load_source,
-    target_options_class,
-    verify_source,
-)
+from robodesc.pipeline import CompileResult, Progress, ValidationFailedError, compile_robot, verify_source
+from robodesc.targets import DEFAULT_TARGET, target_spec
+from robodesc.validation.report import ValidationReport
 
 __all__ = [
     "CompileResult",
+    "check",
     "compile_for_gazebo",
     "compile_for_isaac_sim",
     "compile_for_ros2",
+    "compile_to",
     "compile_to_sdf",
     "compile_to_urdf",
     "compile_to_usd",
+    "inspect",
     "load",
     "validate",
     "validate_file",
@@ -85,9 +83,26 @@ def load(source: Source, **options: Any) -> Robot:
     """Read ``source`` into the IR and verify it (warnings are dropped; use ``robodesc inspect`` to see them)."""
     opts = build_options(options)
     findings = Findings()
-    robot = load_source(source, opts, findings)
+    robot = load_source(source, opts.load, findings)
     verify_source(robot, opts, findings)
     return robot
+
+
+def compile_to(
+    source: Source,
+    target: str,
+    out: str | os.PathLike[str] | None = None,
+    *,
+    progress: Progress | None = None,
+    **options: Any,
+) -> CompileResult:
+    """Compile ``source`` to the target named ``target`` (``robodesc compile -t TARGET``). Options:
+    every input and pass option, and the target's own (its options class's fields)."""
+    from robodesc.plugins import load_plugins
+
+    load_plugins(tuple(options.get("plugins", ())))
+    cls = target_spec(target).options
+    return _compile(target, source, out, progress, options, *((cls,) if cls else ()))
 
 
 def compile_to_urdf(
@@ -174,23 +189,41 @@ def compile_for_isaac_sim(
     return _compile("isaac", source, target, progress, options, IsaacSettings)
 
 
-def validate(source: Source, target: str = "urdf", **options: Any) -> Any:
-    """Compile ``source`` to ``target`` in a temporary folder and return the validation report
-    (``report.ok``, ``report.to_text()``, ``to_json()``, ``to_markdown()``)."""
+def inspect(source: Source, **options: Any) -> InspectReport:
+    """Load ``source`` and describe it: tree, DOF, total mass and every finding (``robodesc inspect``)."""
+    from robodesc.inspect_robot import describe
+    from robodesc.plugins import load_plugins
+
+    opts = build_options(options)
+    load_plugins(opts.plugins)
+    return describe(source, opts)
+
+
+def check(source: Source, target: str = DEFAULT_TARGET, **options: Any) -> CompileResult:
+    """Compile ``source`` to ``target`` in a temporary folder and validate it; the result (its
+    ``validation`` report and findings) is returned whether or not validation passed."""
     import tempfile
 
+    from robodesc.plugins import load_plugins
+
+    load_plugins(tuple(options.get("plugins", ())))
+    spec = target_spec(target)
     with tempfile.TemporaryDirectory(prefix="robodesc-validate-") as tmp:
-        suffix = {"usd": "usda", "isaac": ""}.get(target, target)
-        out = os.path.join(tmp, f"robot.{suffix}" if suffix else "robot")
-        cls = target_options_class(target)
+        out = spec.output_name(os.path.join(tmp, "robot"))
         try:
-            result = _compile(target, source, out, None, {**options, "validate": True}, *((cls,) if cls else ()))
+            return compile_to(source, target, out, **{**options, "validate": True})
         except ValidationFailedError as failed:  # nothing written; the report says why
-            result = failed.result
-    return result.validation
+            return failed.result
 
 
-def validate_file(path: str, options: Any = None, load_options: Any = None) -> Any:
+def validate(source: Source, target: str = DEFAULT_TARGET, **options: Any) -> ValidationReport | None:
+    """Compile ``source`` to ``target`` in a temporary folder and return the validation report
+    (``report.ok``, ``report.to_text()``, ``to_json()``, ``to_markdown()``); None when the target
+    has no check."""
+    return check(source, target, **options).validation
+
+
+def validate_file(path: str, options: Any = None, load_options: Any = None) -> ValidationReport:
     """Load ``path`` (URDF/xacro), emit URDF with absolute mesh paths and validate it in MuJoCo.
 
     ``options`` is a :class:`~robodesc.validation.options.ValidateOptions`, ``load_options`` a
@@ -220,3 +253,26 @@ def validate_file(path: str, options: Any = None, load_options: Any = None) -> A
     report.extend(validate_urdf_text(robot, text, base_dir, opts))
     report.info["input"] = path
     return report
+
+
+def __getattr__(name: str) -> Any:
+    """``compile_to_<target>`` for every target of the table that has no named function above
+    (``robodesc.compile_to_mjcf``): a new target needs no edit here."""
+    target = name.removeprefix("compile_to_")
+    from robodesc.targets import TARGETS
+
+    if name.startswith("compile_to_") and target in TARGETS:
+
+        def compile_to_target(
+            source: Source,
+            out: str | os.PathLike[str] | None = None,
+            *,
+            progress: Progress | None = None,
+            **options: Any,
+        ) -> CompileResult:
+            return compile_to(source, target, out, progress=progress, **options)
+
+        compile_to_target.__name__ = name
+        compile_to_target.__doc__ = f"Compile to {target}: {target_spec(target).summary}. Options as for compile_to()."
+        return compile_to_target
+    raise AttributeError(f"module 'robodesc.api' has no attribute {name!r}")

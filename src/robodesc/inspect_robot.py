@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from robodesc.frontends.load import Source, load_source
 from robodesc.ir.diagnostics import Finding, Findings, Severity
 from robodesc.ir.model import Robot
 from robodesc.ir.verify import verify
 from robodesc.options import CompileOptions
-from robodesc.pipeline import Source, load_source
 
 
 @dataclass(slots=True)
@@ -88,6 +88,6 @@ class InspectReport:
 
 def describe(source: Source, options: CompileOptions) -> InspectReport:
     findings = Findings()
-    robot = load_source(source, options, findings)
+    robot = load_source(source, options.load, findings)
     findings.extend(verify(robot))
     return InspectReport(robot, list(findings))

@@ -28,17 +28,11 @@ class InvalidInertia(enum.Enum):
 
 @dataclass(slots=True)
 class CompileOptions:
-    # ---- input -------------------------------------------------------------------------------
-    package_paths: dict[str, str] = field(default_factory=dict)
-    xacro_args: dict[str, str] = field(default_factory=dict)
-    # A missing mesh is a warning by default: URDF and SDF keep the reference, USD leaves the shape
-    # out and says so (docs/diagnostics.md).
-    missing_mesh: MissingMesh = MissingMesh.WARN
-    # Every warning is an error (exit 2, nothing written), for pipelines that want no surprises.
-    strict: bool = False
+    # ---- input (``strict`` there also makes every warning of the compile an error) ------------
+    load: LoadOptions = field(default_factory=LoadOptions)
     invalid_inertia: InvalidInertia = InvalidInertia.WARN
-    trust_xacro: bool = False
-    allowed_env: tuple[str, ...] = ()
+    # Modules that add targets or frontends (robodesc.plugins), loaded before anything else.
+    plugins: tuple[str, ...] = ()
     # ---- passes ------------------------------------------------------------------------------
     preset: str | None = None
     passes: dict[str, Any] = field(default_factory=dict)
@@ -47,15 +41,10 @@ class CompileOptions:
     target_options: dict[str, Any] = field(default_factory=dict)
     validate: bool = True
 
-    def load_options(self) -> LoadOptions:
-        return LoadOptions(
-            package_paths=dict(self.package_paths),
-            xacro_args=dict(self.xacro_args),
-            missing_mesh=self.missing_mesh,
-            strict=self.strict,
-            trust_xacro=self.trust_xacro,
-            allowed_env=tuple(self.allowed_env),
-        )
+    @property
+    def strict(self) -> bool:
+        """Every warning is an error (exit 2, nothing written), for pipelines that want no surprises."""
+        return self.load.strict
 
 
 _ENUMS: dict[str, type[enum.Enum]] = {
@@ -78,13 +67,14 @@ def build_options(values: Mapping[str, Any], *, extra_names: Mapping[str, str] |
     them (``"passes"`` or ``"target_options"``).
     """
     extra = dict(extra_names or {})
-    known = [f.name for f in dataclasses.fields(CompileOptions)]
+    loading = [f.name for f in dataclasses.fields(LoadOptions)]
+    known = [f.name for f in dataclasses.fields(CompileOptions) if f.name not in _BUCKETS] + loading
     opts = CompileOptions()
     for name, value in values.items():
         if name in extra:
             getattr(opts, extra[name])[name] = value
             continue
-        if name not in known or name in ("passes", "target_options"):
+        if name not in known:
             raise ConfigError(f"unknown option {name!r}{closest(name, known + sorted(extra))}")
         if name in _ENUMS and not isinstance(value, _ENUMS[name]):
             enum_type = _ENUMS[name]
@@ -93,8 +83,12 @@ def build_options(values: Mapping[str, Any], *, extra_names: Mapping[str, str] |
             except ValueError:
                 allowed = ", ".join(repr(e.value) for e in enum_type)
                 raise ConfigError(f"option {name}={value!r}: expected one of {allowed}") from None
-        setattr(opts, name, value)
+        setattr(opts.load if name in loading else opts, name, value)
     return opts
+
+
+# Fields of CompileOptions that are not options themselves but hold them.
+_BUCKETS = ("load", "passes", "target_options")
 
 
 def dataclass_from_mapping(cls: type[Any], values: Mapping[str, Any], what: str) -> Any:

@@ -26,8 +26,10 @@ ALLOWED: dict[str, set[str]] = {
     "meshes": {"ir"},
     "frontends": {"ir"},
     "passes": {"ir", "meshes"},
-    "emit": {"ir", "meshes", "usdfile"},
-    "validation": {"ir", "meshes", "emit", "usdfile"},
+    # Validation is a library of consumers and comparisons; each target's package says which of
+    # them checks its output (its ``Target.validate``), so emit sits above validation.
+    "validation": {"ir", "meshes", "usdfile"},
+    "emit": {"ir", "meshes", "usdfile", "validation"},
 }
 # Frontends and compositions are one stage (compositions are frontends that live in their own
 # package); they must still not form a module cycle, which the cycle check below sees.
@@ -84,11 +86,11 @@ GRAPH = {m: imports_of(m) for m in MODULES}
 
 
 # A leaf every stage may name.
-LEAVES = {"robodesc._version"}
+LEAVES = {"robodesc._version", "robodesc._files"}
 
 
 # Packages of the driver layer: they may import everything, and only the CLI imports them.
-DRIVER_PACKAGES = {"batch"}
+DRIVER_PACKAGES = {"batch", "cli"}
 
 
 def stage(module: str) -> str:
@@ -205,8 +207,71 @@ def test_only_the_cli_imports_driver_packages() -> None:
         parts = module.split(".")
         return parts[1] if len(parts) > 1 and parts[1] in DRIVER_PACKAGES else ""
 
+    entry_points = {"robodesc.__main__", "robodesc._console"}  # they start the CLI
     for module, targets in sorted(GRAPH.items()):
-        if module == "robodesc.cli":
+        if package(module) == "cli":
             continue
         reached = {t for t in targets if package(t) and package(t) != package(module)}
+        if module in entry_points:
+            reached = {t for t in reached if package(t) != "cli"}
         assert not reached, f"{module} imports {sorted(reached)}: only robodesc.cli may"
+
+
+# ---- the driver knows no target by name ------------------------------------------------------
+# The one table that names them, and the places a name is the point: the CLI's --ros2/--isaac-sim
+# shortcuts, and the API's named shortcuts (compile_to_usd, compile_for_isaac_sim ...) which match
+# them. Every other target reaches the driver through the table (robodesc.compile_to(src, "mjcf") and
+# robodesc.compile_to_mjcf work for a new target without an edit).
+TARGET_NAMES = {"urdf", "sdf", "usd", "ros2", "isaac", "mjcf"}
+NAMING_ALLOWED = {
+    "robodesc.targets": None,  # the table: everywhere in the module
+    "robodesc.cli.commands": {"compile_target"},
+    "robodesc.api": {
+        "compile_to_urdf",
+        "compile_to_sdf",
+        "compile_to_usd",
+        "compile_for_ros2",
+        "compile_for_gazebo",
+        "compile_for_isaac_sim",
+        "validate_file",
+    },
+}
+
+
+def _named_targets(module: str) -> list[str]:
+    path = MODULES[module]
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    allowed = NAMING_ALLOWED.get(module, set())
+    if allowed is None:
+        return []
+    found: list[str] = []
+
+    def visit(node: ast.AST, function: str) -> None:
+        for child in ast.iter_child_nodes(node):
+            name = (
+                child.name if isinstance(child, ast.FunctionDef | ast.AsyncFunctionDef) and function == "" else function
+            )
+            if name not in allowed:
+                if isinstance(child, ast.Constant) and child.value in TARGET_NAMES:
+                    found.append(f"line {child.lineno}: {child.value!r}")
+                if isinstance(child, ast.ImportFrom | ast.Import):
+                    modules = (
+                        [child.module or ""] if isinstance(child, ast.ImportFrom) else [a.name for a in child.names]
+                    )
+                    for m in modules:
+                        if (
+                            m.split(".")[:2] == ["robodesc", "emit"]
+                            and len(m.split(".")) > 2
+                            and m.split(".")[2] in TARGET_NAMES
+                        ):
+                            found.append(f"line {child.lineno}: imports {m}")
+            visit(child, name)
+
+    visit(tree, "")
+    return found
+
+
+@pytest.mark.parametrize("module", sorted(m for m in MODULES if stage(m) == DRIVER and m not in LEAVES))
+def test_no_driver_module_names_a_target(module: str) -> None:
+    named = _named_targets(module)
+    assert not named, f"{module} names targets ({', '.join(named)}); a target's name belongs in robodesc.targets only"

@@ -19,7 +19,7 @@ from robodesc.batch import sweep
 from robodesc.batch.discover import discover
 from robodesc.batch.plan import plan
 from robodesc.cli import main
-from robodesc.frontends.options import MissingMesh
+from robodesc.frontends.options import LoadOptions, MissingMesh
 from robodesc.ir.diagnostics import ConfigError
 from robodesc.options import CompileOptions
 
@@ -48,7 +48,8 @@ def test_folder_discovery_finds_robots_and_skips_macro_files_and_configs(tmp_pat
     robots = make_collection(tmp_path)
     python_robot(robots / "gripper.py", "gripper")
     (robots / "manifest.yaml").write_text("jobs:\n  - input: alpha.urdf\n")
-    found = dict((job_id, os.path.basename(path)) for path, job_id in discover(str(robots)))
+    os.mkfifo(robots / "pipe.urdf")  # a named pipe is passed over, never opened for reading (it would hang)
+    found = dict((job_id, os.path.basename(path)) for path, job_id in discover(str(robots), run_python=True))
     assert found == {
         "alpha": "alpha.urdf",
         "arm/arm": "arm.urdf.xacro",  # parts.xacro is included by it: a macro file, not a robot
@@ -56,6 +57,8 @@ def test_folder_discovery_finds_robots_and_skips_macro_files_and_configs(tmp_pat
         "gripper": "gripper.py",
         "pendulum": "pendulum.yaml",  # controllers.yaml, notes.py and the manifest are not robots
     }
+    # Python compositions run when read: a folder's are compiled only when asked (--run-python).
+    assert "gripper" not in dict((job_id, path) for path, job_id in discover(str(robots)))
 
 
 def test_batch_on_a_folder_writes_one_folder_per_job_and_the_summary(tmp_path: Path) -> None:
@@ -232,7 +235,7 @@ def test_a_crash_an_exception_and_a_timeout_are_results_and_the_batch_goes_on(tm
     python_robot(robots / "hangs.py", "hangs", body="time.sleep(120)", prelude="import time")
     out = tmp_path / "out"
     started = time.monotonic()
-    code, summary = batch(str(robots), "-o", str(out), "-j", "2", "--no-validate", "--timeout", "5")
+    code, summary = batch(str(robots), "-o", str(out), "-j", "2", "--no-validate", "--timeout", "5", "--run-python")
     assert time.monotonic() - started < 60
     assert code == 2
     assert pebble.common.CONSTS.sleep_unit == 0.1  # the finer tick of a batch's pools is put back
@@ -261,7 +264,8 @@ def test_ctrl_c_stops_cleanly_keeps_finished_jobs_and_the_next_run_resumes(tmp_p
         prelude="import os, time",
     )
     out = tmp_path / "out"
-    cmd = [sys.executable, "-m", "robodesc", "batch", str(robots), "-o", str(out), "-j", "1", "--no-validate", "-q"]
+    cmd = [sys.executable, "-m", "robodesc", "batch", str(robots), "-o", str(out), "-j", "1", "--run-python"]
+    cmd += ["--no-validate", "-q"]
     proc = subprocess.Popen(cmd, stderr=subprocess.PIPE, text=True)
     records = out / ".robodesc-batch" / "records.jsonl"
 
@@ -328,7 +332,7 @@ def test_ray_gives_the_same_summary_and_bytes_as_the_local_pool(tmp_path: Path) 
     pytest.importorskip("ray")
     robots = make_collection(tmp_path)
     python_robot(robots / "raises.py", "raises", body="raise RuntimeError('boom')")
-    common = ("-t", "usd", "-j", "2")
+    common = ("-t", "usd", "-j", "2", "--run-python")
     code_local, local = batch(str(robots), "-o", str(tmp_path / "local"), *common)
     code_ray, on_ray = batch(str(robots), "-o", str(tmp_path / "ray"), *common, "--executor", "ray")
     assert code_local == code_ray == 2
@@ -349,7 +353,7 @@ def test_progress_bar_and_final_table_on_a_terminal(tmp_path: Path) -> None:
     robots = make_collection(tmp_path)
     (robots / "meshes" / "b.stl").unlink()
     out = tmp_path / "out"
-    options = CompileOptions(validate=False, missing_mesh=MissingMesh.ERROR)  # beta fails
+    options = CompileOptions(validate=False, load=LoadOptions(missing_mesh=MissingMesh.ERROR))  # beta fails
     jobs = plan([str(robots)], target="urdf", options=options, root=str(out))
     screen = io.StringIO()
     console = Console(file=screen, force_terminal=True, width=120)

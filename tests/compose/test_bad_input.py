@@ -8,6 +8,7 @@ import pytest
 
 from robodesc.cli import main
 from robodesc.frontends.load import load_path
+from robodesc.frontends.options import LoadOptions, MissingMesh
 from robodesc.ir.diagnostics import BrokenReferenceError, ParseError, RobodescError
 
 BAD = Path(__file__).parent / "bad"
@@ -64,7 +65,7 @@ def test_one_precise_message(name: str) -> None:
     cls, where, what = CASES[name]
     path = str(BAD / name)
     with pytest.raises(RobodescError) as info:
-        load_path(path)
+        load_path(path, LoadOptions(missing_mesh=MissingMesh.ERROR))  # a missing mesh is a warning by default
     assert type(info.value) is cls
     text = str(info.value)
     assert text.startswith(f"{path}:{where}: "), text

@@ -50,7 +50,7 @@ def world(robot: Robot, q: dict[str, float] | None = None) -> dict[str, np.ndarr
 
 def test_missing_gripper_mesh_is_a_clear_error() -> None:
     with pytest.raises(BrokenReferenceError) as info:
-        load_path(ARM)
+        load_path(ARM, LoadOptions(missing_mesh=MissingMesh.ERROR))  # a warning by default
     text = str(info.value)
     assert text.startswith(f"{ARM}:155:15: object 'EndEffector': mesh file 'gripper_v2.stl' does not exist")
 

@@ -13,6 +13,7 @@ import pytest
 
 import robodesc.pipeline
 from robodesc.cli import main
+from robodesc.emit.common.staging import check_output
 from tests.conftest import EXAMPLES
 
 ARM = str(EXAMPLES / "urdf" / "gripper_arm.urdf")
@@ -127,7 +128,7 @@ def test_unwritable_folder_check(tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 
     monkeypatch.setattr(os, "access", lambda path, mode: False)
     with pytest.raises(ConfigError, match="is not writable"):
-        robodesc.pipeline.check_output(str(tmp_path / "robot.urdf"), folder=False)
+        check_output(str(tmp_path / "robot.urdf"), folder=False)
 
 
 def test_report_on_a_folder(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
@@ -278,7 +279,7 @@ def test_progress_shows_only_for_slow_steps_on_a_terminal() -> None:
 
     from rich.console import Console
 
-    from robodesc.cli import _Progress
+    from robodesc.cli.render import Progress as _Progress
 
     quiet = _Progress(True)  # standard error is not a terminal under pytest: no output at all
     assert quiet.console is None

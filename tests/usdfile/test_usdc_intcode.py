@@ -119,7 +119,7 @@ def test_kept_arrays_are_packed_once_and_forgotten_with_them(monkeypatch: pytest
 
 
 def test_chunks_view_float_arrays_and_join_to_the_file(tmp_path: Path) -> None:
-    from robodesc.emit.common.files import write_atomic
+    from robodesc._files import write_atomic
     from robodesc.usdfile.usdc import usdc_chunks
 
     points = array("f", np.random.default_rng(2).standard_normal(30_000).astype(np.float32).tobytes())

@@ -82,7 +82,7 @@ class Records:
 
     def open(self) -> None:
         """Rewrite the file with one line per job (dropping older lines and a cut one), then append."""
-        from robodesc.emit.common.files import write_atomic
+        from robodesc._files import write_atomic
 
         write_atomic(self.path, "".join(json.dumps(r, sort_keys=True) + "\n" for r in self.known.values()))
         self._handle = open(self.path, "a", encoding="utf-8")  # noqa: SIM115 (closed by close())

@@ -6,7 +6,6 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from collections.abc import Callable
 from typing import Any
 
 from robodesc.options import CompileOptions
@@ -69,8 +68,19 @@ def add_batch_parser(sub: Any, compile_parser: argparse.ArgumentParser) -> argpa
     )
     run.add_argument("--force", action="store_true", help="redo every job, even those unchanged since their last run")
     run.add_argument(
-        "--usd-format", choices=["usda", "usdc"], default="usda", help="USD file format of -t usd (default usda)"
+        "--suffix",
+        metavar=".EXT",
+        help="output file suffix, for targets that write more than one kind (.usdc for binary USD); "
+        "default: the target's first (robodesc compile --help lists them)",
     )
+    run.add_argument(
+        "--run-python",
+        action="store_true",
+        help="also compile the Python compositions found in folders; they are programs and run when read, "
+        "so only for folders you trust (a Python file named on the command line or in a manifest always runs)",
+    )
+    # Before --suffix: the same choice for USD only.
+    run.add_argument("--usd-format", choices=["usda", "usdc"], help=argparse.SUPPRESS)
     sw = p.add_argument_group("variant sweeps (xacro arguments)")
     sw.add_argument(
         "--sweep",
@@ -95,8 +105,9 @@ def add_batch_parser(sub: Any, compile_parser: argparse.ArgumentParser) -> argpa
     return p
 
 
-def run_command(args: argparse.Namespace, compile_options: Callable[[argparse.Namespace], CompileOptions]) -> int:
-    """Plan, run, report. ``compile_options`` is the compile command's own translation of its flags."""
+def run_command(args: argparse.Namespace, options: CompileOptions, target: str) -> int:
+    """Plan, run, report. ``options`` and ``target`` are the compile command's own translation of its
+    flags (the batch takes every option of ``robodesc compile``)."""
     from rich.console import Console
 
     from robodesc.batch import sweep
@@ -118,15 +129,15 @@ def run_command(args: argparse.Namespace, compile_options: Callable[[argparse.Na
         from robodesc._forkserver import start_worker_server
 
         start_worker_server()  # if the console script has not: its imports overlap the planning below
-    target = "isaac" if args.isaac_sim else "ros2" if args.ros2 else args.target
     spec = sweep.from_cli(args.sweep, args.samples, args.seed)
     jobs = plan(
         args.inputs,
         target=target,
-        options=compile_options(args),
+        options=options,
         root=args.output,
         sweep=spec,
-        usd_format=args.usd_format,
+        suffix=args.suffix or (f".{args.usd_format}" if args.usd_format else None),
+        run_python=args.run_python,
     )
     console = Console(stderr=True)
     run = run_batch(

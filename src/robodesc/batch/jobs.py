@@ -12,11 +12,7 @@ from typing import Any
 
 from robodesc.ir.diagnostics import ConfigError
 from robodesc.options import CompileOptions, build_options
-from robodesc.pipeline import TARGETS, target_options_class, target_spec
-
-# Suffixes a robot's file name ends with, longest first: the job and its output are named by the rest.
-ROBOT_SUFFIXES = (".urdf.xacro", ".xacro", ".urdf", ".xml", ".yaml", ".yml", ".holo", ".py")
-OUTPUT_SUFFIX = {"urdf": ".urdf", "sdf": ".sdf", "usd": ".usda"}
+from robodesc.targets import TARGETS, target_spec
 
 # Outcomes of a job. Only the first two wrote their outputs (and only those are ever skipped later).
 OK = "ok"
@@ -89,31 +85,36 @@ def _plain(value: Any) -> Any:
 
 def robot_stem(path: str) -> str:
     """``robot.urdf.xacro`` -> ``robot``."""
+    from robodesc.frontends.load import frontends
+
     name = os.path.basename(path)
     lower = name.lower()
-    for suffix in ROBOT_SUFFIXES:
+    # The suffixes robots' files end with, longest first: the job and its output are named by the rest.
+    for suffix in sorted({s for f in frontends() for s in f.suffixes}, key=len, reverse=True):
         if lower.endswith(suffix) and len(name) > len(suffix):
             return name[: -len(suffix)]
     return name
 
 
-def output_path(root: str, job_id: str, target: str, stem: str, usd_format: str = "usda") -> str:
+def output_path(root: str, job_id: str, target: str, stem: str, suffix: str | None = None) -> str:
+    """The job's output under ``root``: its folder (folder targets), or a file named after the robot
+    with ``suffix`` when the target writes that suffix, else the target's default one."""
     folder = os.path.join(os.path.abspath(root), *job_id.split("/"))
-    if target_spec(target).folder:
+    spec = target_spec(target)
+    if spec.folder:
         return folder
-    suffix = f".{usd_format}" if target == "usd" else OUTPUT_SUFFIX[target]
-    return os.path.join(folder, stem + suffix)
+    return os.path.join(folder, spec.output_name(stem, suffix if suffix in spec.suffixes else None))
 
 
 def check_target(target: str, where: str) -> str:
     if target not in TARGETS:
-        raise ConfigError(f"{where}: unknown target {target!r} (one of {', '.join(sorted(TARGETS))})")
+        raise ConfigError(f"{where}: unknown target {target!r} (one of {', '.join(TARGETS)})")
     return target
 
 
 def for_target(options: CompileOptions, target: str) -> CompileOptions:
     """``options`` keeping only the target options ``target`` takes (as ``compile`` does)."""
-    cls = target_options_class(target)
+    cls = target_spec(target).options
     names = {f.name for f in dataclasses.fields(cls)} if cls is not None else set()
     out = copy.deepcopy(options)
     out.target_options = {k: v for k, v in options.target_options.items() if k in names}
@@ -127,12 +128,12 @@ def with_overrides(base: CompileOptions, target: str, values: Mapping[str, Any],
 
     opts = copy.deepcopy(base)
     rest = dict(values)
-    for name, into in (("xacro_args", opts.xacro_args), ("package_paths", opts.package_paths)):
+    for name in ("xacro_args", "package_paths"):
         given = rest.pop(name, None) or {}
         if not isinstance(given, Mapping):
             raise ConfigError(f"{where}: {name} must be a mapping of NAME: VALUE, got {given!r}")
-        into.update({str(k): str(v) for k, v in given.items()})
-    cls = target_options_class(target)
+        setattr(opts.load, name, {**getattr(opts.load, name), **{str(k): str(v) for k, v in given.items()}})
+    cls = target_spec(target).options
     extra = {name: "passes" for name in OPTION_NAMES}
     if cls is not None:
         extra.update({f.name: "target_options" for f in dataclasses.fields(cls) if f.name not in ("out_dir", "props")})
@@ -144,12 +145,14 @@ def with_overrides(base: CompileOptions, target: str, values: Mapping[str, Any],
         bucket = extra.get(name)
         if bucket is not None:
             getattr(opts, bucket)[name] = getattr(parsed, bucket)[name]
+        elif hasattr(parsed.load, name):
+            setattr(opts.load, name, getattr(parsed.load, name))
         else:
             setattr(opts, name, getattr(parsed, name))
     return opts
 
 
-def finalize(jobs: list[Job], root: str, usd_format: str = "usda") -> list[Job]:
+def finalize(jobs: list[Job], root: str, suffix: str | None = None) -> list[Job]:
     """Make ids unique (two jobs may not share a folder: later ones get ``-2``, ``-3`` ... in input
     order) and give every job without an output of its own the one under ``root``."""
     taken: set[str] = set()
@@ -164,5 +167,5 @@ def finalize(jobs: list[Job], root: str, usd_format: str = "usda") -> list[Job]:
         taken.add(new)
         job.id = new
         if not job.output:
-            job.output = output_path(root, job.id, job.target, robot_stem(job.path), usd_format)
+            job.output = output_path(root, job.id, job.target, robot_stem(job.path), suffix)
     return jobs

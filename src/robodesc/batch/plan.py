@@ -10,6 +10,7 @@ from robodesc.batch import sweep as sweeps
 from robodesc.batch.discover import discover
 from robodesc.batch.jobs import Job, check_target, finalize, for_target, robot_stem, with_overrides
 from robodesc.batch.manifest import is_manifest, read_manifest
+from robodesc.frontends.load import describe_inputs
 from robodesc.ir.diagnostics import ConfigError
 from robodesc.options import CompileOptions
 
@@ -44,7 +45,8 @@ def plan(
     options: CompileOptions,
     root: str,
     sweep: Mapping[str, Any] | None = None,
-    usd_format: str = "usda",
+    suffix: str | None = None,
+    run_python: bool = False,
 ) -> list[Job]:
     """Every job the inputs stand for. A CLI ``sweep`` applies to every input that is not a
     manifest (a manifest row carries its own)."""
@@ -65,9 +67,10 @@ def plan(
 
     for given in inputs:
         if os.path.isdir(given):
-            found = discover(given)
+            found = discover(given, run_python=run_python)
             if not found:
-                raise ConfigError(f"{given}: no robot files found (URDF, xacro, .holo, composition YAML or Python)")
+                hint = "" if run_python else " (Python compositions run when read: --run-python includes them)"
+                raise ConfigError(f"{given}: no robot files found ({describe_inputs()}){hint}")
             for path, job_id in found:
                 add(path, job_id, path, target, {}, sweep, "")
         elif not os.path.isfile(given):
@@ -88,4 +91,4 @@ def plan(
                 )
         else:
             add(given, robot_stem(given), given, target, {}, sweep, "")
-    return finalize(jobs, root, usd_format)
+    return finalize(jobs, root, suffix)

@@ -153,7 +153,7 @@ def _stop_on_sigterm() -> Any:
 
 
 def write_summary(root: str, summary: dict[str, Any]) -> None:
-    from robodesc.emit.common.files import write_atomic
+    from robodesc._files import write_atomic
 
     write_atomic(os.path.join(root, "summary.json"), json.dumps(summary, indent=2) + "\n")
     write_atomic(os.path.join(root, "summary.md"), to_markdown(summary))

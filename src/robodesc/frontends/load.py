@@ -1,23 +1,42 @@
-"""Pick the frontend for an input and build the IR.
+"""The one door for input: pick the frontend for a source and build the IR.
 
-Frontends register by file suffix in :data:`FRONTENDS`; composition formats add themselves there.
+Frontends are listed in :data:`FRONTENDS` (a name and the module that exports its ``FRONTEND``, a
+:class:`~robodesc.frontends.contract.Frontend`). A file is matched by suffix, then, where several
+frontends take that suffix, by content; a file with no known suffix by content alone. Adding an
+input format is adding a module (or package) that exports ``FRONTEND`` and a line here.
 """
 
 from __future__ import annotations
 
+import copy
+import importlib
 import os
-from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Protocol
 
+from robodesc.frontends.contract import Frontend
 from robodesc.frontends.options import LoadOptions
-from robodesc.frontends.packages import PackageResolver
-from robodesc.frontends.urdf import read_urdf_string
-from robodesc.frontends.xacro_expand import expand_xacro
-from robodesc.frontends.xml_safety import read_file
-from robodesc.ir.diagnostics import Findings, ParseError, SourceLoc
+from robodesc.ir.diagnostics import ConfigError, Findings, ParseError, SourceLoc
 from robodesc.ir.model import Robot
 
-Frontend = Callable[[str, LoadOptions, Findings], Robot]
+FRONTENDS: dict[str, str] = {
+    "urdf": "robodesc.frontends.urdf_input",
+    "xacro": "robodesc.frontends.xacro_input",
+    "yaml": "robodesc.frontends.compose",
+    "holo": "robodesc.frontends.holo",
+    "python": "robodesc.frontends.compose.python",
+}
+
+# How much of a file the content checks see.
+HEAD_BYTES = 4096
+
+
+class Buildable(Protocol):
+    def build(self) -> Robot: ...
+
+
+# What every compile and load takes: a path, URDF text, an IR robot, or a builder.
+Source = str | os.PathLike[str] | Robot | Buildable
 
 
 @dataclass(slots=True)
@@ -26,59 +45,87 @@ class Loaded:
     findings: Findings
 
 
-def _load_urdf(path: str, options: LoadOptions, findings: Findings) -> Robot:
-    return read_urdf_string(read_file(path), file=path, options=options, findings=findings)
+def frontends() -> list[Frontend]:
+    """Every registered frontend, in table order."""
+    out = []
+    for name, module in FRONTENDS.items():
+        frontend = importlib.import_module(module).FRONTEND
+        if not isinstance(frontend, Frontend) or frontend.name != name:
+            raise ConfigError(f"{module} does not export FRONTEND = Frontend(name={name!r}, ...)")
+        out.append(frontend)
+    return out
 
 
-def _load_xacro(path: str, options: LoadOptions, findings: Findings) -> Robot:
-    resolver = PackageResolver(explicit=dict(options.package_paths), input_file=path)
-    text = expand_xacro(
-        path, options.xacro_args, resolver, findings, trust=options.trust_xacro, allowed_env=options.allowed_env
-    )
-    return read_urdf_string(
-        text,
-        file=f"{path} (expanded)",
-        base_dir=os.path.dirname(os.path.abspath(path)),
-        options=options,
-        resolver=resolver,
-        findings=findings,
-    )
+def describe_inputs() -> str:
+    """What robodesc reads, for messages and --help."""
+    return ", ".join(f.label for f in frontends())
 
 
-FRONTENDS: dict[str, Frontend] = {
-    ".urdf": _load_urdf,
-    ".xml": _load_urdf,
-    ".xacro": _load_xacro,
-}
+def _head(path: str) -> str:
+    from robodesc.frontends.xml_safety import read_file
+
+    return read_file(path, limit=HEAD_BYTES)[:HEAD_BYTES].decode("utf-8", errors="replace")
 
 
-def _composition_frontends() -> None:
-    """Register composition frontends lazily (they import optional parsers)."""
-    try:
-        from robodesc.frontends.compose import register
-    except ImportError:
-        return
-    register(FRONTENDS)
-
-
-def load_path(path: str, options: LoadOptions | None = None) -> Loaded:
-    opts = options or LoadOptions()
-    findings = Findings()
+def frontend_for(path: str, *, allow_code: bool = True) -> Frontend:
+    """The frontend that reads the file ``path``: by suffix, then by content. ``allow_code`` False
+    passes over frontends that run the file (a file found by searching a folder)."""
+    if os.path.isdir(path):
+        raise ParseError(
+            "is a folder; robodesc compile reads one robot file (robodesc batch compiles every robot in a folder)",
+            loc=SourceLoc(path),
+        )
     if not os.path.exists(path):
         raise ParseError("input file not found", loc=SourceLoc(path))
     lower = path.lower()
-    if not lower.endswith((".urdf", ".xml", ".xacro")):
-        _composition_frontends()  # yaml and the .holo parser cost ~40 ms to import: only when needed
-    for suffix, frontend in sorted(FRONTENDS.items(), key=lambda kv: -len(kv[0])):
-        if lower.endswith(suffix):
-            return Loaded(frontend(path, opts, findings), findings)
-    known = ", ".join(sorted(FRONTENDS))
-    raise ParseError(f"unknown input type (robodesc reads {known})", loc=SourceLoc(path))
+    known = [f for f in frontends() if allow_code or not f.runs_code]
+    matches = sorted(
+        (f for f in known if any(lower.endswith(s) for s in f.suffixes)),
+        key=lambda f: -max(len(s) for s in f.suffixes if lower.endswith(s)),
+    )
+    if len(matches) == 1:
+        return matches[0]
+    candidates = matches or [f for f in known if f.sniff is not None]
+    head = _head(path)
+    for frontend in candidates:
+        if frontend.sniff is not None and frontend.sniff(head):
+            return frontend
+    if matches:
+        raise ParseError(
+            f"not a format robodesc reads with this suffix (one of: {', '.join(f.label for f in matches)})",
+            loc=SourceLoc(path),
+        )
+    raise ParseError(f"unknown input type (robodesc reads {describe_inputs()})", loc=SourceLoc(path))
+
+
+def load_path(path: str, options: LoadOptions | None = None) -> Loaded:
+    findings = Findings()
+    robot = frontend_for(path).read(path, options or LoadOptions(), findings)
+    return Loaded(robot, findings)
 
 
 def load_string(text: str, options: LoadOptions | None = None, *, base_dir: str | None = None) -> Loaded:
     """Load URDF given as a string (relative mesh paths resolve against ``base_dir``)."""
-    opts = options or LoadOptions()
+    from robodesc.frontends.urdf import read_urdf_string
+
     findings = Findings()
-    robot = read_urdf_string(text, file="<string>", base_dir=base_dir, options=opts, findings=findings)
+    robot = read_urdf_string(
+        text, file="<string>", base_dir=base_dir, options=options or LoadOptions(), findings=findings
+    )
     return Loaded(robot, findings)
+
+
+def load_source(source: Source, options: LoadOptions, findings: Findings) -> Robot:
+    """Any accepted source -> a fresh IR the caller may mutate."""
+    if isinstance(source, Robot):
+        return copy.deepcopy(source)
+    build = getattr(source, "build", None)
+    if callable(build):
+        robot = build()
+        if not isinstance(robot, Robot):
+            raise ConfigError(f"{type(source).__name__}.build() returned {type(robot).__name__}, not a Robot")
+        return robot
+    text = os.fspath(source)  # type: ignore[arg-type]
+    loaded = load_string(text, options) if text.lstrip().startswith("<") else load_path(text, options)
+    findings.extend(loaded.findings)
+    return loaded.robot

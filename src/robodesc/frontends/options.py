@@ -10,8 +10,8 @@ from dataclasses import dataclass, field
 class MissingMesh(enum.Enum):
     """What to do when a mesh file does not exist."""
 
-    ERROR = "error"  # fail, naming the file and the link (the default)
-    WARN = "warn"  # keep the reference as written, with a warning
+    ERROR = "error"  # fail, naming the file and the link
+    WARN = "warn"  # keep the reference as written, with a warning (the default; docs/diagnostics.md)
     PRIMITIVE = "primitive"  # substitute a box of the declared scale, with a warning
     DROP = "drop"  # drop that visual/collision, with a warning
 
@@ -20,7 +20,9 @@ class MissingMesh(enum.Enum):
 class LoadOptions:
     package_paths: Mapping[str, str] = field(default_factory=dict)
     xacro_args: Mapping[str, str] = field(default_factory=dict)
-    missing_mesh: MissingMesh = MissingMesh.ERROR
+    # A missing mesh is a warning by default: URDF and SDF keep the reference, USD leaves the shape
+    # out and says so (docs/diagnostics.md).
+    missing_mesh: MissingMesh = MissingMesh.WARN
     # Treat unknown elements as errors instead of keeping them with a warning.
     strict: bool = False
     # Expand xacro with upstream's Python evaluation (code, any file, the whole environment) instead

@@ -13,7 +13,7 @@ import tempfile
 from collections.abc import Iterable, Mapping
 from urllib.parse import unquote
 
-from robodesc.emit.common.files import write_atomic
+from robodesc._files import write_atomic
 from robodesc.ir.geometry import Mesh
 from robodesc.ir.model import Robot
 from robodesc.meshes.trimesh_io import load_trimesh

@@ -1,1 +1,1 @@
-"""What every writer shares: number formatting, mesh paths, atomic files and the target contract."""
+"""What every writer shares: number formatting, mesh paths, CLI flags, output staging and the target contract."""

@@ -19,7 +19,7 @@ from typing import Any
 # How a flag's text becomes the option's value.
 #  "value": as argparse gives it (with ``type``/``choices``);
 #  "switch": a boolean, --x / --no-x;
-#  "on": a boolean that can only be switched on (--x);
+#  "on": can only be switched on (--x): True, or ``const``;
 #  "rules": one number for every joint, or repeated REGEX=NUMBER rules (first full match wins);
 #  "vector": comma-separated numbers (X,Y,Z).
 KINDS = ("value", "switch", "on", "rules", "vector")
@@ -37,6 +37,9 @@ class Flag:
     rules_only: bool = False
     # For "vector": how many numbers.
     size: int = 3
+    # For "on": the value the flag sets (default True), e.g. an enum value: --gazebo-classic sets
+    # flavour to "classic".
+    const: Any = None
 
 
 def flag(help: str, **kwargs: Any) -> dict[str, Flag]:
@@ -58,3 +61,29 @@ def declared_flags(cls: type[Any]) -> Iterator[tuple[dataclasses.Field[Any], Fla
         spec = f.metadata.get("flag")
         if isinstance(spec, Flag):
             yield f, spec
+
+
+# ---- options several targets take: one declaration, so the flag and its help are the same --------
+FIX_BASE = flag(
+    "weld the root link to the world, or float it with --no-fix-base (defaults: SDF floats, the others "
+    "fix, as their importers do; a composition's own choice wins)",
+    kind="switch",
+)
+DRIVE_TYPE = flag("joint drive type (default force)", choices=("force", "acceleration"))
+TARGET_TYPE = flag(
+    "drive target (default position; none = passive joints, gains 0)", choices=("none", "position", "velocity")
+)
+STIFFNESS = flag(
+    "drive stiffness in SI (N·m/rad, N/m), one number or rules (repeatable, first match wins); each target "
+    "writes it in its own units (USD per degree)",
+    kind="rules",
+)
+DAMPING = flag("drive damping in SI (N·m·s/rad, N·s/m), like --stiffness", kind="rules")
+SELF_COLLISION = flag("collide the robot's links with each other", kind="on")
+INIT_POS = flag("spawn position of the base (m)", kind="vector", metavar="X,Y,Z")
+INIT_JOINT_POS = flag(
+    "initial joint positions (rad or m; REGEX=VALUE, repeatable, first match wins)",
+    kind="rules",
+    rules_only=True,
+    metavar="REGEX=VALUE",
+)

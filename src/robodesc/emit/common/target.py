@@ -1,7 +1,10 @@
-"""The contract between the pipeline and a target: what it is handed and what it hands back.
+"""The contract between the driver and a target: what it is handed and what it hands back.
 
-A target package exports one :class:`Target`; the pipeline looks it up by name in its target table
-and knows nothing else about it. Adding a target is adding a package that exports one of these.
+A target package exports one :class:`Target`; the driver looks it up by name in the one target table
+(``robodesc.targets``) and knows nothing else about it: its output suffixes, its options (and so its
+command-line flags, :mod:`robodesc.emit.common.flags`), the passes it needs, how its output is
+checked and what it writes once the check has run all come from here. Adding a target is adding a
+package that exports one of these, and a line in that table.
 """
 
 from __future__ import annotations
@@ -13,6 +16,8 @@ from typing import Any
 from robodesc.emit.common.paths import PathMode
 from robodesc.ir.diagnostics import ConfigError, Finding, Findings
 from robodesc.ir.model import Robot
+from robodesc.validation.options import ValidateOptions
+from robodesc.validation.report import ValidationReport
 
 
 @dataclass(slots=True)
@@ -21,13 +26,17 @@ class Emitted:
 
     text: str | None = None
     files: dict[str, str] = field(default_factory=dict)  # role -> path
-    # Emitter-specific data validation needs (the SDF emitter's renamed links and joints).
+    # Emitter-specific data its own check needs (the SDF emitter's renamed links and joints).
     extra: dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass(slots=True, frozen=True)
 class EmitRequest:
-    """Where and how to write: ``options`` is an instance of the target's options class (or None)."""
+    """Where and how to write: ``options`` is an instance of the target's options class (or None).
+
+    ``out`` is where to write now (a staging path beside the final one, or None for standard
+    output); ``final`` is where the output will be once the run succeeds, for targets whose files
+    name each other (a scene that includes the model by its file name)."""
 
     out: str | None
     options: Any
@@ -35,6 +44,7 @@ class EmitRequest:
     # Option names the user gave explicitly; a target may fill the others from the robot
     # (a composition's fixed base, its placement).
     given: frozenset[str] = frozenset()
+    final: str | None = None
 
     def output(self, what: str) -> str:
         """The output path, for targets that cannot write to standard output."""
@@ -48,25 +58,60 @@ class EmitRequest:
             setattr(self.options, name, value)
 
 
+@dataclass(slots=True, frozen=True)
+class CheckRequest:
+    """What a target's check is handed besides the robot and what was emitted: where the (staged)
+    output is, whether it is a folder, and the validation options."""
+
+    out: str | None
+    options: ValidateOptions
+    folder: bool = False
+
+
 EmitFunction = Callable[[Robot, EmitRequest, Findings], Emitted]
+# Loads what was emitted in an independent consumer and compares it with the IR; None when there is
+# nothing to check (no file written and no text).
+CheckFunction = Callable[[Robot, Emitted, CheckRequest], ValidationReport | None]
 # Called once validation has run, for reports written beside the output (the Isaac folder's
 # findings.md and validation.md): (robot, out, findings, validation report or None) -> role -> path.
-FinishFunction = Callable[[Robot, str, list[Finding], Any], dict[str, str]]
+FinishFunction = Callable[[Robot, str, list[Finding], ValidationReport | None], dict[str, str]]
+# The names of files or folders beside a file output that the output owns and a run rewrites as a
+# whole (a layered USD's payloads/ folder): the driver sets the earlier ones aside and restores them
+# if the run fails. Given the target's options.
+OwnedFunction = Callable[[Any], tuple[str, ...]]
 
 
 @dataclass(slots=True, frozen=True)
 class Target:
     name: str
     emit: EmitFunction
-    # The options dataclass the target takes; None when it takes none.
+    # One line for --help: what the output is for.
+    summary: str = ""
+    # File targets: the output suffixes accepted (the first is the default: batch and validate name
+    # their outputs with it). Empty for folder targets.
+    suffixes: tuple[str, ...] = ()
+    # The output must end with one of ``suffixes`` (the format follows the suffix, as USD's does).
+    suffix_required: bool = False
+    # The options dataclass the target takes; None when it takes none. Its fields that declare a
+    # flag (emit.common.flags) are the target's command-line options.
     options: type[Any] | None = None
     # The output is a folder rather than a file.
     folder: bool = False
+    # The text can go to standard output when no output path is given.
+    stdout: bool = False
     # Passes the target cannot do without (USD prim names must be identifiers ...).
     passes: Mapping[str, bool] = field(default_factory=dict)
     # The preset the target implies when the user names none.
     preset: str | None = None
-    # Which consumer checks the output: "urdf" (MuJoCo reads the URDF text, or the URDF a folder
-    # holds), "sdf" (Drake), "usd" (MuJoCo's USD importer and usd-core's physics parser).
-    validator: str = "urdf"
+    # How the output is checked (validation, on by default); None: it is not.
+    check: CheckFunction | None = None
     finish: FinishFunction | None = None
+    owned: OwnedFunction | None = None
+    # The title of the target's group of options in --help.
+    options_title: str = ""
+
+    def output_name(self, stem: str, suffix: str | None = None) -> str:
+        """The output path for ``stem`` (a folder for folder targets), with ``suffix`` or the default."""
+        if self.folder or not self.suffixes:
+            return stem
+        return stem + (suffix if suffix is not None else self.suffixes[0])

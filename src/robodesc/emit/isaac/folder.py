@@ -16,8 +16,8 @@ from __future__ import annotations
 
 import os
 
+from robodesc._files import staged_folder, write_files
 from robodesc._version import __version__
-from robodesc.emit.common.files import staged_folder, write_files
 from robodesc.emit.common.paths import PathMode
 from robodesc.emit.isaac.lab import isaac_lab_module
 from robodesc.emit.isaac.settings import IsaacSettings, importer_settings_json

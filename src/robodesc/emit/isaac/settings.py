@@ -16,6 +16,9 @@ import math
 import re
 from dataclasses import asdict, dataclass, field
 
+from robodesc.emit.common import flags as common
+from robodesc.emit.common.flags import flag
+from robodesc.emit.usd import options as usd
 from robodesc.ir.model import Joint, Robot
 from robodesc.ir.rules import lookup
 
@@ -26,29 +29,40 @@ Gains = float | dict[str, float]
 
 @dataclass(slots=True)
 class IsaacSettings:
-    fix_base: bool = True
-    merge_fixed_joints: bool = False
-    drive_type: str = "force"  # force | acceleration
-    target_type: str = "position"  # none | position | velocity
-    stiffness: Gains = 100.0
-    damping: Gains = 1.0
-    self_collision: bool = False
-    collision_approximation: str = (
-        "convexHull"  # convexHull | convexDecomposition | boundingCube | boundingSphere | none
+    fix_base: bool = field(default=True, metadata=common.FIX_BASE)
+    merge_fixed_joints: bool = field(
+        default=False,
+        metadata=flag(
+            "importer setting: merge fixed joints on URDF import (dont_collapse keeps marked bodies)", kind="on"
+        ),
     )
-    solver_position_iterations: int | None = None
-    solver_velocity_iterations: int | None = None
-    contact_offset: float | None = None
-    rest_offset: float | None = None
+    drive_type: str = field(default="force", metadata=common.DRIVE_TYPE)  # force | acceleration
+    target_type: str = field(default="position", metadata=common.TARGET_TYPE)  # none | position | velocity
+    stiffness: Gains = field(default=100.0, metadata=common.STIFFNESS)
+    damping: Gains = field(default=1.0, metadata=common.DAMPING)
+    self_collision: bool = field(default=False, metadata=common.SELF_COLLISION)
+    # convexHull | convexDecomposition | boundingCube | boundingSphere | none
+    collision_approximation: str = field(default="convexHull", metadata=usd.COLLISION_APPROXIMATION)
+    solver_position_iterations: int | None = field(default=None, metadata=usd.POSITION_ITERATIONS)
+    solver_velocity_iterations: int | None = field(default=None, metadata=usd.VELOCITY_ITERATIONS)
+    contact_offset: float | None = field(default=None, metadata=usd.CONTACT_OFFSET)
+    rest_offset: float | None = field(default=None, metadata=usd.REST_OFFSET)
     import_inertia_tensor: bool = True
     # One .usda, or an interface layer + payload as NVIDIA's converter writes.
-    layered: bool = False
-    physics_scene: bool = False
+    layered: bool = field(default=False, metadata=usd.LAYERED)
+    physics_scene: bool = field(default=False, metadata=usd.PHYSICS_SCENE)
     # Spawn pose for Isaac Lab: base position (m) and the initial joint positions (rad) by regex.
-    init_pos: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    init_joint_pos: dict[str, float] = field(default_factory=dict)
+    init_pos: tuple[float, float, float] = field(default=(0.0, 0.0, 0.0), metadata=common.INIT_POS)
+    init_joint_pos: dict[str, float] = field(default_factory=dict, metadata=common.INIT_JOINT_POS)
     # The Isaac Lab the generated module targets: "3" (quaternions x, y, z, w) or "2" (w, x, y, z).
-    isaac_lab_version: str = "3"
+    isaac_lab_version: str = field(
+        default="3",
+        metadata=flag(
+            "Isaac Lab the generated module targets (default 3: quaternions x,y,z,w and joint_*_limit; "
+            "2: w,x,y,z and *_limit_sim)",
+            choices=("3", "2"),
+        ),
+    )
 
     def gains(self, joint: Joint) -> tuple[float, float]:
         """SI (stiffness, damping) for ``joint``; 0 where no rule matches."""

@@ -3,14 +3,15 @@
 from __future__ import annotations
 
 import os
-from typing import Any
 
-from robodesc.emit.common.files import write_atomic
+from robodesc._files import write_atomic
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
 from robodesc.emit.isaac.folder import findings_markdown, write_isaac_folder
 from robodesc.emit.isaac.settings import IsaacSettings
+from robodesc.emit.urdf.check import check_urdf
 from robodesc.ir.diagnostics import Finding, Findings
 from robodesc.ir.model import Robot
+from robodesc.validation.report import ValidationReport
 
 
 def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
@@ -23,7 +24,7 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     return Emitted(files=files, extra={"settings": settings})
 
 
-def finish(robot: Robot, out: str, findings: list[Finding], validation: Any) -> dict[str, str]:
+def finish(robot: Robot, out: str, findings: list[Finding], validation: ValidationReport | None) -> dict[str, str]:
     """The findings and validation reports, written once validation has run."""
     written = {"findings": os.path.join(out, "findings.md")}
     write_atomic(written["findings"], findings_markdown(robot, findings))
@@ -37,9 +38,12 @@ def finish(robot: Robot, out: str, findings: list[Finding], validation: Any) -> 
 TARGET = Target(
     name="isaac",
     emit=emit_target,
+    summary="an Isaac Sim / Isaac Lab folder: USD, Isaac URDF, importer settings, ArticulationCfg module",
     options=IsaacSettings,
     folder=True,
     passes={"sanitize_names": True, "unique_materials": True},
     preset="isaac_sim",
+    check=check_urdf,
     finish=finish,
+    options_title="USD and Isaac Sim (-t usd, --isaac-sim; see docs/usd.md, docs/isaac.md)",
 )

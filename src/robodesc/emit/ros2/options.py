@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import enum
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
+from robodesc.emit.common.flags import flag
 from robodesc.emit.common.paths import PathMode
 
 
@@ -21,8 +22,12 @@ class ControllerKind(enum.Enum):
 
 @dataclass(slots=True)
 class Ros2Options:
-    command_interface: CommandInterface = CommandInterface.POSITION
-    controller: ControllerKind = ControllerKind.JOINT_TRAJECTORY
+    command_interface: CommandInterface = field(
+        default=CommandInterface.POSITION, metadata=flag("what the controllers command (default position)")
+    )
+    controller: ControllerKind = field(
+        default=ControllerKind.JOINT_TRAJECTORY, metadata=flag("the command controller (default joint_trajectory)")
+    )
     update_rate: int = 100  # controller_manager's loop rate (Hz)
     # The URDF travels over the robot_description topic, where a relative mesh path means nothing,
     # so meshes are absolute by default (PACKAGE suits an installed ROS package).

@@ -5,6 +5,8 @@ from __future__ import annotations
 import enum
 from dataclasses import dataclass, field
 
+from robodesc.emit.common import flags as common
+from robodesc.emit.common.flags import flag
 from robodesc.emit.common.paths import PathMode
 from robodesc.ir.diagnostics import ConfigError
 from robodesc.ir.geometry import Pose, Vec3
@@ -43,10 +45,25 @@ class SdfProp:
 class SdfOptions:
     # None: "1.10" for Harmonic, "1.7" for Classic (Gazebo 11's libsdformat 9 stops at 1.7).
     # "1.11" is needed to keep mimic joints.
-    version: str | None = None
-    flavour: SdfFlavour = SdfFlavour.HARMONIC
+    version: str | None = field(
+        default=None,
+        metadata=flag(
+            "SDF version (default 1.10; 1.11 keeps mimic joints; 1.9 for older libsdformat)",
+            name="--sdf-version",
+            choices=("1.7", "1.9", "1.10", "1.11"),
+        ),
+    )
+    flavour: SdfFlavour = field(
+        default=SdfFlavour.HARMONIC,
+        metadata=flag(
+            "Gazebo Classic plugins (libgazebo_ros_*) instead of Harmonic's gz-sim systems",
+            name="--gazebo-classic",
+            kind="on",
+            const="classic",
+        ),
+    )
     # Weld the root link to the world (a fixed joint to ``world``); SDF models float by default.
-    fix_base: bool = False
+    fix_base: bool = field(default=False, metadata=common.FIX_BASE)
     pose_frames: PoseFrames = PoseFrames.RELATIVE
     path_mode: PathMode = PathMode.RELATIVE
     # The folder the SDF will be written to; relative mesh paths are computed against it.
@@ -56,7 +73,9 @@ class SdfOptions:
     # Where the model sits in the world (and the model's <pose> when a bare model is written).
     model_pose: Pose | None = None
     # ---- world wrapper (``--world``) -----------------------------------------------------
-    world: bool = False
+    world: bool = field(
+        default=False, metadata=flag("wrap the model in a world with ground plane, physics and light", kind="on")
+    )
     world_name: str = "default"
     props: list[SdfProp] = field(default_factory=list)
     step_size: float = 0.001

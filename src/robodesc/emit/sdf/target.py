@@ -4,15 +4,17 @@ from __future__ import annotations
 
 import os
 
-from robodesc.emit.common.files import write_atomic
+from robodesc._files import write_atomic
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
-from robodesc.emit.sdf.emitter import build_sdf
+from robodesc.emit.sdf.check import check_sdf
 from robodesc.emit.sdf.options import SdfOptions
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
 
 
 def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
+    from robodesc.emit.sdf.emitter import build_sdf  # numpy and the writer: only when writing
+
     sdf_options: SdfOptions = request.options
     sdf_options.path_mode = request.mesh_paths
     sdf_options.out_dir = os.path.dirname(os.path.abspath(request.out)) if request.out else None
@@ -32,4 +34,13 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     return emitted
 
 
-TARGET = Target(name="sdf", emit=emit_target, options=SdfOptions, validator="sdf")
+TARGET = Target(
+    name="sdf",
+    emit=emit_target,
+    summary="SDF for Gazebo Harmonic (or Classic); checked by Drake",
+    suffixes=(".sdf",),
+    options=SdfOptions,
+    stdout=True,
+    check=check_sdf,
+    options_title="SDF (-t sdf; docs/sdf.md)",
+)

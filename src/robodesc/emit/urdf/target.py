@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import os
 
-from robodesc.emit.common.files import write_atomic
+from robodesc._files import write_atomic
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
+from robodesc.emit.urdf.check import check_urdf
 from robodesc.emit.urdf.writer import UrdfOptions, emit_urdf
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
@@ -31,4 +32,11 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     return emitted
 
 
-TARGET = Target(name="urdf", emit=emit_target)
+TARGET = Target(
+    name="urdf",
+    emit=emit_target,
+    summary="URDF for ROS 2, Gazebo and every URDF reader; checked by MuJoCo",
+    suffixes=(".urdf", ".xml"),
+    stdout=True,
+    check=check_urdf,
+)

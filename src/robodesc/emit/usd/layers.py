@@ -22,7 +22,7 @@ import os
 from array import array
 from dataclasses import dataclass, field
 
-from robodesc.emit.common.files import Content, staged_folder, write_atomic, write_files
+from robodesc._files import Content, staged_folder, write_atomic, write_files
 from robodesc.emit.usd.context import GEOMETRY, MATERIALS, PHYSICS, ROLES
 from robodesc.ir.diagnostics import ConfigError
 from robodesc.usdfile.spec import Attribute, Layer, Payload, Prim, value_type

@@ -4,14 +4,25 @@ from __future__ import annotations
 
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
+from robodesc.emit.common import flags as common
+from robodesc.emit.common.flags import flag
 from robodesc.ir.diagnostics import ConfigError
 
 DRIVE_TYPES = ("force", "acceleration")
 TARGET_TYPES = ("none", "position", "velocity")
 APPROXIMATIONS = ("convexHull", "convexDecomposition", "boundingCube", "boundingSphere", "none")
 FORMATS = (".usda", ".usdc", ".usd")
+
+# Flags of options the Isaac folder shares (emit/isaac/settings.py declares its fields with these).
+COLLISION_APPROXIMATION = flag("how mesh colliders are approximated (default convexHull)", choices=APPROXIMATIONS)
+LAYERED = flag("USD as an interface layer + payload (like NVIDIA's converter) instead of one file", kind="on")
+POSITION_ITERATIONS = flag("PhysX articulation position iterations", type=int, metavar="N")
+VELOCITY_ITERATIONS = flag("PhysX articulation velocity iterations", type=int, metavar="N")
+CONTACT_OFFSET = flag("PhysX contact offset on every collider (default PhysX's ~2 cm)", type=float, metavar="M")
+REST_OFFSET = flag("PhysX rest offset on every collider", type=float, metavar="M")
+PHYSICS_SCENE = flag("add a /PhysicsScene beside the robot (outside the default prim)", kind="on")
 
 # A gain is one number for every joint, or an ordered {regex: value} table (first full match wins).
 Gain = float | Mapping[str, float]
@@ -22,20 +33,23 @@ class UsdOptions:
     """What the USD emitter writes. Gains are SI (per rad for revolute joints, per m for prismatic);
     the emitter converts angular ones to USD's per-degree units."""
 
-    fix_base: bool = True
-    drive_type: str = "force"
-    target_type: str = "position"
-    stiffness: Gain = 100.0
-    damping: Gain = 1.0
-    collision_approximation: str = "convexHull"
+    fix_base: bool = field(default=True, metadata=common.FIX_BASE)
+    drive_type: str = field(default="force", metadata=common.DRIVE_TYPE)
+    target_type: str = field(default="position", metadata=common.TARGET_TYPE)
+    stiffness: Gain = field(default=100.0, metadata=common.STIFFNESS)
+    damping: Gain = field(default=1.0, metadata=common.DAMPING)
+    collision_approximation: str = field(default="convexHull", metadata=COLLISION_APPROXIMATION)
     # False: one file. True: interface layer + Payload/ folder (contents, geometry, materials, physics).
-    layered: bool = False
-    solver_position_iterations: int | None = None
-    solver_velocity_iterations: int | None = None
-    self_collision: bool = False
-    contact_offset: float | None = None  # m, PhysxCollisionAPI on every collider
-    rest_offset: float | None = None
-    physics_scene: bool = False  # a /PhysicsScene sibling of the robot (outside the default prim)
+    layered: bool = field(default=False, metadata=LAYERED)
+    solver_position_iterations: int | None = field(default=None, metadata=POSITION_ITERATIONS)
+    solver_velocity_iterations: int | None = field(default=None, metadata=VELOCITY_ITERATIONS)
+    self_collision: bool = field(default=False, metadata=common.SELF_COLLISION)
+    contact_offset: float | None = field(
+        default=None, metadata=CONTACT_OFFSET
+    )  # m, PhysxCollisionAPI on every collider
+    rest_offset: float | None = field(default=None, metadata=REST_OFFSET)
+    # A /PhysicsScene sibling of the robot (outside the default prim).
+    physics_scene: bool = field(default=False, metadata=PHYSICS_SCENE)
 
     def check(self) -> None:
         _one_of("drive_type", self.drive_type, DRIVE_TYPES)

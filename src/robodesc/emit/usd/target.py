@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
+from robodesc.emit.usd.check import check_usd
 from robodesc.emit.usd.emitter import emit_usd
+from robodesc.emit.usd.layers import PAYLOAD_DIR
 from robodesc.emit.usd.options import UsdOptions
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
@@ -21,6 +23,12 @@ TARGET = Target(
     name="usd",
     emit=emit_target,
     options=UsdOptions,
+    summary="a UsdPhysics articulation for Isaac Sim and Newton; checked by usd-core (and mujoco-usd)",
+    suffixes=(".usda", ".usdc", ".usd"),
+    suffix_required=True,
     passes={"sanitize_names": True, "unique_materials": True},
-    validator="usd",
+    check=check_usd,
+    # A layered asset owns its payload folder beside the file.
+    owned=lambda options: (PAYLOAD_DIR,) if options.layered else (),
+    options_title="USD and Isaac Sim (-t usd, --isaac-sim; see docs/usd.md, docs/isaac.md)",
 )

@@ -1,27 +1,42 @@
-"""Compositions: robots written as parts (Python builder, YAML, HoloScript ``.holo``) → IR.
+"""Compositions: robots written as parts (the Python builder, YAML) -> IR. HoloScript ``.holo`` is
+its own frontend (``robodesc.frontends.holo``); Python compositions are ``compose.python``.
 
-``register(frontends)`` adds the file readers to :data:`robodesc.frontends.load.FRONTENDS`.
-"""
+This package is the YAML frontend's front door: it exports ``FRONTEND`` and imports the YAML reader
+only when a file is read (PyYAML and the builder cost ~40 ms to import)."""
 
 from __future__ import annotations
 
-from collections.abc import Callable, MutableMapping
-
+from robodesc.frontends.contract import Frontend
 from robodesc.frontends.options import LoadOptions
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
 
-Frontend = Callable[[str, LoadOptions, Findings], Robot]
 
-
-def register(frontends: MutableMapping[str, Frontend]) -> None:
-    """Register ``.yaml``, ``.yml`` and ``.holo``."""
+def read_yaml(path: str, options: LoadOptions, findings: Findings) -> Robot:
     from robodesc.frontends.compose.yaml_format import load_yaml
-    from robodesc.frontends.holo.lower import holo_frontend
 
-    frontends[".yaml"] = load_yaml
-    frontends[".yml"] = load_yaml
-    frontends[".holo"] = holo_frontend
+    return load_yaml(path, options, findings)
 
 
-__all__ = ["register"]
+def yaml_robot(path: str) -> tuple[bool, list[str]]:
+    """Discovery: a YAML file is a composition when it has ``robot:`` and ``links:``."""
+    import yaml
+
+    from robodesc.frontends.contract import head_of
+
+    try:
+        data = yaml.safe_load(head_of(path, 1 << 22))
+    except (OSError, yaml.YAMLError):
+        return False, []
+    return isinstance(data, dict) and "robot" in data and "links" in data, []
+
+
+FRONTEND = Frontend(
+    name="yaml",
+    label="YAML compositions (.yaml, .yml)",
+    suffixes=(".yaml", ".yml"),
+    read=read_yaml,
+    discover=yaml_robot,
+)
+
+__all__ = ["FRONTEND"]

@@ -1,0 +1,220 @@
+"""The commands: each turns parsed flags into an API call and hands the result to ``render``."""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import os
+import sys
+from typing import Any
+
+import robodesc.cli.render as render
+from robodesc import api
+from robodesc.cli.flags import target_options
+from robodesc.emit.common.staging import check_output
+from robodesc.ir.diagnostics import ConfigError
+from robodesc.options import CompileOptions, build_options
+from robodesc.pipeline import CompileResult, ValidationFailedError
+from robodesc.targets import target_spec
+
+
+def _input_options(args: argparse.Namespace) -> dict[str, Any]:
+    return {
+        "package_paths": dict(args.package),
+        "xacro_args": dict(args.arg),
+        "missing_mesh": args.missing_mesh,
+        "invalid_inertia": args.invalid_inertia,
+        "strict": args.strict,
+        "trust_xacro": args.trust_xacro,
+        "allowed_env": tuple(args.env),
+        "plugins": tuple(args.plugin),
+    }
+
+
+def _pass_options(args: argparse.Namespace) -> dict[str, Any]:
+    given: dict[str, Any] = {
+        "rename": args.rename or None,
+        "armature": args.armature or None,
+        "strip": args.strip,
+        "repair_inertia": args.repair_inertia,
+        "sanitize_names": args.sanitize_names,
+        "unique_materials": args.unique_materials,
+        "merge_fixed": args.merge_fixed,
+        "copy_meshes": args.copy_meshes,
+    }
+    return {k: v for k, v in given.items() if v is not None}
+
+
+def _accepted(target: str) -> set[str]:
+    cls = target_spec(target).options
+    return {f.name for f in dataclasses.fields(cls)} if cls is not None else set()
+
+
+def compile_options(args: argparse.Namespace) -> CompileOptions:
+    """The compile flags as options (every target's: each target keeps its own). ``batch`` runs
+    many targets from one command line, so it takes them all."""
+    opts = build_options({**_input_options(args), "mesh_paths": args.mesh_paths, "preset": args.preset})
+    opts.target_options = target_options(args)
+    opts.passes = _pass_options(args)
+    opts.validate = args.validate
+    return opts
+
+
+def compile_target(args: argparse.Namespace) -> str:
+    """The target a compile command line names: -t, or the --isaac-sim / --ros2 shortcuts."""
+    return "isaac" if args.isaac_sim else "ros2" if args.ros2 else str(args.target)
+
+
+def cmd_compile(args: argparse.Namespace) -> int:
+    target = compile_target(args)
+    args.json_target, args.json_output = target, args.output
+    if args.report:
+        check_output(args.report, folder=False, source=args.input, what="--report")
+        if args.output and os.path.abspath(args.report) == os.path.abspath(args.output):
+            raise ConfigError(f"--report {args.report}: is also the output (-o); give another file")
+    # Each target takes only its own options.
+    accepted = _accepted(target)
+    options = {
+        **_input_options(args),
+        **_pass_options(args),
+        **{k: v for k, v in target_options(args).items() if k in accepted},
+        "mesh_paths": args.mesh_paths,
+        "preset": args.preset,
+        "validate": args.validate,
+    }
+    progress = render.Progress(not args.quiet and not args.json)
+    try:
+        result = api.compile_to(args.input, target, args.output, progress=progress, **options)
+    except ValidationFailedError as failed:
+        progress.stop()
+        return _validation_failed(args, target, failed.result)
+    finally:
+        progress.stop()
+    report = result.validation
+    if args.report and report is not None:
+        from robodesc._files import write_atomic
+
+        write_atomic(args.report, report.to_markdown())
+    if args.json:
+        print(json.dumps(render.json_doc("compile", 0, target=target, output=args.output, result=result), indent=2))
+        return 0
+    render.print_findings(result.findings, args.quiet, args.verbose)
+    if args.output is None and result.text is not None:
+        sys.stdout.write(result.text)
+    if report is not None and args.verbose:
+        print(report.to_text(), file=sys.stderr)
+    if not args.quiet:
+        print(render.summary_line(result, target, args.output), file=sys.stderr)
+    return 0
+
+
+def _validation_failed(args: argparse.Namespace, target: str, result: CompileResult) -> int:
+    """Exit 1: the output differs from the source because of robodesc. Nothing was written; the
+    full table is printed (and written to --report)."""
+    report = result.validation
+    assert report is not None  # raised only when validation ran
+    if args.report:
+        from robodesc._files import write_atomic
+
+        write_atomic(args.report, report.to_markdown())
+    if args.json:
+        errors: list[dict[str, object]] = [
+            {"severity": "error", "code": f"validation:{c.name}", "message": c.message, "element": c.element}
+            for c in report.failures
+        ]
+        doc = render.json_doc("compile", 1, target=target, output=args.output, result=result, errors=errors)
+        doc["files"] = {}
+        print(json.dumps(doc, indent=2))
+        return 1
+    render.print_findings(result.findings, args.quiet, args.verbose)
+    print(report.to_text(), file=sys.stderr)
+    print(
+        f"error: the output failed validation ({len(report.failures)} check(s) above); nothing was written. "
+        "This is robodesc's fault: please report it. --no-validate writes the output anyway",
+        file=sys.stderr,
+    )
+    return 1
+
+
+def cmd_validate(args: argparse.Namespace) -> int:
+    _refuse_output_as_input(args.input)
+    if args.report:
+        check_output(args.report, folder=False, source=args.input, what="--report")
+    args.json_target = args.target
+    result = api.check(args.input, args.target, **_input_options(args))
+    report = result.validation
+    if report is None:
+        raise ConfigError(f"target {args.target!r} has nothing to validate")
+    code = 0 if report.ok else 1
+    if args.report:
+        from robodesc._files import write_atomic
+
+        write_atomic(args.report, report.to_markdown())
+    if args.json:
+        doc = render.json_doc("validate", code, target=args.target, result=result)
+        doc["files"] = {}
+        print(json.dumps(doc, indent=2))
+    else:
+        render.print_findings(result.findings, quiet=False)
+        print(report.to_text())
+    return code
+
+
+def _refuse_output_as_input(path: str) -> None:
+    """``validate robot.usda``: what robodesc wrote, not what it reads. Say how to check it."""
+    from robodesc.frontends.load import frontend_for
+    from robodesc.ir.diagnostics import ParseError
+    from robodesc.targets import TARGETS
+
+    if not os.path.isfile(path):
+        return
+    try:
+        frontend_for(path)
+    except ParseError:
+        for name in TARGETS:
+            if path.lower().endswith(target_spec(name).suffixes or ("\0",)):
+                raise ConfigError(
+                    f"{path}: robodesc validates an output against the robot it was compiled from; "
+                    f"run: robodesc validate SOURCE -t {name}"
+                ) from None
+
+
+def cmd_inspect(args: argparse.Namespace) -> int:
+    report = api.inspect(args.input, **_input_options(args))
+    if args.json:
+        print(json.dumps(report.as_dict(), indent=2))
+    else:
+        sys.stdout.write(report.render())
+    return 0 if report.ok else 2
+
+
+def cmd_expand(args: argparse.Namespace) -> int:
+    from robodesc.frontends.packages import PackageResolver
+    from robodesc.frontends.xacro_expand import expand_xacro
+    from robodesc.ir.diagnostics import Findings
+
+    findings = Findings()
+    resolver = PackageResolver(explicit=dict(args.package), input_file=args.input)
+    text = expand_xacro(
+        args.input, dict(args.arg), resolver, findings, trust=args.trust_xacro, allowed_env=tuple(args.env)
+    )
+    for f in findings:
+        print(render.render_finding(f), file=sys.stderr)
+    sys.stdout.write(text + "\n")
+    return 0
+
+
+def cmd_batch(args: argparse.Namespace) -> int:
+    from robodesc.batch.command import run_command
+
+    return run_command(args, compile_options(args), compile_target(args))
+
+
+COMMANDS = {
+    "compile": cmd_compile,
+    "batch": cmd_batch,
+    "expand": cmd_expand,
+    "validate": cmd_validate,
+    "inspect": cmd_inspect,
+}

@@ -1,0 +1,276 @@
+"""The command line's grammar: every command, its flags and their help.
+
+A target's options come from its options dataclass (``robodesc.emit.common.flags``): adding an
+option to a target is adding a field there, and the flag appears here by itself."""
+
+from __future__ import annotations
+
+import argparse
+from typing import NoReturn
+
+from robodesc._version import __version__
+from robodesc.cli.flags import add_target_flags, target_lines
+from robodesc.emit.common.paths import PathMode
+from robodesc.frontends.load import describe_inputs
+from robodesc.frontends.options import MissingMesh
+from robodesc.options import InvalidInertia
+from robodesc.passes.presets import PRESETS
+from robodesc.targets import DEFAULT_TARGET, TARGETS
+
+EPILOG = """\
+examples:
+  robodesc compile robot.urdf.xacro -t urdf -o out/robot.urdf --package my_pkg=src/my_pkg
+  robodesc compile go2.urdf.xacro -t urdf -o go2.urdf --missing-mesh warn --invalid-inertia repair
+  robodesc inspect robot.urdf
+exit codes: 0 written (warnings listed), 1 validation failed because of robodesc (nothing written),
+            2 refused: bad input, options or output path (nothing written), 3 a robodesc bug
+"""
+
+
+def _key_value(text: str) -> tuple[str, str]:
+    name, sep, value = text.partition("=")
+    name = name.removesuffix(":")  # ROS style NAME:=VALUE
+    if not sep or not name:
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}")
+    return name, value
+
+
+def add_package_and_arg(g: argparse._ActionsContainer) -> None:
+    g.add_argument(
+        "--package",
+        metavar="NAME=DIR",
+        action="append",
+        type=_key_value,
+        default=[],
+        help="where ROS package NAME lives, for package:// URIs and $(find NAME) (repeatable). "
+        "Without it robodesc looks above the input for package.xml, beside that package, "
+        "then in ROS_PACKAGE_PATH and AMENT_PREFIX_PATH.",
+    )
+    g.add_argument(
+        "--arg", metavar="NAME=VALUE", action="append", type=_key_value, default=[], help="xacro argument (repeatable)"
+    )
+    g.add_argument(
+        "--env",
+        metavar="NAME",
+        action="append",
+        default=[],
+        help="let xacro's $(env NAME) / $(optenv NAME) read this environment variable (repeatable); "
+        "no other variable is read",
+    )
+    g.add_argument(
+        "--trust-xacro",
+        action="store_true",
+        help="expand xacro with upstream's Python evaluation: expressions may run code, read any file "
+        "and the whole environment. Only for files you trust (docs/security.md)",
+    )
+
+
+def add_input_options(p: argparse.ArgumentParser) -> None:
+    g = p.add_argument_group("input")
+    g.add_argument(
+        "--plugin",
+        metavar="MODULE",
+        action="append",
+        default=[],
+        help="load a Python module that adds a target (exports TARGET) or an input format (exports FRONTEND); "
+        "it is code and runs (repeatable; docs/architecture.md)",
+    )
+    add_package_and_arg(g)
+    g.add_argument(
+        "--missing-mesh",
+        choices=[m.value for m in MissingMesh],
+        default="warn",
+        help="a mesh file that does not exist: keep the reference with a warning (warn, default; USD leaves "
+        "the shape out), fail (error), substitute a box of its scale (primitive) or drop that visual/collision (drop)",
+    )
+    g.add_argument(
+        "--invalid-inertia",
+        choices=[m.value for m in InvalidInertia],
+        default="warn",
+        help="physically invalid mass or inertia in the source (mass <= 0, a tensor that is not positive "
+        "definite or breaks the triangle inequality): pass through with a warning (warn, default), fail "
+        "(error), or repair from geometry and report each repair (repair)",
+    )
+    g.add_argument(
+        "--strict",
+        action="store_true",
+        help="every warning is an error: refuse (exit 2, nothing written) when the source has any defect, "
+        "unknown elements included (for CI pipelines)",
+    )
+
+
+class UsageError(Exception):
+    """argparse found a bad command line (exit 2): raised instead of exiting so --json can report it."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> NoReturn:
+        raise UsageError(f"{self.prog}: {message}")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="robodesc",
+        description=f"Compile robot descriptions ({describe_inputs()}) to {', '.join(TARGETS)}.",
+        epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    parser.add_argument("--version", action="version", version=f"robodesc {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show the traceback of an internal error")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+
+    comp = sub.add_parser(
+        "compile",
+        help="compile a robot description to a target",
+        description=f"Compile INPUT ({describe_inputs()}) to a target format, running the verifier and the passes you select.\n\ntargets:\n{target_lines()}",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=EPILOG,
+    )
+    comp.add_argument("input", help=f"the robot: {describe_inputs()}")
+    comp.add_argument(
+        "-t",
+        "--target",
+        choices=list(TARGETS),
+        default=DEFAULT_TARGET,
+        help=f"output format (default: {DEFAULT_TARGET}; the list above says what each writes)",
+    )
+    comp.add_argument(
+        "-o",
+        "--output",
+        help="output file, or folder for --ros2/--isaac-sim (default: standard output for text targets)",
+    )
+    comp.add_argument(
+        "--isaac-sim",
+        action="store_true",
+        help="write everything Isaac Sim / Isaac Lab need to the folder -o: USD asset, Isaac-flavoured URDF, "
+        "importer_settings.json, an Isaac Lab ArticulationCfg module, the validation report (runs --preset isaac_sim)",
+    )
+    comp.add_argument(
+        "--ros2",
+        action="store_true",
+        help="write a ROS 2 / Gazebo Harmonic folder to -o: URDF with <ros2_control> (gz_ros2_control), "
+        "controllers.yaml, a launch file, a ros_gz_bridge YAML for every sensor topic and a world",
+    )
+    add_input_options(comp)
+    out = comp.add_argument_group("output")
+    out.add_argument(
+        "--mesh-paths",
+        choices=[m.value for m in PathMode],
+        default="relative",
+        help="how mesh paths are written: relative to the output file (default, portable), absolute, "
+        "package:// where the input used a package, or keep exactly as written",
+    )
+    ps = comp.add_argument_group("passes (see docs/passes.md)")
+    ps.add_argument(
+        "--preset",
+        choices=list(PRESETS),
+        help="a named set of passes for a target or a workflow",
+    )
+    ps.add_argument(
+        "--rename",
+        action="append",
+        default=[],
+        metavar="SPEC",
+        help="rename joints: OLD=NEW, re:PATTERN=REPLACEMENT; prefix link: to rename links (repeatable, first match wins)",
+    )
+    ps.add_argument(
+        "--armature",
+        action="append",
+        default=[],
+        metavar="REGEX=VALUE",
+        help="reflected rotor inertia (kg·m²) for joints matching REGEX, or REGEX=J_ROTOR*N^2 (repeatable, first match wins)",
+    )
+    ps.add_argument(
+        "--strip",
+        metavar="KINDS",
+        help="remove gazebo,transmission,ros2_control,dont_collapse,contact,surface (comma list, or all)",
+    )
+    ps.add_argument(
+        "--repair-inertia",
+        choices=["geometry", "quad_sdk", "off"],
+        help="repair missing/invalid inertials: from geometry, or by Quad-SDK's constants",
+    )
+    ps.add_argument(
+        "--sanitize-names",
+        action="store_true",
+        default=None,
+        help="make every name a valid USD/Isaac identifier (originals kept as displayName)",
+    )
+    ps.add_argument(
+        "--unique-materials",
+        action="store_true",
+        default=None,
+        help="one uniquely named material per distinct colour/texture",
+    )
+    ps.add_argument(
+        "--merge-fixed",
+        action="store_true",
+        default=None,
+        help="lump fixed-joint children into their parents (kept as fixed frames; dont_collapse respected)",
+    )
+    ps.add_argument(
+        "--copy-meshes", action="store_true", default=None, help="copy meshes into a meshes/ folder next to the output"
+    )
+    add_target_flags(comp)
+    val = comp.add_argument_group("validation")
+    val.add_argument(
+        "--validate",
+        action=argparse.BooleanOptionalAction,
+        default=True,
+        help="load the output in an independent consumer (each target names its own in the list above) and "
+        "compare masses, inertias, joints, limits and forward kinematics with the IR (default: on)",
+    )
+    val.add_argument("--report", metavar="FILE.md", help="also write the validation report as Markdown")
+    comp.add_argument(
+        "--json", action="store_true", help="print a JSON summary (findings, files, validation) on standard output"
+    )
+    comp.add_argument("-q", "--quiet", action="store_true", help="print errors only")
+    comp.add_argument(
+        "-v", "--verbose", action="store_true", help="list every finding (informational ones too), not one per kind"
+    )
+
+    from robodesc.batch.command import add_batch_parser
+
+    add_batch_parser(sub, comp)  # takes compile's own options
+
+    insp = sub.add_parser(
+        "inspect",
+        help="show a robot's tree, DOF, mass and findings",
+        description="Load INPUT and describe it: kinematic tree, degrees of freedom, total mass and every finding.",
+    )
+    insp.add_argument("input")
+    add_input_options(insp)
+    insp.add_argument("--json", action="store_true", help="machine-readable output")
+
+    valp = sub.add_parser(
+        "validate",
+        help="compile a robot in memory and check the result in an independent consumer",
+        description=f"Load INPUT ({describe_inputs()}), compile it to the target in a temporary folder, load "
+        "the output in the target's independent consumer, and compare masses, COMs, inertias, joint types, "
+        "axes, limits and forward kinematics at random configurations with the IR; then step a short "
+        "simulation under gravity. Exit 1 when a check fails.",
+    )
+    valp.add_argument("input")
+    valp.add_argument(
+        "-t",
+        "--target",
+        choices=list(TARGETS),
+        default=DEFAULT_TARGET,
+        help=f"the target to check (default {DEFAULT_TARGET})",
+    )
+    add_input_options(valp)
+    valp.add_argument("--report", metavar="FILE.md", help="write the report as Markdown")
+    valp.add_argument("--json", action="store_true", help="print the report as JSON")
+
+    exp = sub.add_parser(
+        "expand",
+        help="print the URDF a .xacro expands to",
+        description="Expand a .xacro file and print the URDF; line numbers in robodesc's messages about xacro input refer to this text.",
+    )
+    exp.add_argument("input")
+    add_package_and_arg(exp)
+    for sp in (comp, insp, valp, exp):
+        sp.add_argument(
+            "--debug", action="store_true", default=argparse.SUPPRESS, help="show the traceback of an internal error"
+        )
+    return parser

@@ -1,0 +1,16 @@
+"""How a USD output is checked: usd-core's UsdPhysics parser (and MuJoCo's USD importer where it is
+installed) read it back and the numbers are compared with the IR."""
+
+from __future__ import annotations
+
+from robodesc.emit.common.target import CheckRequest, Emitted
+from robodesc.ir.model import Robot
+from robodesc.validation.report import ValidationReport
+
+
+def check_usd(robot: Robot, emitted: Emitted, request: CheckRequest) -> ValidationReport | None:
+    from robodesc.validation.mujoco_usd import validate_usd  # the consumer loads only when a check runs
+
+    if "usd" not in emitted.files:
+        return None
+    return validate_usd(robot, emitted.files["usd"], request.options)
