@@ -6,7 +6,7 @@ option to a target is adding a field there, and the flag appears here by itself.
 from __future__ import annotations
 
 import argparse
-from typing import NoReturn
+from typing import Any, NoReturn
 
 from robodesc._version import __version__
 from robodesc.cli.flags import add_target_flags, target_lines
@@ -118,8 +118,21 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"robodesc {__version__}")
     parser.add_argument("--debug", action="store_true", help="show the traceback of an internal error")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    compile_parser = _compile_parser(sub)
 
-    comp = sub.add_parser(
+    from robodesc.batch.command import add_batch_parser
+
+    add_batch_parser(sub, compile_parser)  # takes compile's own options
+    commands = [compile_parser, _inspect_parser(sub), _validate_parser(sub), _expand_parser(sub)]
+    for sp in commands:
+        sp.add_argument(
+            "--debug", action="store_true", default=argparse.SUPPRESS, help="show the traceback of an internal error"
+        )
+    return parser
+
+
+def _compile_parser(sub: Any) -> argparse.ArgumentParser:
+    comp: argparse.ArgumentParser = sub.add_parser(
         "compile",
         help="compile a robot description to a target",
         description=f"Compile INPUT ({describe_inputs()}) to a target format, running the verifier and the passes you select.\n\ntargets:\n{target_lines()}",
@@ -160,6 +173,29 @@ def build_parser() -> argparse.ArgumentParser:
         help="how mesh paths are written: relative to the output file (default, portable), absolute, "
         "package:// where the input used a package, or keep exactly as written",
     )
+    _add_pass_flags(comp)
+    add_target_flags(comp)
+    val = comp.add_argument_group("validation")
+    val.add_argument(
+        "--validate",
+        action=argparse.BooleanOptionalAction,
+        default=True,
+        help="load the output in an independent consumer (each target names its own in the list above) and "
+        "compare masses, inertias, joints, limits and forward kinematics with the IR (default: on)",
+    )
+    val.add_argument("--report", metavar="FILE.md", help="also write the validation report as Markdown")
+    comp.add_argument(
+        "--json", action="store_true", help="print a JSON summary (findings, files, validation) on standard output"
+    )
+    comp.add_argument("-q", "--quiet", action="store_true", help="print errors only")
+    comp.add_argument(
+        "-v", "--verbose", action="store_true", help="list every finding (informational ones too), not one per kind"
+    )
+
+    return comp
+
+
+def _add_pass_flags(comp: argparse.ArgumentParser) -> None:
     ps = comp.add_argument_group("passes (see docs/passes.md)")
     ps.add_argument(
         "--preset",
@@ -211,29 +247,10 @@ def build_parser() -> argparse.ArgumentParser:
     ps.add_argument(
         "--copy-meshes", action="store_true", default=None, help="copy meshes into a meshes/ folder next to the output"
     )
-    add_target_flags(comp)
-    val = comp.add_argument_group("validation")
-    val.add_argument(
-        "--validate",
-        action=argparse.BooleanOptionalAction,
-        default=True,
-        help="load the output in an independent consumer (each target names its own in the list above) and "
-        "compare masses, inertias, joints, limits and forward kinematics with the IR (default: on)",
-    )
-    val.add_argument("--report", metavar="FILE.md", help="also write the validation report as Markdown")
-    comp.add_argument(
-        "--json", action="store_true", help="print a JSON summary (findings, files, validation) on standard output"
-    )
-    comp.add_argument("-q", "--quiet", action="store_true", help="print errors only")
-    comp.add_argument(
-        "-v", "--verbose", action="store_true", help="list every finding (informational ones too), not one per kind"
-    )
 
-    from robodesc.batch.command import add_batch_parser
 
-    add_batch_parser(sub, comp)  # takes compile's own options
-
-    insp = sub.add_parser(
+def _inspect_parser(sub: Any) -> argparse.ArgumentParser:
+    insp: argparse.ArgumentParser = sub.add_parser(
         "inspect",
         help="show a robot's tree, DOF, mass and findings",
         description="Load INPUT and describe it: kinematic tree, degrees of freedom, total mass and every finding.",
@@ -242,7 +259,11 @@ def build_parser() -> argparse.ArgumentParser:
     add_input_options(insp)
     insp.add_argument("--json", action="store_true", help="machine-readable output")
 
-    valp = sub.add_parser(
+    return insp
+
+
+def _validate_parser(sub: Any) -> argparse.ArgumentParser:
+    valp: argparse.ArgumentParser = sub.add_parser(
         "validate",
         help="compile a robot in memory and check the result in an independent consumer",
         description=f"Load INPUT ({describe_inputs()}), compile it to the target in a temporary folder, load "
@@ -262,15 +283,15 @@ def build_parser() -> argparse.ArgumentParser:
     valp.add_argument("--report", metavar="FILE.md", help="write the report as Markdown")
     valp.add_argument("--json", action="store_true", help="print the report as JSON")
 
-    exp = sub.add_parser(
+    return valp
+
+
+def _expand_parser(sub: Any) -> argparse.ArgumentParser:
+    exp: argparse.ArgumentParser = sub.add_parser(
         "expand",
         help="print the URDF a .xacro expands to",
         description="Expand a .xacro file and print the URDF; line numbers in robodesc's messages about xacro input refer to this text.",
     )
     exp.add_argument("input")
     add_package_and_arg(exp)
-    for sp in (comp, insp, valp, exp):
-        sp.add_argument(
-            "--debug", action="store_true", default=argparse.SUPPRESS, help="show the traceback of an internal error"
-        )
-    return parser
+    return exp
