@@ -50,7 +50,7 @@ def icub_root() -> str | None:
 
 def stretch_root() -> str | None:
     try:
-        import stretch_urdf  # type: ignore[import-untyped]
+        import stretch_urdf
     except ImportError:
         return None
     return os.path.dirname(os.path.abspath(str(stretch_urdf.__file__)))
