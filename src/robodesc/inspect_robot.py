@@ -7,7 +7,6 @@ from dataclasses import dataclass, field
 from robodesc.frontends.load import Source, load_source
 from robodesc.ir.diagnostics import Finding, Findings, Severity
 from robodesc.ir.model import Robot
-from robodesc.ir.verify import verify
 from robodesc.options import CompileOptions
 
 
@@ -80,14 +79,16 @@ class InspectReport:
             out.append("also: " + ", ".join(extras))
         out.append("")
         out.extend(self.tree_lines())
-        if self.findings:
-            out.append("")
-            out.extend(f.render() for f in self.findings)
         return "\n".join(out) + "\n"
 
 
 def describe(source: Source, options: CompileOptions) -> InspectReport:
+    """The robot as ``compile`` reads it, with the findings ``compile`` would report and the same
+    severities: a source defect the outputs carry is a warning (an error under ``--invalid-inertia
+    error``); only what leaves nothing to compile raises."""
+    from robodesc.pipeline import verify_source
+
     findings = Findings()
     robot = load_source(source, options.load, findings)
-    findings.extend(verify(robot))
+    verify_source(robot, options, findings)
     return InspectReport(robot, list(findings))

@@ -166,7 +166,7 @@ def compile_robot(
                 result.source_failures = source_defect_failures(findings, result.validation)
         result.findings = _unique(findings)
         if options.strict:
-            _refuse_warnings(result)
+            refuse_warnings(result.findings, result.source_failures)
         if result.validation is not None and not result.validation.ok:
             raise ValidationFailedError(result)
         if spec.finish is not None and stage.path:
@@ -224,10 +224,10 @@ class ValidationFailedError(ValidationFailed):
         self.result = result
 
 
-def _refuse_warnings(result: CompileResult) -> None:
+def refuse_warnings(findings: list[Finding], source_failures: list[Check]) -> None:
     """``--strict``: every warning (and every source-caused validation failure) is an error."""
-    warned = [f for f in result.findings if f.severity is Severity.WARNING]
-    for check in result.source_failures:
+    warned = [f for f in findings if f.severity is Severity.WARNING]
+    for check in source_failures:
         warned.append(Finding(Severity.WARNING, f"validation:{check.name}", check.message, element=check.element))
     if warned:
         raise StrictError([dataclasses.replace(f, severity=Severity.ERROR) for f in warned])

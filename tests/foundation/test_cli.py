@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -42,13 +43,24 @@ def test_inspect_reports_tree_dof_mass(capsys: pytest.CaptureFixture[str]) -> No
     assert data["dof"] == 5 and data["actuated_joints"][:2] == ["shoulder_yaw", "shoulder_pitch"]
 
 
-def test_inspect_exits_2_on_defects(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["inspect", str(SPIRIT_XACRO)]) == 2
-    assert "link 'text_right': inertia tensor is zero" in capsys.readouterr().out
+def test_inspect_shares_compiles_severity_and_grouping(capsys: pytest.CaptureFixture[str]) -> None:
+    """A source defect compile carries with a warning is a warning in inspect too (exit 0), grouped
+    by kind on standard error with paths as typed; --invalid-inertia error and --strict refuse."""
+    assert main(["inspect", str(SPIRIT_XACRO)]) == 0
+    out, err = capsys.readouterr()
+    assert "warning: " in err and "link 'text_right': inertia tensor is zero" in err and "-v lists them" in err
+    assert "inertia tensor is zero" not in out and "robot 'spirit'" in out
+    assert os.path.abspath(str(SPIRIT_XACRO)) not in err
+    assert main(["inspect", str(SPIRIT_XACRO), "-q"]) == 0
+    assert capsys.readouterr() == ("", "")
+    assert main(["inspect", str(SPIRIT_XACRO), "--invalid-inertia", "error"]) == 2
+    assert "error: " in capsys.readouterr().err
+    assert main(["inspect", str(SPIRIT_XACRO), "--strict"]) == 2  # as compile: the first unknown element
+    assert capsys.readouterr().err.startswith("error: ")
 
 
 def test_expand_prints_the_lines_messages_refer_to(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["inspect", str(SPIRIT_XACRO), "--json"]) == 2
+    assert main(["inspect", str(SPIRIT_XACRO), "--json"]) == 0
     findings = json.loads(capsys.readouterr().out)["findings"]
     line = next(f["line"] for f in findings if f["element"] == "link 'text_right'")
     assert main(["expand", str(SPIRIT_XACRO)]) == 0

@@ -182,11 +182,20 @@ def _refuse_output_as_input(path: str) -> None:
 
 def cmd_inspect(args: argparse.Namespace) -> int:
     report = api.inspect(args.input, **_input_options(args))
+    if args.strict:
+        from robodesc.pipeline import refuse_warnings
+
+        refuse_warnings(report.findings, [])
     if args.json:
-        print(json.dumps(report.as_dict(), indent=2))
-    else:
+        doc = report.as_dict()
+        doc["findings"] = [render.finding_dict(f) for f in report.findings]
+        print(json.dumps(doc, indent=2))
+        return 0
+    # As compile prints them: grouped by kind on standard error; the description on standard output.
+    render.print_findings(report.findings, args.quiet, args.verbose)
+    if not args.quiet:
         sys.stdout.write(report.render())
-    return 0 if report.ok else 2
+    return 0
 
 
 def cmd_expand(args: argparse.Namespace) -> int:

@@ -258,6 +258,10 @@ def _inspect_parser(sub: Any) -> argparse.ArgumentParser:
     insp.add_argument("input")
     add_input_options(insp)
     insp.add_argument("--json", action="store_true", help="machine-readable output")
+    insp.add_argument("-q", "--quiet", action="store_true", help="print errors only")
+    insp.add_argument(
+        "-v", "--verbose", action="store_true", help="list every finding (informational ones too), not one per kind"
+    )
 
     return insp
 
