@@ -149,13 +149,14 @@ def run_command(args: argparse.Namespace, options: CompileOptions, target: str) 
         force=args.force,
         address=args.address,
         progress=not args.quiet and console.is_terminal,
+        progress_lines=not args.quiet and not args.json,
         console=console,
     )
     if args.json:
         print(json.dumps(run.summary, indent=2))
     if not args.quiet:
         print_table(run.summary, console)
-        print(f"robodesc: wrote {args.output}/summary.md and summary.json", file=sys.stderr)
+        print(f"robodesc batch: wrote {args.output}/summary.md and summary.json", file=sys.stderr)
     if run.interrupted:
         print("error: interrupted; finished jobs are kept and will be skipped next time", file=sys.stderr)
     return exit_code(run)

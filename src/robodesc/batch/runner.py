@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import os
 import signal
+import sys
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -26,9 +27,13 @@ class BatchRun:
 class _Progress:
     """A rich progress bar: done/total, outcomes so far, jobs per second and the time left."""
 
-    def __init__(self, total: int, console: Any, enabled: bool) -> None:
+    def __init__(self, total: int, console: Any, enabled: bool, lines: bool = False) -> None:
         self.counts: dict[str, int] = {}
         self.bar: Any = None
+        # Piped (a CI log): one plain line per job compiled, instead of a bar nobody sees.
+        self.lines = lines and not enabled
+        self.total = total
+        self.done = 0
         if not enabled or total == 0:
             return
         from rich.progress import (
@@ -58,6 +63,11 @@ class _Progress:
     def advance(self, result: JobResult) -> None:
         key = result.status + (" (unchanged)" if result.cached else "")
         self.counts[key] = self.counts.get(key, 0) + 1
+        self.done += 1
+        if self.lines and not result.cached:
+            print(
+                f"robodesc batch: [{self.done}/{self.total}] {result.status} {result.id}", file=sys.stderr, flush=True
+            )
         if self.bar is None:
             return
         task = self.bar.tasks[0]
@@ -84,6 +94,7 @@ def run_batch(
     force: bool = False,
     address: str | None = None,
     progress: bool = False,
+    progress_lines: bool = False,
     console: Any = None,
 ) -> BatchRun:
     """Run ``jobs`` (from :func:`robodesc.batch.plan.plan`), writing ``root/summary.json`` and
@@ -103,7 +114,7 @@ def run_batch(
             results[job.id] = previous
         else:
             todo.append(job)
-    bar = _Progress(len(jobs), console, progress)
+    bar = _Progress(len(jobs), console, progress, lines=progress_lines)
     for result in results.values():
         bar.advance(result)
 

@@ -9,6 +9,7 @@ apart from the measured times (``seconds``, ``wall_seconds``) and which jobs wer
 from __future__ import annotations
 
 import os
+import sys
 from collections import Counter
 from collections.abc import Mapping, Sequence
 from typing import Any
@@ -122,26 +123,47 @@ def to_markdown(summary: Mapping[str, Any]) -> str:
 
 
 def print_table(summary: Mapping[str, Any], console: Any, limit: int = 20) -> None:
-    """Counts by outcome, then the jobs that did not succeed (the first ``limit``)."""
+    """Counts by outcome, then the jobs that did not succeed (the first ``limit``), then one closing
+    line. On a terminal as tables; piped, as plain lines that are never wrapped (a log keeps whole
+    paths and messages on their lines)."""
+    totals = summary["totals"]
+    counts = [(name, count) for name, count in totals["by_outcome"].items() if count]
+    if totals["cached"]:
+        counts.append(("(unchanged, skipped)", totals["cached"]))
+    bad = [e for e in summary["jobs"] if e["status"] not in ("ok",)]
+    rows = [(e["id"], e["status"], _message(e)) for e in bad[:limit]]
+    heading = "jobs that did not succeed" + (f" (first {limit} of {len(bad)})" if len(bad) > limit else "")
+    closing = f"robodesc batch: {totals['jobs']} jobs in {totals['wall_seconds']:.1f} s"
+    if console.is_terminal:
+        _tables(console, counts, heading, rows)
+    else:
+        for name, count in counts:
+            print(f"{name}: {count}", file=sys.stderr)
+        if rows:
+            print(f"{heading}:", file=sys.stderr)
+            for job, status, message in rows:
+                print(f"  {job}  {status}  {message}".rstrip(), file=sys.stderr)
+    print(closing, file=sys.stderr)
+
+
+def _message(entry: Mapping[str, Any]) -> str:
+    return str(entry["error"] or ("a validation check failed" if entry["status"] == "validation-failed" else ""))
+
+
+def _tables(console: Any, counts: list[tuple[str, int]], heading: str, rows: list[tuple[str, str, str]]) -> None:
     from rich.table import Table
 
-    totals = summary["totals"]
-    table = Table(title=f"robodesc batch: {totals['jobs']} jobs in {totals['wall_seconds']:.1f} s")
+    table = Table()
     table.add_column("outcome")
     table.add_column("jobs", justify="right")
-    for name, count in totals["by_outcome"].items():
-        if count:
-            table.add_row(name, str(count))
-    if totals["cached"]:
-        table.add_row("(unchanged, skipped)", str(totals["cached"]))
+    for name, count in counts:
+        table.add_row(name, str(count))
     console.print(table)
-    bad = [e for e in summary["jobs"] if e["status"] not in ("ok",)]
-    if not bad:
+    if not rows:
         return
-    failed = Table(title="jobs that did not succeed" + (f" (first {limit} of {len(bad)})" if len(bad) > limit else ""))
+    failed = Table(title=heading)
     for column in ("job", "status", "message"):
         failed.add_column(column, overflow="fold")
-    for e in bad[:limit]:
-        message = e["error"] or ("a validation check failed" if e["status"] == "validation-failed" else "")
-        failed.add_row(e["id"], e["status"], message)
+    for row in rows:
+        failed.add_row(*row)
     console.print(failed)

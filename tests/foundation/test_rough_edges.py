@@ -1,0 +1,97 @@
+"""The rough edges a new user met (issue 26), each reproduced: folders given to compile, a folder
+target named like a file, the summary line's figures, batch output in a log, the API's dir()."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import robodesc
+from robodesc.cli import main
+from robodesc.cli.render import verdict
+from robodesc.ir.model import Link, Robot
+from robodesc.pipeline import CompileResult
+from robodesc.validation.report import Check, Status, ValidationReport
+
+ROOT = Path(__file__).resolve().parents[2]
+ARM = str(ROOT / "examples" / "urdf" / "gripper_arm.urdf")
+
+
+def test_a_folder_given_to_compile_says_so_and_names_batch(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["compile", str(ROOT / "examples"), "-o", str(tmp_path / "x.urdf")]) == 2
+    err = capsys.readouterr().err
+    assert "is a folder" in err and "robodesc batch" in err and "unknown input type" not in err
+
+
+def test_unknown_input_lists_what_is_read_python_included(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    odd = tmp_path / "robot.stl"
+    odd.write_bytes(b"solid x\nendsolid x\n")
+    assert main(["compile", str(odd)]) == 2
+    err = capsys.readouterr().err
+    assert "unknown input type" in err and ".holo" in err and ".py" in err and ".xacro" in err
+
+
+def test_a_folder_target_named_like_a_file_is_refused(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["compile", ARM, "-t", "isaac", "-o", str(tmp_path / "x.usda")]) == 2
+    assert "names a file, but this target writes a folder" in capsys.readouterr().err
+    assert not (tmp_path / "x.usda").exists()
+
+
+def test_a_usd_output_without_a_usd_suffix_is_named_as_typed(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["compile", ARM, "-t", "usd", "-o", str(tmp_path / "x.urdf")]) == 2
+    err = capsys.readouterr().err
+    assert "x.urdf" in err and ".robodesc-" not in err and ".usda" in err
+
+
+def test_passed_line_shows_no_figure_of_a_carried_source_defect() -> None:
+    report = ValidationReport(robot="r", target="sdf", consumer="drake")
+    report.note_error("mass", 1e12)
+    report.note_error("fk_position", 2e-9)
+    defect = Check("mass", Status.WARN, "link 'a'", "mass differs [a defect of the source, carried through unchanged]")
+    result = CompileResult(robot=Robot(name="r", links=[Link(name="a")]), findings=[], target="sdf")
+    result.validation, result.source_failures = report, [defect]
+    line = verdict(result)
+    assert "passed" in line and "1e+12" not in line and "fk_position 2e-09 m" in line
+    assert "1 source defect(s)" in line
+
+
+def test_dir_shows_the_api() -> None:
+    names = dir(robodesc)
+    assert {"compile_to_urdf", "compile_to_usd", "compile_for_isaac_sim", "compile_to", "load", "validate"} <= set(
+        names
+    )
+
+
+def test_validate_help_names_no_consumer_it_does_not_use(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit):
+        main(["validate", "--help"])
+    text = capsys.readouterr().out
+    assert "mujoco-usd (USD)" not in text and "target's independent consumer" in text
+
+
+def test_batch_in_a_log_prints_whole_lines(tmp_path: Path) -> None:
+    """Piped: a line per job, the failure table unwrapped, the closing line whole."""
+    robots = tmp_path / "robots"
+    robots.mkdir()
+    (robots / "arm.urdf").write_text(Path(ARM).read_text().replace("meshes/", str(ROOT / "examples/urdf/meshes") + "/"))
+    long_name = "a_robot_whose_file_name_is_long_enough_to_wrap_a_narrow_table_" * 2
+    (robots / f"{long_name}.urdf").write_text('<robot name="broken"><link name="a"/><joint/></robot>')
+    env = {**os.environ, "COLUMNS": "80"}
+    proc = subprocess.run(
+        [sys.executable, "-m", "robodesc", "batch", str(robots), "-o", str(tmp_path / "out"), "--no-validate"],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=300,
+    )
+    assert proc.returncode == 2, proc.stderr
+    lines = proc.stderr.splitlines()
+    assert any(line.startswith("robodesc batch: [") and line.endswith(" ok arm") for line in lines)
+    assert any(long_name in line and "error" in line for line in lines)  # never wrapped mid-path
+    assert any(line.startswith("robodesc batch: 2 jobs in ") and line.endswith(" s") for line in lines)
