@@ -95,3 +95,23 @@ def test_batch_in_a_log_prints_whole_lines(tmp_path: Path) -> None:
     assert any(line.startswith("robodesc batch: [") and line.endswith(" ok arm") for line in lines)
     assert any(long_name in line and "error" in line for line in lines)  # never wrapped mid-path
     assert any(line.startswith("robodesc batch: 2 jobs in ") and line.endswith(" s") for line in lines)
+
+
+def test_a_folder_output_that_holds_the_input_is_refused(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    folder = tmp_path / "d"
+    folder.mkdir()
+    source = folder / "arm.urdf"
+    source.write_text(Path(ARM).read_text())
+    assert main(["compile", str(source), "--ros2", "-o", str(folder)]) == 2
+    assert "holds the input file" in capsys.readouterr().err
+    assert source.read_text() == Path(ARM).read_text()
+
+
+def test_a_composition_that_exits_is_an_error_not_a_success(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    script = tmp_path / "exits.py"
+    script.write_text("import robodesc\n\ndef build():\n    raise SystemExit(0)\n")
+    assert main(["compile", str(script), "-o", str(tmp_path / "x.urdf")]) == 2
+    assert "called exit(0)" in capsys.readouterr().err
+    out = tmp_path / "out"
+    assert main(["batch", str(script), "-o", str(out), "-q"]) == 2
+    assert not [p for p in out.rglob("*") if p.name.startswith(".robodesc-") and p.is_file() and "batch" not in str(p)]

@@ -10,8 +10,6 @@ added. The mesh paths of the IR are added too, since some targets name meshes wi
 
 from __future__ import annotations
 
-import hashlib
-import importlib.util
 import os
 import sys
 import time
@@ -122,25 +120,6 @@ def _dependencies(opened: tuple[set[str], set[str]], job: Job, robot: Any) -> di
     return deps
 
 
-def _source(path: str) -> Any:
-    """A Python composition is a module with ``build() -> Robot``; anything else the frontends read."""
-    if not path.endswith(".py"):
-        return path
-    name = "robodesc_batch_composition_" + hashlib.sha256(path.encode()).hexdigest()[:12]
-    spec = importlib.util.spec_from_file_location(name, path)
-    if spec is None or spec.loader is None:
-        raise RobodescError(f"cannot import {path}")
-    module = importlib.util.module_from_spec(spec)
-    sys.path.insert(0, os.path.dirname(path))  # its sibling modules, as `python file.py` sees them
-    try:
-        spec.loader.exec_module(module)
-    finally:
-        sys.path.remove(os.path.dirname(path))
-    if not callable(getattr(module, "build", None)):
-        raise RobodescError(f"{path}: a Python composition defines build() -> Robot")
-    return module
-
-
 def _failure_findings(err: RobodescError) -> list[dict[str, Any]]:
     if isinstance(err, VerificationError) and err.findings:
         return [f.as_dict() for f in err.findings]
@@ -189,7 +168,7 @@ def run_job(job: Job) -> JobResult:
         def progress(step: str) -> None:
             result.stage = _STAGES.get(step.split(" ", 1)[0].rstrip(":"), result.stage)
 
-        compiled = compile_robot(_source(job.path), job.target, job.output, job.options, progress)
+        compiled = compile_robot(job.path, job.target, job.output, job.options, progress)
         robot = compiled.robot
         result.findings = [f.as_dict() for f in compiled.findings]
         result.files = dict(compiled.files)

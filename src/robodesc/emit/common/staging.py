@@ -41,6 +41,11 @@ def check_output(
         src = os.path.abspath(os.fspath(source))
         if src == path or (os.path.exists(path) and os.path.exists(src) and os.path.samefile(src, path)):
             raise OutputPathError(f"{what} {out}: is the input file; robodesc does not overwrite its input")
+        real_src, real_out = os.path.realpath(src), os.path.realpath(path)
+        if folder and real_src.startswith(real_out.rstrip(os.sep) + os.sep):
+            raise OutputPathError(
+                f"{what} {out}: holds the input file; this target replaces the whole folder, so give another one"
+            )
     try:
         st = os.stat(path)
     except FileNotFoundError:

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import os
 import re
+import sys
 
 from robodesc.frontends.contract import Frontend
 from robodesc.frontends.options import LoadOptions
@@ -19,13 +20,23 @@ def read_python(path: str, options: LoadOptions, findings: Findings) -> Robot:
 
     if not os.path.isfile(path):
         raise ParseError("input file not found", loc=SourceLoc(path))
-    namespace = runpy.run_path(path, run_name="robodesc_composition")
-    build = namespace.get("build")
+    here = os.path.dirname(os.path.abspath(path))
+    sys.path.insert(0, here)  # its sibling modules, as `python file.py` sees them
+    try:
+        namespace = runpy.run_path(path, run_name="robodesc_composition")
+        build = namespace.get("build")
+        robot = build() if callable(build) else None
+    except SystemExit as exc:
+        # A program's exit() ends a compile or a batch job, not robodesc.
+        raise ParseError(
+            f"the composition called exit({exc.code!r}) instead of returning a Robot", loc=SourceLoc(path)
+        ) from None
+    finally:
+        sys.path.remove(here)
     if not callable(build):
         raise ParseError(
             "a Python composition defines build() returning a Robot; this file does not", loc=SourceLoc(path)
         )
-    robot = build()
     if not isinstance(robot, Robot):
         raise ParseError(f"build() returned {type(robot).__name__}, not a Robot", loc=SourceLoc(path))
     if robot.source_file is None:
