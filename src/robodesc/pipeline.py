@@ -35,8 +35,9 @@ from robodesc.passes import pipeline as passes_pipeline
 from robodesc.passes.context import PassContext
 from robodesc.passes.copy_meshes import copy_meshes
 from robodesc.passes.dangling import add_world_root, drop_dangling
-from robodesc.passes.options import PassOptions, RepairPolicy, options_from_mapping
+from robodesc.passes.options import PassOptions, RepairPolicy, merge_options, options_from_mapping
 from robodesc.passes.pipeline import resolve_options
+from robodesc.passes.presets import OVERLAY_TARGET_OPTIONS, OVERLAYS
 from robodesc.plugins import load_plugins
 from robodesc.targets import target_spec
 from robodesc.validation.options import ValidateOptions
@@ -70,7 +71,11 @@ def pass_options(options: CompileOptions, spec: Target) -> PassOptions:
     """The passes' options: the preset, overridden by explicit options, with the policies the
     compile options and the target imply."""
     chosen = options_from_mapping(options.passes)
-    resolved = resolve_options(options.preset or spec.preset, chosen)
+    if options.preset in OVERLAYS:  # a workflow preset goes on top of the target's own
+        base = merge_options(resolve_options(spec.preset, None), options_from_mapping(OVERLAYS[options.preset]))
+        resolved = merge_options(base, chosen)
+    else:
+        resolved = resolve_options(options.preset or spec.preset, chosen)
     for name, value in spec.passes.items():
         setattr(resolved, name, value)
     # Compositions give masses without tensors; those are always filled from geometry.
@@ -116,12 +121,23 @@ PASSED_THROUGH = " (passed through unchanged; --invalid-inertia repair fixes it 
 CARRIED = " [a defect of the source, carried through unchanged]"
 
 
-def _request(spec: Target, stage: Staging, options: CompileOptions) -> EmitRequest:
+def _request(spec: Target, stage: Staging, options: CompileOptions, findings: Findings) -> EmitRequest:
     built = None
     if spec.options is not None:
         names = {f.name for f in dataclasses.fields(spec.options)}
         given = {k: v for k, v in options.target_options.items() if k in names}
-        built = dataclass_from_mapping(spec.options, given, spec.name)
+        overlay = {k: v for k, v in OVERLAY_TARGET_OPTIONS.get(options.preset or "", {}).items() if k in names}
+        applied = {k: v for k, v in overlay.items() if k not in given}
+        if applied:
+            findings.info(
+                "preset-applied",
+                f"--preset {options.preset} set "
+                + ", ".join(f"{k}={v}" for k, v in applied.items())
+                + " (options you give win; docs/contact.md says why each)",
+                element=f"target {spec.name}",
+                stage="options",
+            )
+        built = dataclass_from_mapping(spec.options, {**applied, **given}, spec.name)
     return EmitRequest(
         out=stage.path,
         options=built,
@@ -153,7 +169,7 @@ def compile_robot(
     _physical(verify(robot).errors, options, None)
     stage = Staging(out, spec.folder)
     try:
-        request = _request(spec, stage, options)
+        request = _request(spec, stage, options, findings)
         if spec.owned is not None:
             stage.protect(spec.owned(request.options))
         emitted = _emit(robot, spec, request, stage, resolved, findings, progress)

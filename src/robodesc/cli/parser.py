@@ -200,7 +200,7 @@ def _add_pass_flags(comp: argparse.ArgumentParser) -> None:
     ps.add_argument(
         "--preset",
         choices=list(PRESETS),
-        help="a named set of passes for a target or a workflow",
+        help="a named set of passes for a target, or a workflow on top of the target's own (gazebo_parity: behave as in Gazebo; docs/contact.md)",
     )
     ps.add_argument(
         "--rename",

@@ -53,6 +53,10 @@ def finding_dict(f: Finding) -> dict[str, object]:
     return out
 
 
+# Informational findings printed without -v: what the user's choice did, in one line.
+SHOWN_NOTES = frozenset({"preset-applied"})
+
+
 def print_findings(findings: Sequence[Finding], quiet: bool, verbose: bool = False) -> None:
     """Warnings grouped by kind: a count, one example, what consumers do and what repairs it.
     ``verbose`` lists every finding, informational ones too; ``quiet`` prints none."""
@@ -68,6 +72,8 @@ def print_findings(findings: Sequence[Finding], quiet: bool, verbose: bool = Fal
     for f in findings:
         if f.severity is Severity.WARNING:
             groups[f.code].append(f)
+        elif f.code in SHOWN_NOTES:
+            print(f"note: {f.message}", file=sys.stderr)
     for code, items in groups.items():
         more = f" (and {len(items) - 1} more {code}; -v lists them)" if len(items) > 1 else ""
         print(render_finding(items[0]) + more, file=sys.stderr)

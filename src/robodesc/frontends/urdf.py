@@ -16,6 +16,7 @@ from typing import TypeVar
 
 from lxml import etree
 
+from robodesc.frontends.gazebo_contact import read_gazebo_contact
 from robodesc.frontends.options import LoadOptions, MissingMesh
 from robodesc.frontends.packages import BY_FOLDER_NAME, PackageResolver
 from robodesc.frontends.xml_safety import parse_xml
@@ -213,6 +214,16 @@ class UrdfReader:
         return self._extension(el)
 
     def _unknown(self, el: etree._Element, where: str) -> None:
+        if _tag(el) == "surface" and where.endswith("<collision>"):
+            # SDF's spelling of contact parameters: read into the IR (frontends/gazebo_contact.py).
+            self.findings.info(
+                "contact-surface",
+                f"<surface> in {where}: read as its contact parameters (every target writes them); "
+                "kept verbatim in the URDF",
+                loc=self._loc(el),
+                stage=STAGE,
+            )
+            return
         message = f"unknown element <{_tag(el)}> in {where}: kept verbatim"
         if self.options.strict:
             raise self._fail(el, message.replace(": kept verbatim", ""))
@@ -883,4 +894,6 @@ def read_urdf_string(
         resolver=resolver or PackageResolver(explicit=dict(opts.package_paths), input_file=file),
         findings=found,
     )
-    return reader.read(root)
+    robot = reader.read(root)
+    read_gazebo_contact(robot, found)
+    return robot

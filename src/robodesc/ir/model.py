@@ -14,6 +14,7 @@ from __future__ import annotations
 import enum
 from dataclasses import dataclass, field
 
+from robodesc.ir.contact import Contact
 from robodesc.ir.diagnostics import SourceLoc
 from robodesc.ir.geometry import Extension, Geometry, Inertial, Material, Pose, Vec3
 
@@ -35,6 +36,8 @@ class Collision:
     name: str | None = None
     src: SourceLoc | None = None
     extensions: list[Extension] = field(default_factory=list)
+    # This collider's own surface parameters (over its link's, ``Link.contact``).
+    contact: Contact | None = None
 
 
 @dataclass(slots=True)
@@ -47,6 +50,16 @@ class Link:
     src: SourceLoc | None = None
     extensions: list[Extension] = field(default_factory=list)
     extra_attrs: dict[str, str] = field(default_factory=dict)
+    # Surface parameters of every collider of the link (Gazebo's per-link tags), and whether the
+    # link collides with the robot's other links (Gazebo's selfCollide); None: not given.
+    contact: Contact | None = None
+    self_collide: bool | None = None
+
+    def collision_contact(self, collision: Collision) -> Contact | None:
+        """The surface parameters that apply to ``collision``: its own over the link's."""
+        if collision.contact is None:
+            return self.contact
+        return collision.contact.merged_over(self.contact)
 
 
 class JointType(enum.Enum):

@@ -93,6 +93,8 @@ def _merge(robot: Robot, joint: Joint, ctx: PassContext) -> None:
         parent.visuals.append(visual)
     for collision in child.collisions:
         collision.origin = _compose(t, collision.origin)
+        # The child's surface parameters stay with its colliders, not with the parent's.
+        collision.contact = child.collision_contact(collision)
         parent.collisions.append(collision)
     for other in robot.joints:
         if other.parent == child.name:

@@ -97,6 +97,8 @@ class PassOptions:
     keep_bodies: bool = False
     # Report joints whose zero position lies outside their limits (go2's knees).
     zero_pose_check: bool = True
+    # explicit_damping: joint damping/friction the source leaves unsaid written as 0 (as ODE has them).
+    explicit_damping: bool = False
     # copy_meshes (emit time): copy meshes/textures next to the output; convert suffixes the target
     # cannot read, e.g. {".dae": ".obj"}.
     copy_meshes: bool = False

@@ -45,6 +45,7 @@ PASSES: tuple[Pass, ...] = (
     Pass("merge_fixed", lambda o: o.merge_fixed),
     Pass("strip_tags", lambda o: bool(o.strip)),
     Pass("armature", lambda o: bool(o.armature or o.armature_by_robot)),
+    Pass("explicit_damping", lambda o: o.explicit_damping),
     Pass("isaac_limits", lambda o: o.isaac_limits),
     Pass("keep_bodies", lambda o: o.keep_bodies),
     Pass("zero_pose", lambda o: o.zero_pose_check),

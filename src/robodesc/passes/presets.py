@@ -70,6 +70,33 @@ PRESET_OPTIONS: dict[str, dict[str, object]] = {
     },
 }
 
+# Presets that go on top of the target's own (a workflow rather than a target): their pass options
+# are added to the target preset's, and their target options fill what the user did not give. A
+# target takes only the options its options class has (docs/contact.md: one choice per cause).
+OVERLAYS: dict[str, dict[str, object]] = {
+    "gazebo_parity": {
+        # Cause 6: an unspecified URDF damping is 0 in ODE, about 0.1 through Isaac's importer.
+        "explicit_damping": True,
+    },
+}
+OVERLAY_TARGET_OPTIONS: dict[str, dict[str, object]] = {
+    "gazebo_parity": {
+        # Cause 8: ODE takes the smaller of two friction coefficients; PhysX averages them.
+        "friction_combine": "min",
+        # Gazebo's default surface: mu 1 where the source gives none.
+        "default_friction": 1.0,
+        # Cause 3: ODE iterates 300 times; PhysX's maximum is 255 (costly: lower it when it holds).
+        "solver_position_iterations": 255,
+        "solver_velocity_iterations": 16,
+        # Cause 5: ODE has no contact skin; PhysX's default is about 2 cm.
+        "contact_offset": 0.001,
+        "rest_offset": 0.0,
+        # Cause 1: a dynamic mesh collider is a convex hull in ODE's fallback and in PhysX.
+        "collision_approximation": "convexHull",
+    },
+}
+PRESET_OPTIONS.update(OVERLAYS)
+
 PRESETS: dict[str, tuple[str, ...]] = {
     "isaac_sim": (
         "sanitize_names",
@@ -85,6 +112,8 @@ PRESETS: dict[str, tuple[str, ...]] = {
     "gazebo": ("unique_materials", "geometric_inertia", "repair_inertia", "strip_tags", "zero_pose"),
     "mujoco": ("unique_materials", "geometric_inertia", "repair_inertia", "strip_tags", "zero_pose"),
     "quad_sdk": ("rename", "unique_materials", "repair_inertia", "strip_tags", "armature", "zero_pose"),
+    # An overlay: these on top of the target's own preset's passes.
+    "gazebo_parity": ("explicit_damping", "zero_pose"),
 }
 
 

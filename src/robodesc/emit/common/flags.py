@@ -87,3 +87,14 @@ INIT_JOINT_POS = flag(
     rules_only=True,
     metavar="REGEX=VALUE",
 )
+FRICTION_COMBINE = flag(
+    "how two colliders' friction coefficients combine: average (PhysX's default), min (ODE's, so "
+    "Gazebo's), multiply, max; docs/contact.md",
+    choices=("average", "min", "multiply", "max"),
+)
+DEFAULT_FRICTION = flag(
+    "friction coefficient of colliders the source gives none for, where a physics material is written "
+    "(default 0.5, PhysX's default material; --preset gazebo_parity: 1, ODE's)",
+    type=float,
+    metavar="MU",
+)

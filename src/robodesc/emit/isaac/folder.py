@@ -43,6 +43,8 @@ def usd_options(settings: IsaacSettings) -> UsdOptions:
         contact_offset=settings.contact_offset,
         rest_offset=settings.rest_offset,
         physics_scene=settings.physics_scene,
+        friction_combine=settings.friction_combine,
+        default_friction=settings.default_friction,
     )
 
 

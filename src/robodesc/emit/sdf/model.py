@@ -25,6 +25,7 @@ from robodesc.emit.sdf.sensors import (
     sensor_element,
     system_plugin,
 )
+from robodesc.emit.sdf.surface import add_surface
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Inertial, Material, Mesh, Pose, Sphere
 from robodesc.ir.model import Joint, JointType, Link, LoopJoint, Robot, Sensor, SensorType
@@ -189,6 +190,7 @@ class SdfModelEmitter:
             c = E(el, "collision", name=cname)
             _insert_pose(c, collision.origin, None)
             self.geometry(c, collision.geometry, f"link {link.name!r} collision {i}")
+            add_surface(c, link.collision_contact(collision), self.findings, f"link {link.name!r} collision {i}")
         for sensor in self.robot.sensors:
             if sensor.parent != link.name or sensor.type is SensorType.FORCE_TORQUE:
                 continue

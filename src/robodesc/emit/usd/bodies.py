@@ -16,6 +16,10 @@ def emit_body(ctx: UsdContext, link: Link) -> None:
     set_display_name(xform, link.display_name)
     prim = ctx.over(PHYSICS, path)
     prim.apply("PhysicsRigidBodyAPI")
+    if link.contact is not None and link.contact.max_vel is not None:
+        # ODE's maxVel: the fastest a contact may push the body out of penetration.
+        prim.apply("PhysxRigidBodyAPI")
+        prim.attr("physxRigidBody:maxDepenetrationVelocity", "float", link.contact.max_vel)
     inertial = link.inertial
     if inertial is None or inertial.mass is None:
         ctx.warn(

@@ -25,7 +25,8 @@ STAGE = "emit:usd"
 JOINTS_SCOPE = "joints"
 LOOPS_SCOPE = "loop_joints"
 LOOKS_SCOPE = "Looks"
-RESERVED_ROBOT_CHILDREN = (JOINTS_SCOPE, LOOPS_SCOPE, LOOKS_SCOPE)
+CONTACT_SCOPE = "PhysicsMaterials"
+RESERVED_ROBOT_CHILDREN = (JOINTS_SCOPE, LOOPS_SCOPE, LOOKS_SCOPE, CONTACT_SCOPE)
 RESERVED_LINK_CHILDREN = ("visuals", "collisions")
 
 # Layer roles (single-file output sends them all to one layer).

@@ -21,6 +21,7 @@ from __future__ import annotations
 import os
 
 from robodesc.emit.usd.bodies import emit_articulation, emit_body, emit_physics_scene, emit_robot_schema
+from robodesc.emit.usd.contact import PhysicsMaterials
 from robodesc.emit.usd.context import (
     JOINTS_SCOPE,
     LOOPS_SCOPE,
@@ -81,6 +82,7 @@ def build_layers(ctx: UsdContext, layers: LayerSet) -> None:
         robot_prim(layers.interface, name, robot.display_name)
 
     looks = MaterialLibrary(ctx)
+    contacts = PhysicsMaterials(ctx)
     attached: dict[str, list[FixedFrame | Sensor]] = {}
     for frame in robot.fixed_frames:
         attached.setdefault(frame.parent, []).append(frame)
@@ -88,7 +90,7 @@ def build_layers(ctx: UsdContext, layers: LayerSet) -> None:
         attached.setdefault(sensor.parent, []).append(sensor)
     for link in robot.links:
         emit_body(ctx, link)
-        emit_link_geometry(ctx, link, looks)
+        emit_link_geometry(ctx, link, looks, contacts)
         for node in attached.get(link.name, []):
             path = f"{ctx.link_paths[link.name]}/{node.name}"
             if isinstance(node, FixedFrame):

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from robodesc.emit.usd.contact import PhysicsMaterials
 from robodesc.emit.usd.context import GEOMETRY, MATERIALS, PHYSICS, UsdContext, set_pose, unique_name
 from robodesc.emit.usd.materials import MaterialLibrary
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Mesh, Sphere
@@ -21,7 +22,7 @@ if TYPE_CHECKING:
     from robodesc.meshes.buffers import MeshData
 
 
-def emit_link_geometry(ctx: UsdContext, link: Link, looks: MaterialLibrary) -> None:
+def emit_link_geometry(ctx: UsdContext, link: Link, looks: MaterialLibrary, contacts: PhysicsMaterials) -> None:
     link_path = ctx.link_paths[link.name]
     label = f"link {link.name!r}"
     if link.visuals:
@@ -43,7 +44,8 @@ def emit_link_geometry(ctx: UsdContext, link: Link, looks: MaterialLibrary) -> N
         for index, collision in enumerate(link.collisions):
             path = f"{scope}/{unique_name(collision.name or '', used, 'collision')}"
             if _shape(ctx, path, collision, f"{label} collision {index}"):
-                _collider(ctx, path, collision)
+                prim = _collider(ctx, path, collision)
+                contacts.bind(prim, link.collision_contact(collision), label)
 
 
 def _shape(ctx: UsdContext, path: str, item: Visual | Collision, label: str) -> bool:
@@ -120,7 +122,7 @@ def _author_mesh(prim: Prim, data: MeshData) -> None:
         prim.attr("primvars:st", "texCoord2f[]", data.uv, interpolation="vertex")
 
 
-def _collider(ctx: UsdContext, path: str, collision: Collision) -> None:
+def _collider(ctx: UsdContext, path: str, collision: Collision) -> Prim:
     options = ctx.options
     prim = ctx.over(PHYSICS, path)
     prim.apply("PhysicsCollisionAPI")
@@ -133,3 +135,4 @@ def _collider(ctx: UsdContext, path: str, collision: Collision) -> None:
             prim.attr("physxCollision:contactOffset", "float", options.contact_offset)
         if options.rest_offset is not None:
             prim.attr("physxCollision:restOffset", "float", options.rest_offset)
+    return prim

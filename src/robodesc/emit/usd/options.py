@@ -14,6 +14,7 @@ DRIVE_TYPES = ("force", "acceleration")
 TARGET_TYPES = ("none", "position", "velocity")
 APPROXIMATIONS = ("convexHull", "convexDecomposition", "boundingCube", "boundingSphere", "none")
 FORMATS = (".usda", ".usdc", ".usd")
+COMBINE_MODES = ("average", "min", "multiply", "max")
 
 # Flags of options the Isaac folder shares (emit/isaac/settings.py declares its fields with these).
 COLLISION_APPROXIMATION = flag("how mesh colliders are approximated (default convexHull)", choices=APPROXIMATIONS)
@@ -50,11 +51,16 @@ class UsdOptions:
     rest_offset: float | None = field(default=None, metadata=REST_OFFSET)
     # A /PhysicsScene sibling of the robot (outside the default prim).
     physics_scene: bool = field(default=False, metadata=PHYSICS_SCENE)
+    # How PhysX combines two colliders' friction (its default: average); None leaves it to PhysX.
+    friction_combine: str | None = field(default=None, metadata=common.FRICTION_COMBINE)
+    default_friction: float = field(default=0.5, metadata=common.DEFAULT_FRICTION)
 
     def check(self) -> None:
         _one_of("drive_type", self.drive_type, DRIVE_TYPES)
         _one_of("target_type", self.target_type, TARGET_TYPES)
         _one_of("collision_approximation", self.collision_approximation, APPROXIMATIONS)
+        if self.friction_combine is not None:
+            _one_of("friction_combine", self.friction_combine, COMBINE_MODES)
         for name in ("stiffness", "damping"):
             gain = getattr(self, name)
             if isinstance(gain, Mapping):
