@@ -1,0 +1,140 @@
+"""Contact carried into every target, in each engine's own terms (issue 25): Spirit's toes, read
+back by each format's reference parser (usd-core's UsdPhysics, Drake's SDF parser), and the
+gazebo_parity preset."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+import robodesc
+from robodesc.frontends.load import load_string
+from tests.conftest import SPIRIT_XACRO
+
+pytest.importorskip("pxr")
+
+TOES = ("toe0", "toe1", "toe2", "toe3")
+
+SHORTHAND = """<robot name="pad">
+  <link name="base"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="foot"><inertial><mass value="0.1"/><inertia ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><sphere radius="0.02"/></geometry></collision></link>
+  <joint name="knee" type="revolute"><parent link="base"/><child link="foot"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="5"/></joint>
+  <gazebo reference="foot"><mu1>0.9</mu1><mu2>0.4</mu2><kp>1e5</kp><kd>50</kd><minDepth>0.001</minDepth>
+    <maxVel>0.2</maxVel><fdir1>1 0 0</fdir1><selfCollide>true</selfCollide></gazebo>
+</robot>"""
+
+
+def _usd_materials(path: Path) -> dict[str, dict[str, object]]:
+    """Collider path -> the attributes of its bound physics material, read by usd-core."""
+    from pxr import Usd, UsdShade
+
+    stage = Usd.Stage.Open(str(path))
+    out: dict[str, dict[str, object]] = {}
+    for prim in stage.Traverse():
+        rel = prim.GetRelationship("material:binding:physics")
+        if not rel or not rel.GetTargets():
+            continue
+        material = stage.GetPrimAtPath(rel.GetTargets()[0])
+        assert UsdShade.Material(material)
+        out[str(prim.GetPath())] = {a.GetName(): a.Get() for a in material.GetAttributes() if a.HasAuthoredValue()}
+    return out
+
+
+def test_gazebo_shorthand_is_read_with_units() -> None:
+    robot = load_string(SHORTHAND).robot
+    foot = robot.link("foot")
+    assert foot.contact is not None and foot.self_collide is True
+    c = foot.contact
+    assert (c.mu, c.mu2, c.kp, c.kd, c.min_depth, c.max_vel, c.fdir1) == (
+        0.9,
+        0.4,
+        1e5,
+        50.0,
+        0.001,
+        0.2,
+        (1.0, 0.0, 0.0),
+    )
+    assert robot.link("base").contact is None  # "not given" stays distinct from a default
+
+
+def test_spirit_toes_in_usd(tmp_path: Path) -> None:
+    out = tmp_path / "spirit.usda"
+    robodesc.compile_to_usd(str(SPIRIT_XACRO), out, validate=False)
+    materials = _usd_materials(out)
+    toes = {p: m for p, m in materials.items() if any(f"/{t}/" in p for t in TOES)}
+    assert len(toes) == 4
+    for attrs in toes.values():
+        assert attrs["physics:staticFriction"] == pytest.approx(0.5)
+        assert attrs["physics:dynamicFriction"] == pytest.approx(0.5)
+        assert attrs["physics:restitution"] == 0.0
+        assert attrs["physxMaterial:compliantContactStiffness"] == pytest.approx(30000.0)  # N/m, as kp
+        assert attrs["physxMaterial:compliantContactDamping"] == pytest.approx(1000.0)  # N·s/m, as kd
+        assert attrs["newton:contactStiffness"] == pytest.approx(30000.0)
+        assert "physxMaterial:frictionCombineMode" not in attrs  # PhysX's own default unless asked
+    # Colliders with equal properties share one material; the body has none without a source value.
+    assert len({tuple(sorted(m.items())) for m in toes.values()}) == 1
+    assert not [p for p in materials if "/body/" in p]
+
+
+def test_spirit_toes_under_gazebo_parity(tmp_path: Path) -> None:
+    out = tmp_path / "spirit.usda"
+    result = robodesc.compile_to_usd(str(SPIRIT_XACRO), out, validate=False, preset="gazebo_parity")
+    notes = [f for f in result.findings if f.code == "preset-applied"]
+    assert notes and "friction_combine=min" in notes[0].message
+    materials = _usd_materials(out)
+    assert {m["physxMaterial:frictionCombineMode"] for m in materials.values()} == {"min"}
+    body = [m for p, m in materials.items() if "/body/" in p]
+    assert body and body[0]["physics:staticFriction"] == pytest.approx(1.0)  # Gazebo's default surface
+    text = out.read_text()
+    assert "physxCollision:contactOffset = 0.001" in text and "solverPositionIterationCount = 255" in text
+    assert "float newton:damping = 0" in text or "newton:damping" in text  # explicit zero damping
+
+
+def test_options_given_win_over_the_preset(tmp_path: Path) -> None:
+    out = tmp_path / "spirit.usda"
+    robodesc.compile_to_usd(str(SPIRIT_XACRO), out, validate=False, preset="gazebo_parity", friction_combine="average")
+    assert {m["physxMaterial:frictionCombineMode"] for m in _usd_materials(out).values()} == {"average"}
+
+
+def test_what_usd_cannot_say_is_a_warning(tmp_path: Path) -> None:
+    src = tmp_path / "pad.urdf"
+    src.write_text(SHORTHAND)
+    result = robodesc.compile_to_usd(str(src), tmp_path / "pad.usda", validate=False)
+    lost = [f.message for f in result.findings if f.code == "contact-not-representable"]
+    assert any("mu2 0.4" in m for m in lost) and any("fdir1" in m for m in lost)
+    text = (tmp_path / "pad.usda").read_text()
+    assert "physxCollision:restOffset = -0.001" in text  # ODE's minDepth: it rests that deep
+    assert "physxRigidBody:maxDepenetrationVelocity = 0.2" in text  # ODE's maxVel
+
+
+def test_spirit_toes_in_sdf_read_by_drake(tmp_path: Path) -> None:
+    pytest.importorskip("pydrake")
+    from pydrake.multibody.parsing import Parser
+    from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
+    from pydrake.systems.framework import DiagramBuilder
+
+    out = tmp_path / "spirit.sdf"
+    robodesc.compile_to_sdf(str(SPIRIT_XACRO), out)
+    plant, scene_graph = AddMultibodyPlantSceneGraph(DiagramBuilder(), 0.001)
+    Parser(plant).AddModels(str(out))
+    plant.Finalize()
+    inspector = scene_graph.model_inspector()
+
+    def friction(link: str) -> tuple[float, float]:
+        (geometry,) = plant.GetCollisionGeometriesForBody(plant.GetBodyByName(link))
+        value = inspector.GetProximityProperties(geometry).GetProperty("material", "coulomb_friction")
+        return value.static_friction(), value.dynamic_friction()
+
+    assert [friction(toe) for toe in TOES] == [(0.5, 0.5)] * 4
+    assert friction("body") == (1.0, 1.0)  # no source value: the parser's default, not one of ours
+    text = out.read_text()
+    assert text.count("<kp>30000</kp>") == 4 and text.count("<restitution_coefficient>0</restitution_coefficient>") == 4
+
+
+def test_urdf_keeps_the_blocks_as_they_came(tmp_path: Path) -> None:
+    result = robodesc.compile_to_urdf(str(SPIRIT_XACRO), validate=False)
+    assert result.text is not None and result.text.count('<gazebo reference="toe') == 4
