@@ -12,6 +12,7 @@ from robodesc.frontends.holo.context import HoloProp, Lowering, Obj
 from robodesc.frontends.holo.geometry import geometry
 from robodesc.frontends.holo.mass import mass
 from robodesc.frontends.holo.materials import color, material
+from robodesc.frontends.holo.values import fail
 from robodesc.frontends.options import MissingMesh
 from robodesc.frontends.packages import PackageResolver
 from robodesc.ir.diagnostics import SourceLoc
@@ -48,7 +49,7 @@ def lower_link(ctx: Lowering, builder: RobotBuilder, obj: Obj, *, moves: bool = 
     com: Pose | None = None
     solid = ctx.solids.get(obj.name)
     if solid is not None and kg is not None and inertia is None:
-        inertia, com = _solid_inertia(solid, kg, origin, geom_loc)
+        inertia, com = _solid_inertia(solid, kg, origin, geom_loc, label)
     if kg is None and moves:
         kg, inertia = _default_mass(ctx, obj, geom, inertia)
     if kg is None:
@@ -73,11 +74,17 @@ def lower_link(ctx: Lowering, builder: RobotBuilder, obj: Obj, *, moves: bool = 
 
 
 def _solid_inertia(
-    solid: tuple[str, float, float], kg: float, origin: Pose | None, loc: SourceLoc | None
+    solid: tuple[str, float, float], kg: float, origin: Pose | None, loc: SourceLoc | None, label: str
 ) -> tuple[Inertia, Pose]:
     """The inertia and centre of mass of the solid a stand-in primitive draws (cone, torus, polyhedron)."""
     kind, a, b = solid
-    props = cone(kg, a, b) if kind == "cone" else torus(kg, a, b) if kind == "torus" else polyhedron(kind, kg, a)
+    try:
+        props = cone(kg, a, b) if kind == "cone" else torus(kg, a, b) if kind == "torus" else polyhedron(kind, kg, a)
+    except OverflowError:
+        # Finite sizes whose squares leave the float range (a 1e308 m torus): no inertia to write.
+        raise fail(
+            f"the inertia of its {kind} ({max(a, b):g} m, {kg:g} kg) is beyond the float range", label, loc
+        ) from None
     inertia = Inertia(*props.inertia, src=loc)
     com = matrix_pose(pose_matrix(origin or Pose()) @ pose_matrix(Pose(xyz=(0.0, 0.0, props.com_z))))
     return inertia, com

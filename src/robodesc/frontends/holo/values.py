@@ -1,4 +1,4 @@
-"""Reading the syntax tree's values: numbers, strings,
+"""Reading the syntax tree's values: numbers (through the compositions' one finite check), strings,
 vectors, poses; and the small helpers the messages share."""
 
 from __future__ import annotations
@@ -7,6 +7,7 @@ import difflib
 import math
 from collections.abc import Iterable
 
+from robodesc.frontends.compose.numbers import finite
 from robodesc.frontends.holo.context import Lowering
 from robodesc.frontends.holo.parser import Expr, Value
 from robodesc.ir.diagnostics import ParseError, SourceLoc
@@ -21,7 +22,7 @@ def fail(message: str, element: str, loc: SourceLoc | None) -> ParseError:
 def num(value: Value, path: str, element: str) -> float:
     if isinstance(value.data, bool) or not isinstance(value.data, float):
         raise fail(f"{path}: expected a number, got {describe(value)}", element, value.loc)
-    return value.data
+    return finite(value.data, element, value.loc, path=path)
 
 
 def string(value: Value, path: str, element: str) -> str:
