@@ -57,6 +57,14 @@ CASES: dict[str, tuple[type[RobodescError], str, str]] = {
     ),
     "missing_mesh.holo": (BrokenReferenceError, "4:15", "object 'Base': mesh file 'meshes/base_v9.stl' does not exist"),
     "wrong_type.holo": (ParseError, "3:37", "object 'Base': @physics.mass: expected a number, got a string ('heavy')"),
+    # Numbers beyond the float range: one finite check for YAML and HoloScript (a 1e999 rotation
+    # once reached math.sin and ended in "math domain error", exit 3).
+    "infinite_rotation.holo": (
+        ParseError,
+        "7:19",
+        "object 'Arm': rotation[1]: expected a finite number, got inf (beyond the float range, ±1.798e+308)",
+    ),
+    "infinite_number.yaml": (ParseError, "5:49", "links.arm.mass: expected a finite number, got '1e999'"),
 }
 
 
@@ -85,3 +93,46 @@ def test_cli_prints_one_line_and_exits_2(name: str, tmp_path: Path, capsys: pyte
     errors = [line for line in err.splitlines() if line.startswith("error:")]
     assert errors and f"{name}:{where}:" in errors[0], err
     assert not out.exists()
+
+
+# Every place a .holo number is read: 1e999 (inf) in any of them is one ParseError naming the
+# element and where, never an exception from the maths behind it.
+HOLO_NUMBER = """composition "Inf" {
+  environment { gravity: [0, 0, G] }
+  object "Base" { @physics { type: "static" mass: 1 } geometry: "box" scale: 0.1 }
+  object "Arm" {
+    @joint { jointType: "revolute" connectedBody: "Base" axis: [0, AX, 1] limits: { min: LO, max: 90 } damping: DA }
+    @sensor { type: "camera" fov: FOV width: 64 height: 48 }
+    geometry: "cylinder" scale: [0.1, SY, 0.1] position: [0, 0, PZ] rotation: [RX, 0, 0] mass: MA color: [CR, 0, 0]
+  }
+  object "Ring" { geometry: "torus" size: SZ physics: { mass: 1, inertia: { ixx: IX, iyy: 1, izz: 1 } } }
+}
+"""
+HOLO_SLOTS = ("G", "AX", "LO", "DA", "FOV", "SY", "PZ", "RX", "MA", "CR", "SZ", "IX")
+
+
+@pytest.mark.parametrize("slot", HOLO_SLOTS)
+@pytest.mark.parametrize("written", ["1e999", "-1e999", "0x" + "f" * 300])
+def test_holo_numbers_beyond_the_float_range(slot: str, written: str) -> None:
+    from robodesc.frontends.holo.lower import load_holo_text
+
+    text = HOLO_NUMBER
+    for other in sorted(HOLO_SLOTS, key=len, reverse=True):
+        text = text.replace(other, written if other == slot else "-9.81" if other == "G" else "1")
+    with pytest.raises(ParseError) as info:
+        load_holo_text(text, "inf.holo")
+    assert "expected a finite number, got" in str(info.value), str(info.value)
+    assert str(info.value).startswith("inf.holo:")
+
+
+@pytest.mark.parametrize("value", ["1e999", "-.inf", ".nan"])
+def test_yaml_numbers_beyond_the_float_range(value: str, tmp_path: Path) -> None:
+    path = tmp_path / "inf.yaml"
+    path.write_text(
+        "robot: inf\nlinks:\n  base: {geometry: {box: [0.1, 0.1, 0.1]}, mass: 1}\n"
+        f"  arm: {{geometry: {{sphere: {{radius: {value}}}}}, mass: 1}}\n"
+        "joints:\n  j: {type: fixed, parent: base, child: arm}\n"
+    )
+    with pytest.raises(ParseError) as info:
+        load_path(str(path))
+    assert str(info.value) == f"{path}:4:37: links.arm.geometry.sphere.radius: expected a finite number, got {value!r}"

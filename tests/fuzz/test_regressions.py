@@ -34,6 +34,9 @@ CASES: dict[str, tuple[list[str], str, str]] = {
     "xacro_eval.urdf.xacro": (["-t", "urdf"], "out.urdf", "attribute '__class__' is refused"),
     "xacro_find_escape.urdf.xacro": (["-t", "urdf"], "out.urdf", "leaves the folder of package 'fuzzpkg'"),
     "xacro_fanout.urdf.xacro": (["-t", "urdf"], "out.urdf", "more than 10000 macro calls"),
+    "holo_infinite_rotation.holo": (["-t", "urdf"], "out.urdf", "object 'Arm': rotation[1]: expected a finite number"),
+    "holo_hex_overflow.holo": (["-t", "urdf"], "out.urdf", "object 'Arm': mass: expected a finite number, got inf"),
+    "holo_torus_overflow.holo": (["-t", "sdf"], "out.sdf", "the inertia of its torus (8.98847e+307 m, 1 kg) is beyond"),
 }
 
 

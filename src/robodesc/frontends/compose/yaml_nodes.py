@@ -15,6 +15,7 @@ from collections.abc import Collection, Iterator
 import yaml
 from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 
+from robodesc.frontends.compose.numbers import finite
 from robodesc.ir.diagnostics import ParseError, SourceLoc
 
 MERGE_TAG = "tag:yaml.org,2002:merge"
@@ -148,9 +149,7 @@ class NodeReader:
             value = None
         if value is None:
             raise self.fail(node, path, f"expected a number, got {describe(node)}")
-        if not math.isfinite(value):
-            raise self.fail(node, path, f"expected a finite number, got {node.value!r}")
-        return value
+        return finite(value, path, self.loc(node), written=repr(node.value))
 
     def positive(self, node: Node, path: str, *, allow_zero: bool = False) -> float:
         value = self.number(node, path)

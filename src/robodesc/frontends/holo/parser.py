@@ -27,6 +27,7 @@ where the limit is crossed, never a ``RecursionError``. Skipping is iterative.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from robodesc.frontends.holo.lexer import Kind, Token, tokenize
@@ -589,6 +590,10 @@ class _Parser:
             return sign * (float(int(raw, 16)) if raw.lower().startswith("0x") else float(raw))
         except ValueError:
             raise self.error(f"bad number {t.text!r}", t) from None
+        except OverflowError:
+            # A hex literal beyond the float range; 1e999 reads as inf the same way. The lowering's
+            # finite check refuses it, naming the element that reads it.
+            return sign * math.inf
 
     def list_value(self) -> Value:
         opener = self.take()

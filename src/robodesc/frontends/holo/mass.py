@@ -1,0 +1,77 @@
+"""An object's mass and inertia tensor: ``mass``, ``@physics { mass, inertia }`` or ``physics: { }``
+(the same mass may be stated more than once; different ones are an error)."""
+
+from __future__ import annotations
+
+import math
+
+from robodesc.frontends.holo.context import Obj
+from robodesc.frontends.holo.parser import Value
+from robodesc.frontends.holo.values import describe, fail, num, suggest
+from robodesc.ir.diagnostics import SourceLoc
+from robodesc.ir.geometry import Inertia
+
+INERTIA_KEYS = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
+
+
+def mass(obj: Obj) -> tuple[float | None, Inertia | None]:
+    """The object's mass (kg) and inertia tensor, each None when not given."""
+    label = obj.label
+    found, inertia_value = _stated(obj)
+    value = None
+    if found:
+        first = found[0]
+        for other in found[1:]:
+            if not math.isclose(other[1], first[1], rel_tol=1e-9, abs_tol=1e-12):
+                raise fail(
+                    f"{other[0]} {other[1]:g} contradicts {first[0]} {first[1]:g} (at {first[2]})", label, other[2]
+                )
+        value = first[1]
+        if value < 0:
+            raise fail(f"mass must be positive, got {value:g}", label, first[2])
+    inertia = None
+    if inertia_value is not None:
+        inertia = _inertia(inertia_value, label)
+        if value is None:
+            raise fail("an inertia tensor needs a mass", label, inertia_value.loc)
+    return value, inertia
+
+
+def _stated(obj: Obj) -> tuple[list[tuple[str, float, SourceLoc]], Value | None]:
+    """Every mass the object states (where, how much, at which location), and its inertia value."""
+    label = obj.label
+    found: list[tuple[str, float, SourceLoc]] = []
+    inertia_value: Value | None = None
+    if "mass" in obj.props:
+        found.append(("mass", num(obj.props["mass"], "mass", label), obj.props["mass"].loc))
+    t = obj.trait("physics")
+    if t is not None:
+        if "mass" in t.params:
+            found.append(("@physics.mass", num(t.params["mass"], "@physics.mass", label), t.params["mass"].loc))
+        if "inertia" in t.params:
+            inertia_value = t.params["inertia"]
+    if "physics" in obj.props:
+        ph = obj.props["physics"]
+        if not isinstance(ph.data, dict):
+            raise fail(f"physics: expected {{ mass, inertia }}, got {describe(ph)}", label, ph.loc)
+        if "mass" in ph.data:
+            found.append(("physics.mass", num(ph.data["mass"], "physics.mass", label), ph.data["mass"].loc))
+        if "inertia" in ph.data:
+            if inertia_value is not None:
+                raise fail("inertia given twice (@physics and physics:)", label, ph.data["inertia"].loc)
+            inertia_value = ph.data["inertia"]
+    return found, inertia_value
+
+
+def _inertia(value: Value, label: str) -> Inertia:
+    if not isinstance(value.data, dict):
+        raise fail("inertia: expected { ixx, iyy, izz, ixy, ixz, iyz }", label, value.loc)
+    d = value.data
+    for key in d:
+        if key not in INERTIA_KEYS:
+            raise fail(f"inertia: unknown key {key!r}{suggest(key, INERTIA_KEYS)}", label, value.key_locs[key])
+    for key in ("ixx", "iyy", "izz"):
+        if key not in d:
+            raise fail(f"inertia needs {key}", label, value.loc)
+    v = {k: num(d[k], f"inertia.{k}", label) if k in d else 0.0 for k in INERTIA_KEYS}
+    return Inertia(v["ixx"], v["iyy"], v["izz"], v["ixy"], v["ixz"], v["iyz"], src=value.loc)
