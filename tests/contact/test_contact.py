@@ -138,3 +138,41 @@ def test_spirit_toes_in_sdf_read_by_drake(tmp_path: Path) -> None:
 def test_urdf_keeps_the_blocks_as_they_came(tmp_path: Path) -> None:
     result = robodesc.compile_to_urdf(str(SPIRIT_XACRO), validate=False)
     assert result.text is not None and result.text.count('<gazebo reference="toe') == 4
+
+
+YAML = """robot: pad
+links:
+  base:
+    geometry: {box: [0.2, 0.2, 0.1]}
+    mass: 2.0
+  foot:
+    geometry: {sphere: {radius: 0.02}}
+    mass: 0.1
+    contact: {mu: 0.7, restitution: 0.1, kp: 20000, kd: 300}
+joints:
+  knee: {type: revolute, parent: base, child: foot, axis: [0, 1, 0], limits: {lower: -1, upper: 1, effort: 5, velocity: 2}}
+"""
+
+HOLO = """composition Pad {
+  object "Base" { @physics { type: "static" mass: 2 } geometry: "cube" scale: 0.2 position: [0, 0, 0.5] }
+  object "Foot" {
+    @physics { mass: 0.1 friction: 0.7 restitution: 0.1 }
+    @collidable
+    @joint { jointType: "hinge" connectedBody: "Base" axis: [0, 1, 0] limits: { min: -45, max: 45 } }
+    geometry: "sphere" scale: 0.04 position: [0, 0, 0.3]
+  }
+}
+"""
+
+
+@pytest.mark.parametrize("kind", ["yaml", "holo"])
+def test_compositions_carry_contact(tmp_path: Path, kind: str) -> None:
+    src = tmp_path / f"pad.{kind}"
+    src.write_text(YAML if kind == "yaml" else HOLO)
+    robot = robodesc.load(str(src))
+    foot = robot.link("foot" if kind == "yaml" else "Foot")
+    assert foot.contact is not None and foot.contact.mu == 0.7 and foot.contact.restitution == 0.1
+    out = tmp_path / "pad.usda"
+    robodesc.compile_to_usd(str(src), out, validate=False)
+    (attrs,) = _usd_materials(out).values()
+    assert attrs["physics:dynamicFriction"] == pytest.approx(0.7) and attrs["physics:restitution"] == pytest.approx(0.1)

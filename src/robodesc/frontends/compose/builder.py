@@ -32,6 +32,7 @@ from robodesc.frontends.compose.shapes import mesh_volume, volume
 from robodesc.frontends.compose.units import ANGLE_UNITS, LENGTH_UNITS, Range
 from robodesc.frontends.options import LoadOptions
 from robodesc.frontends.packages import PackageResolver
+from robodesc.ir.contact import Contact
 from robodesc.ir.diagnostics import BrokenReferenceError, Findings, ParseError, SourceLoc
 from robodesc.ir.geometry import RGBA, Geometry, Inertia, Inertial, Material, Mesh, Pose, Vec3
 from robodesc.ir.model import (
@@ -154,6 +155,7 @@ class _LinkSpec:
     element: str
     src: SourceLoc | None
     display_name: str | None
+    contact: Contact | None = None
 
 
 @dataclass(slots=True)
@@ -221,6 +223,7 @@ class RobotBuilder:
         element: str | None = None,
         src: SourceLoc | None = None,
         display_name: str | None = None,
+        contact: Contact | None = None,
     ) -> None:
         """Declare a link made of ``parts``.
 
@@ -228,7 +231,8 @@ class RobotBuilder:
         giving the parent joint an origin) or in the composition frame (``frame="world"``).
         ``inertia`` is the tensor about the centre of mass (``Inertia`` or ``(ixx, iyy, izz[, ixy,
         ixz, iyz])``); ``com`` its frame in the link frame (default: the centroid of the parts).
-        ``element`` is how messages name the link (``"object 'Arm'"``).
+        ``element`` is how messages name the link (``"object 'Arm'"``). ``contact``: the surface
+        parameters of its colliders (friction, restitution, stiffness ...; docs/contact.md).
         """
         label = element or f"link {name!r}"
         self._unique(self._links, name, "link", label, src)
@@ -262,6 +266,7 @@ class RobotBuilder:
             element=label,
             src=src,
             display_name=display_name,
+            contact=contact,
         )
 
     def joint(
@@ -634,7 +639,7 @@ class RobotBuilder:
         return None if _is_identity(rel) else _clean_pose(matrix_pose(rel))
 
     def _make_link(self, spec: _LinkSpec, resolver: PackageResolver, base_dir: str | None) -> Link:
-        link = Link(name=spec.name, display_name=spec.display_name, src=spec.src)
+        link = Link(name=spec.name, display_name=spec.display_name, src=spec.src, contact=spec.contact)
         kept: list[tuple[Part, Geometry, Pose | None]] = []
         for part in spec.parts:
             geom = part.geometry

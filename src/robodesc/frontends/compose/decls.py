@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from robodesc.frontends.compose.builder import Frame, Part, RobotBuilder
+from robodesc.ir.contact import Contact
 from robodesc.ir.diagnostics import Findings, SourceLoc
 from robodesc.ir.geometry import Inertia, Mesh, Pose, Vec3
 from robodesc.ir.inertia import from_tensor, tensor
@@ -41,6 +42,7 @@ class LinkDecl:
     frame: Frame = "parent"
     element: str | None = None
     src: SourceLoc | None = None
+    contact: Contact | None = None
 
 
 @dataclass(slots=True)
@@ -136,6 +138,7 @@ def apply(decls: Decls, builder: RobotBuilder) -> None:
             frame=ln.frame,
             element=ln.element,
             src=ln.src,
+            contact=ln.contact,
         )
     for j in decls.joints:
         builder.joint(

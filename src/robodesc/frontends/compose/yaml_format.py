@@ -37,6 +37,7 @@ from robodesc.frontends.compose.shapes import box, capsule, cylinder, mesh, sphe
 from robodesc.frontends.compose.units import ANGLE_UNITS, LENGTH_UNITS
 from robodesc.frontends.compose.yaml_nodes import NodeReader, compose_text, merge_nodes
 from robodesc.frontends.options import LoadOptions
+from robodesc.ir.contact import Contact
 from robodesc.ir.diagnostics import Findings, ParseError, SourceLoc
 from robodesc.ir.geometry import Geometry, Inertia, Pose
 from robodesc.ir.model import CameraSpec, JointType, RayAxis, RaySpec, Robot, SafetyController
@@ -60,7 +61,20 @@ TOP_KEYS = (
 BODY_KEYS = ("links", "joints", "loop_joints", "frames", "sensors")
 UNIT_KEYS = ("angle", "length")
 PART_KEYS = ("geometry", "origin", "color", "material", "visual", "collision", "mass", "density", "name")
-LINK_KEYS = (*PART_KEYS, "parts", "inertia", "com", "pose")
+LINK_KEYS = (*PART_KEYS, "parts", "inertia", "com", "pose", "contact")
+# A link's surface parameters (docs/contact.md), in the IR's names and SI units.
+CONTACT_KEYS = (
+    "mu",
+    "mu2",
+    "torsional",
+    "rolling",
+    "restitution",
+    "bounce_threshold",
+    "kp",
+    "kd",
+    "min_depth",
+    "max_vel",
+)
 GEOMETRY_KINDS = ("box", "cylinder", "sphere", "capsule", "mesh")
 POSE_KEYS = ("xyz", "rpy")
 PLACED_POSE_KEYS = ("xyz", "rpy", "frame")
@@ -254,6 +268,10 @@ class _Reader:
             decl.com = self._pose(e["com"], f"{path}.com")
         if "pose" in e:
             decl.pose, decl.frame = self._placed_pose(e["pose"], f"{path}.pose")
+        if "contact" in e:
+            c = n.mapping(e["contact"], f"{path}.contact", CONTACT_KEYS)
+            values = {key: n.positive(c[key], f"{path}.contact.{key}", allow_zero=True) for key in c}
+            decl.contact = Contact(**values, src=n.loc(e["contact"]))  # type: ignore[arg-type]
         return decl
 
     def _part(

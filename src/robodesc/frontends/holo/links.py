@@ -10,7 +10,7 @@ from robodesc.frontends.compose.meshes import resolve_mesh
 from robodesc.frontends.compose.solids import cone, polyhedron, torus
 from robodesc.frontends.holo.context import HoloProp, Lowering, Obj
 from robodesc.frontends.holo.geometry import geometry
-from robodesc.frontends.holo.mass import mass
+from robodesc.frontends.holo.mass import contact, mass
 from robodesc.frontends.holo.materials import color, material
 from robodesc.frontends.holo.values import fail
 from robodesc.frontends.options import MissingMesh
@@ -70,6 +70,7 @@ def lower_link(ctx: Lowering, builder: RobotBuilder, obj: Obj, *, moves: bool = 
         frame="world",
         element=label,
         src=obj.block.name_loc,
+        contact=contact(obj),
     )
 
 

@@ -8,6 +8,7 @@ import math
 from robodesc.frontends.holo.context import Obj
 from robodesc.frontends.holo.parser import Value
 from robodesc.frontends.holo.values import describe, fail, num, suggest
+from robodesc.ir.contact import Contact
 from robodesc.ir.diagnostics import SourceLoc
 from robodesc.ir.geometry import Inertia
 
@@ -75,3 +76,26 @@ def _inertia(value: Value, label: str) -> Inertia:
             raise fail(f"inertia needs {key}", label, value.loc)
     v = {k: num(d[k], f"inertia.{k}", label) if k in d else 0.0 for k in INERTIA_KEYS}
     return Inertia(v["ixx"], v["iyy"], v["izz"], v["ixy"], v["ixz"], v["iyz"], src=value.loc)
+
+
+# HoloScript's physics keys for the surface, and the IR's names for them (docs/contact.md).
+_CONTACT_KEYS = {"friction": "mu", "restitution": "restitution"}
+
+
+def contact(obj: Obj) -> Contact | None:
+    """``@physics { friction, restitution }`` or ``physics: { friction, restitution }``."""
+    values: dict[str, float] = {}
+    loc: SourceLoc | None = None
+    t = obj.trait("physics")
+    sources = [(t.params, "@physics")] if t is not None else []
+    if "physics" in obj.props and isinstance(obj.props["physics"].data, dict):
+        sources.append((obj.props["physics"].data, "physics"))
+    for params, where in sources:
+        for key, name in _CONTACT_KEYS.items():
+            if key in params:
+                value = num(params[key], f"{where}.{key}", obj.label)
+                if value < 0:
+                    raise fail(f"{where}.{key}: must be >= 0, got {value:g}", obj.label, params[key].loc)
+                values[name] = value
+                loc = loc or params[key].loc
+    return Contact(**values, src=loc) if values else None  # type: ignore[arg-type]
