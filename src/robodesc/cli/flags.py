@@ -8,7 +8,9 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import enum
+import functools
 import typing
+from collections.abc import Callable
 from typing import Any
 
 from robodesc.emit.common.flags import Flag, declared_flags, flag_name
@@ -87,24 +89,31 @@ def target_options(args: argparse.Namespace) -> dict[str, Any]:
         if value is None:
             continue
         if decl.kind == "rules":
-            value = _rules(value, key, decl.rules_only)
+            value = _rules(value, key, decl.rules_only, decl.rule_value or functools.partial(_number, flag=key))
         elif decl.kind == "vector":
             value = _vector(value, key, decl.size)
         given[field.name] = value
     return given
 
 
-def _rules(values: list[str], flag: str, rules_only: bool) -> float | dict[str, float]:
-    """``--stiffness 100`` or ``--stiffness 'knee.*=50' --stiffness '.*=20'``."""
+def _rules(values: list[str], flag: str, rules_only: bool, parse: Callable[[str], Any]) -> Any:
+    """``--stiffness 100``, or ``--stiffness 'knee.*=50' --stiffness '.*=20'``: rules in order, first
+    full match wins; a bare value among rules applies to every name the rules leave (it goes last)."""
     if len(values) == 1 and "=" not in values[0]:
-        number = _number(values[0], flag)
-        return {".*": number} if rules_only else number
-    table: dict[str, float] = {}
+        value = parse(values[0])
+        return {".*": value} if rules_only else value
+    table: dict[str, Any] = {}
+    fallback = None
     for item in values:
-        pattern, sep, value = item.rpartition("=")
-        if not sep or not pattern:
-            raise ConfigError(f"{flag} {item!r}: expected a number or REGEX=VALUE")
-        table[pattern] = _number(value, flag)
+        pattern, sep, text = item.rpartition("=")
+        if not sep:
+            fallback = parse(item)
+            continue
+        if not pattern:
+            raise ConfigError(f"{flag} {item!r}: expected a value or REGEX=VALUE")
+        table[pattern] = parse(text)
+    if fallback is not None:
+        table.setdefault(".*", fallback)
     return table
 
 

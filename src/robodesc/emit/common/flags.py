@@ -35,6 +35,8 @@ class Flag:
     metavar: str | None = None
     # For "rules": a bare number means this one rule (``{".*": value}``) rather than a number.
     rules_only: bool = False
+    # For "rules": what a rule's value is (default: a number), e.g. one of ``choices``.
+    rule_value: Callable[[str], Any] | None = None
     # For "vector": how many numbers.
     size: int = 3
     # For "on": the value the flag sets (default True), e.g. an enum value: --gazebo-classic sets

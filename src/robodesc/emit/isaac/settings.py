@@ -17,6 +17,7 @@ import re
 from dataclasses import asdict, dataclass, field
 
 from robodesc.emit.common import flags as common
+from robodesc.emit.common.approximation import Approximation, global_mode
 from robodesc.emit.common.flags import flag
 from robodesc.emit.usd import options as usd
 from robodesc.ir.model import Joint, Robot
@@ -42,7 +43,7 @@ class IsaacSettings:
     damping: Gains = field(default=1.0, metadata=common.DAMPING)
     self_collision: bool = field(default=False, metadata=common.SELF_COLLISION)
     # convexHull | convexDecomposition | boundingCube | boundingSphere | none
-    collision_approximation: str = field(default="convexHull", metadata=usd.COLLISION_APPROXIMATION)
+    collision_approximation: Approximation = field(default="convexHull", metadata=usd.COLLISION_APPROXIMATION)
     solver_position_iterations: int | None = field(default=None, metadata=usd.POSITION_ITERATIONS)
     solver_velocity_iterations: int | None = field(default=None, metadata=usd.VELOCITY_ITERATIONS)
     contact_offset: float | None = field(default=None, metadata=usd.CONTACT_OFFSET)
@@ -97,7 +98,7 @@ def importer_settings(robot: Robot, settings: IsaacSettings) -> dict[str, object
     sim5: dict[str, object] = {
         "merge_fixed_joints": settings.merge_fixed_joints,
         "replace_cylinders_with_capsules": False,
-        "convex_decomp": settings.collision_approximation == "convexDecomposition",
+        "convex_decomp": global_mode(settings.collision_approximation) == "convexDecomposition",
         "import_inertia_tensor": settings.import_inertia_tensor,
         "fix_base": settings.fix_base,
         "self_collision": settings.self_collision,
@@ -129,7 +130,7 @@ def importer_settings(robot: Robot, settings: IsaacSettings) -> dict[str, object
             },
         },
         "collision_from_visuals": False,
-        "collision_type": _APPROX_TO_LAB.get(settings.collision_approximation, "Convex Hull"),
+        "collision_type": _APPROX_TO_LAB.get(global_mode(settings.collision_approximation), "Convex Hull"),
         "self_collision": settings.self_collision,
         "force_usd_conversion": True,
         "make_instanceable": False,
@@ -142,7 +143,7 @@ def importer_settings(robot: Robot, settings: IsaacSettings) -> dict[str, object
 
     sim6: dict[str, object] = {
         "merge_fixed_joints": settings.merge_fixed_joints,
-        "collision_type": _APPROX_TO_SIM6.get(settings.collision_approximation, "Convex Hull"),
+        "collision_type": _APPROX_TO_SIM6.get(global_mode(settings.collision_approximation), "Convex Hull"),
         "allow_self_collision": settings.self_collision,
         "fix_base": settings.fix_base,
         "joint_drive_type": settings.drive_type,

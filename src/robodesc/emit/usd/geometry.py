@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from robodesc.emit.common.approximation import mode_for
 from robodesc.emit.usd.contact import PhysicsMaterials
 from robodesc.emit.usd.context import GEOMETRY, MATERIALS, PHYSICS, UsdContext, set_pose, unique_name
 from robodesc.emit.usd.materials import MaterialLibrary
@@ -44,7 +45,7 @@ def emit_link_geometry(ctx: UsdContext, link: Link, looks: MaterialLibrary, cont
         for index, collision in enumerate(link.collisions):
             path = f"{scope}/{unique_name(collision.name or '', used, 'collision')}"
             if _shape(ctx, path, collision, f"{label} collision {index}"):
-                prim = _collider(ctx, path, collision)
+                prim = _collider(ctx, path, collision, link.name)
                 contacts.bind(prim, link.collision_contact(collision), label)
 
 
@@ -122,13 +123,20 @@ def _author_mesh(prim: Prim, data: MeshData) -> None:
         prim.attr("primvars:st", "texCoord2f[]", data.uv, interpolation="vertex")
 
 
-def _collider(ctx: UsdContext, path: str, collision: Collision) -> Prim:
+def _collider(ctx: UsdContext, path: str, collision: Collision, link: str) -> Prim:
     options = ctx.options
     prim = ctx.over(PHYSICS, path)
     prim.apply("PhysicsCollisionAPI")
     if isinstance(collision.geometry, Mesh):
+        mode = mode_for(options.collision_approximation, link)
         prim.apply("PhysicsMeshCollisionAPI")
-        prim.attr("physics:approximation", "token", options.collision_approximation, uniform=True)
+        prim.attr("physics:approximation", "token", mode, uniform=True)
+        if mode == "convexDecomposition":
+            # PhysX decomposes on load (V-HACD); its parameters written out so every loader gets
+            # the same hulls (PhysX's defaults: up to 32 hulls of up to 64 vertices).
+            prim.apply("PhysxConvexDecompositionCollisionAPI")
+            prim.attr("physxConvexDecompositionCollision:maxConvexHulls", "int", 32)
+            prim.attr("physxConvexDecompositionCollision:hullVertexLimit", "int", 64)
     if options.contact_offset is not None or options.rest_offset is not None:
         prim.apply("PhysxCollisionAPI")
         if options.contact_offset is not None:

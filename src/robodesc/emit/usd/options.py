@@ -6,18 +6,24 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
+from robodesc.emit.common import approximation
 from robodesc.emit.common import flags as common
 from robodesc.emit.common.flags import flag
 from robodesc.ir.diagnostics import ConfigError
 
 DRIVE_TYPES = ("force", "acceleration")
 TARGET_TYPES = ("none", "position", "velocity")
-APPROXIMATIONS = ("convexHull", "convexDecomposition", "boundingCube", "boundingSphere", "none")
 FORMATS = (".usda", ".usdc", ".usd")
 COMBINE_MODES = ("average", "min", "multiply", "max")
 
 # Flags of options the Isaac folder shares (emit/isaac/settings.py declares its fields with these).
-COLLISION_APPROXIMATION = flag("how mesh colliders are approximated (default convexHull)", choices=APPROXIMATIONS)
+COLLISION_APPROXIMATION = flag(
+    f"how mesh colliders are approximated: {', '.join(approximation.APPROXIMATIONS)} (default convexHull), "
+    "or LINK_REGEX=MODE rules on top of it (repeatable, first match wins)",
+    kind="rules",
+    rule_value=approximation.parse_mode,
+    metavar="MODE|REGEX=MODE",
+)
 LAYERED = flag("USD as an interface layer + payload (like NVIDIA's converter) instead of one file", kind="on")
 POSITION_ITERATIONS = flag("PhysX articulation position iterations", type=int, metavar="N")
 VELOCITY_ITERATIONS = flag("PhysX articulation velocity iterations", type=int, metavar="N")
@@ -39,7 +45,7 @@ class UsdOptions:
     target_type: str = field(default="position", metadata=common.TARGET_TYPE)
     stiffness: Gain = field(default=100.0, metadata=common.STIFFNESS)
     damping: Gain = field(default=1.0, metadata=common.DAMPING)
-    collision_approximation: str = field(default="convexHull", metadata=COLLISION_APPROXIMATION)
+    collision_approximation: approximation.Approximation = field(default="convexHull", metadata=COLLISION_APPROXIMATION)
     # False: one file. True: interface layer + Payload/ folder (contents, geometry, materials, physics).
     layered: bool = field(default=False, metadata=LAYERED)
     solver_position_iterations: int | None = field(default=None, metadata=POSITION_ITERATIONS)
@@ -58,7 +64,7 @@ class UsdOptions:
     def check(self) -> None:
         _one_of("drive_type", self.drive_type, DRIVE_TYPES)
         _one_of("target_type", self.target_type, TARGET_TYPES)
-        _one_of("collision_approximation", self.collision_approximation, APPROXIMATIONS)
+        approximation.check(self.collision_approximation)
         if self.friction_combine is not None:
             _one_of("friction_combine", self.friction_combine, COMBINE_MODES)
         for name in ("stiffness", "damping"):
