@@ -367,6 +367,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     exp.add_argument("input")
     _add_package_and_arg(exp)
+    _add_view_parsers(sub)  # robodesc view / render / inspect --html (the block after COMMANDS)
     for sp in (comp, insp, valp, exp):
         sp.add_argument(
             "--debug", action="store_true", default=argparse.SUPPRESS, help="show the traceback of an internal error"
@@ -860,6 +861,95 @@ COMMANDS = {
     "validate": _cmd_validate,
     "inspect": _cmd_inspect,
 }
+
+
+# ---- view and render (robodesc.view): one block, ported as is ---------------------------------
+def _add_view_parsers(sub: Any) -> None:
+    from robodesc.view.camera import VIEWS
+
+    for name, what in (("view", "an HTML viewer page"), ("render", "a PNG picture")):
+        p = sub.add_parser(
+            name,
+            help=f"{what} of a robot" + (" (self-contained, offline)" if name == "view" else " (MuJoCo, headless)"),
+            description=(
+                "Write one self-contained HTML file that shows INPUT in the browser, offline: the robot at its "
+                "home pose, the kinematic tree, a slider per joint, colliders, frames, axes, centres of mass, "
+                "inertia boxes, robodesc's findings linked to their links and, with --target, what the passes "
+                "repaired (before and after). docs/view.md"
+                if name == "view"
+                else "Render INPUT to a PNG with MuJoCo's offscreen renderer (EGL or OSMesa: no display or GPU "
+                "needed), the camera framing the robot. docs/view.md"
+            ),
+        )
+        p.add_argument("input")
+        p.add_argument("-o", "--output", required=True, metavar="FILE.html" if name == "view" else "FILE.png")
+        p.add_argument(
+            "-t",
+            "--target",
+            choices=sorted(TARGETS),
+            help="show the robot as compiled for this target, after its passes (with their repairs)",
+        )
+        p.add_argument("--preset", help="the passes' preset (with --target), as for compile")
+        if name == "render":
+            p.add_argument("--view", choices=list(VIEWS), default="iso", help="camera direction (default iso)")
+            p.add_argument("--size", default="800x600", metavar="WxH", help="image size in pixels (default 800x600)")
+            p.add_argument("--grid", action="store_true", help="front, side, top and iso in a 2x2 grid")
+            p.add_argument("--collision", action="store_true", help="draw the colliders only")
+        _add_input_options(p)
+        p.add_argument(
+            "--debug", action="store_true", default=argparse.SUPPRESS, help="show the traceback of an internal error"
+        )
+    sub.choices["inspect"].add_argument(
+        "--html", metavar="FILE.html", help="also write the viewer page (robodesc view) to FILE.html"
+    )
+
+
+def _view_options(args: argparse.Namespace) -> CompileOptions:
+    return build_options({**_common_options(args), "preset": getattr(args, "preset", None)})
+
+
+def _cmd_view(args: argparse.Namespace) -> int:
+    from robodesc.view import write_view_html
+
+    page = write_view_html(args.input, args.output, options=_view_options(args), target=args.target)
+    print(
+        f"robodesc: {_path(page.path)}: {page.links} links, {page.meshes} meshes, {page.findings} findings, "
+        f"{page.repairs} repairs; {page.bytes / 1e6:.1f} MB in {page.seconds:.2f} s",
+        file=sys.stderr,
+    )
+    return 0
+
+
+def _cmd_render(args: argparse.Namespace) -> int:
+    from robodesc.view.render import parse_size, render_png
+
+    done = render_png(
+        args.input,
+        args.output,
+        view=args.view,
+        size=parse_size(args.size),
+        grid_views=args.grid,
+        collision=args.collision,
+        options=_view_options(args),
+        target=args.target,
+    )
+    for why in done.skipped:
+        print(f"warning: not drawn: {why}", file=sys.stderr)
+    print(f"robodesc: {_path(done.path)}: {done.width}x{done.height} ({done.backend}) in {done.seconds:.2f} s", file=sys.stderr)
+    return 0
+
+
+def _cmd_inspect_or_view(args: argparse.Namespace) -> int:
+    code = _cmd_inspect(args)
+    if getattr(args, "html", None):
+        from robodesc.view import write_view_html
+
+        write_view_html(args.input, args.html, options=build_options(_common_options(args)))
+    return code
+
+
+COMMANDS.update(view=_cmd_view, render=_cmd_render, inspect=_cmd_inspect_or_view)
+# ---- end of view and render ---------------------------------------------------------------------
 
 
 def main(argv: Sequence[str] | None = None) -> int:

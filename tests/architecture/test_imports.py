@@ -89,7 +89,7 @@ LEAVES = {"robodesc._version"}
 
 
 # Packages of the driver layer: they may import everything, and only the CLI imports them.
-DRIVER_PACKAGES = {"batch"}
+DRIVER_PACKAGES = {"batch", "view"}
 
 
 def stage(module: str) -> str:
