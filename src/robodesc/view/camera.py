@@ -1,8 +1,9 @@
-"""Where the picture's camera stands: the robot's bounding box seen from a named direction.
+"""Where the picture's camera stands: the robot's geoms seen from a named direction.
 
-The box is MuJoCo's own (each geom's axis-aligned box in its frame, turned into the world), so the
-framing matches what is drawn. The distance fits the box's bounding sphere in the narrower of the
-two fields of view, so nothing is cut off at any aspect ratio.
+The points fitted are the corners of every drawn geom's own box (MuJoCo's ``geom_aabb``, in the
+geom's frame, turned into the world), which hug the robot much closer than one world-aligned box
+would from a slanted view. The camera looks at the middle of their extent across the view and
+stands at the nearest distance that keeps every corner inside both fields of view.
 """
 
 from __future__ import annotations
@@ -11,6 +12,7 @@ import math
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 # azimuth, elevation in degrees (MuJoCo's free camera: azimuth 0 looks along +x, elevation < 0
 # looks down). URDF robots face +x: "front" stands in front of the robot looking back at it.
@@ -21,43 +23,44 @@ VIEWS: dict[str, tuple[float, float]] = {
     "iso": (140.0, -28.0),
 }
 
+_SIGNS = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=float)
+Points = NDArray[np.float64]
 
-def bounds(model: Any, data: Any, groups: set[int]) -> tuple[np.ndarray, np.ndarray] | None:
-    """World-space min and max corners of the geoms in ``groups`` (None when there are none)."""
-    lo = np.full(3, np.inf)
-    hi = np.full(3, -np.inf)
-    signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=float)
+
+def corners(model: Any, data: Any, groups: set[int]) -> Points | None:
+    """World-space corners (8 per geom) of the geoms in ``groups``; None when there are none."""
+    out = []
     for i in range(model.ngeom):
         if int(model.geom_group[i]) not in groups:
             continue
         center, half = model.geom_aabb[i, :3], model.geom_aabb[i, 3:]
         rot = data.geom_xmat[i].reshape(3, 3)
-        corners = data.geom_xpos[i] + (center + signs * half) @ rot.T
-        lo = np.minimum(lo, corners.min(axis=0))
-        hi = np.maximum(hi, corners.max(axis=0))
-    if not np.all(np.isfinite(lo)):
-        return None
-    return lo, hi
+        out.append(data.geom_xpos[i] + (center + _SIGNS * half) @ rot.T)
+    return np.concatenate(out) if out else None
 
 
-def frame_camera(camera: Any, box: tuple[np.ndarray, np.ndarray] | None, view: str, fovy: float, aspect: float) -> None:
-    """Point MuJoCo's free camera ``camera`` (an ``MjvCamera``) at ``box`` from ``view``: the
-    nearest distance at which all eight corners of the box are inside both fields of view."""
-    lo, hi = box if box is not None else (np.full(3, -0.25), np.full(3, 0.25))
-    center = (lo + hi) / 2
+def _basis(view: str) -> tuple[Points, Points, Points]:
     azimuth, elevation = VIEWS[view]
     az, el = math.radians(azimuth), math.radians(elevation)
     forward = np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
     right = np.cross(forward, [0.0, 0.0, 1.0])
     right /= np.linalg.norm(right)
-    up = np.cross(right, forward)
+    return forward, right, np.cross(right, forward)
+
+
+def frame_camera(camera: Any, points: Points | None, view: str, fovy: float, aspect: float) -> None:
+    """Point MuJoCo's free camera ``camera`` (an ``MjvCamera``) at ``points`` from ``view``."""
+    if points is None:
+        points = _SIGNS * 0.25
+    forward, right, up = _basis(view)
+    # Centre the extent across the view (right and up) and take the middle along it.
+    x, y, z = points @ right, points @ up, points @ forward
+    center = right * (x.max() + x.min()) / 2 + up * (y.max() + y.min()) / 2 + forward * (z.max() + z.min()) / 2
+    rel = points - center
     tan_v = math.tan(math.radians(fovy) / 2)
     tan_h = tan_v * aspect
-    half = np.maximum((hi - lo) / 2, 0.01)
-    corners = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * half
-    # A corner at (x, y) across and ``depth`` along the view is inside when |x| <= tan * (d + depth).
-    depth = corners @ forward
-    need = np.maximum(np.abs(corners @ right) / tan_h, np.abs(corners @ up) / tan_v) - depth
+    # A point at (x, y) across and ``depth`` along the view is inside when |x| <= tan * (d + depth).
+    need = np.maximum(np.abs(rel @ right) / tan_h, np.abs(rel @ up) / tan_v) - rel @ forward
     camera.lookat[:] = center
-    camera.distance = float(need.max()) * 1.08
-    camera.azimuth, camera.elevation = azimuth, elevation
+    camera.distance = max(float(need.max()) * 1.06, 0.05)
+    camera.azimuth, camera.elevation = VIEWS[view]

@@ -11,6 +11,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Material, Mesh, Pose, Sphere
 from robodesc.ir.model import Robot
 from robodesc.ir.rigid import link_frames, pose_frame
@@ -76,8 +78,9 @@ class _Builder:
                 return None
             name = f"mesh{len(self.mesh_names)}"
             mesh = self.spec.add_mesh(name=name)
-            mesh.uservert = data.points.tolist()
-            mesh.userface = data.face_vertex_indices.tolist()
+            # The readers' buffers as numpy views: MuJoCo copies them without a Python list between.
+            mesh.uservert = np.frombuffer(data.points, dtype=np.float32)
+            mesh.userface = np.frombuffer(data.face_vertex_indices, dtype=np.int32)
             mesh.inertia = self.mj.mjtMeshInertia.mjMESH_INERTIA_SHELL
             self.mesh_names[key] = name
         return self.mesh_names[key]

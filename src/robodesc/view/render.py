@@ -22,7 +22,7 @@ import numpy as np
 from robodesc.ir.diagnostics import RobodescError
 from robodesc.options import CompileOptions
 from robodesc.pipeline import Source
-from robodesc.view.camera import VIEWS, bounds, frame_camera
+from robodesc.view.camera import VIEWS, corners, frame_camera
 from robodesc.view.mjscene import COLLISION_GROUP, VISUAL_GROUP, build_model
 from robodesc.view.png import Image, write_png
 from robodesc.view.source import Loaded, load_for_view
@@ -33,6 +33,10 @@ GRID_VIEWS = ("front", "side", "top", "iso")
 
 class RenderUnavailable(RobodescError):
     """No OpenGL backend MuJoCo can render offscreen with (exit 2, nothing written)."""
+
+
+class _BackendFailed(Exception):
+    """The GL backend could not make a context: another may, in another process."""
 
 
 @dataclass(slots=True)
@@ -84,14 +88,18 @@ def render_views(
     option = mujoco.MjvOption()
     option.geomgroup[:] = 0
     option.geomgroup[group] = 1
-    box = bounds(model, data, {group})
-    renderer = mujoco.Renderer(model, height=size[1], width=size[0])
+    points = corners(model, data, {group})
+    try:
+        # The smallest font: the picture has no text, and the font textures cost time to make.
+        renderer = mujoco.Renderer(model, height=size[1], width=size[0], font_scale=mujoco.mjtFontScale.mjFONTSCALE_50)
+    except Exception as exc:  # mujoco.FatalError, GLFW/EGL/OSMesa errors: the backend does not work here
+        raise _BackendFailed(f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}") from None
     try:
         camera = mujoco.MjvCamera()
         camera.type = mujoco.mjtCamera.mjCAMERA_FREE
         images = []
         for view in views:
-            frame_camera(camera, box, view, float(model.vis.global_.fovy), size[0] / size[1])
+            frame_camera(camera, points, view, float(model.vis.global_.fovy), size[0] / size[1])
             renderer.update_scene(data, camera=camera, scene_option=option)
             images.append(renderer.render().copy())
     finally:
@@ -137,7 +145,7 @@ def render_png(
         _select(first)
         try:
             images, skipped = render_views(loaded, views, tile, collision)
-        except (RuntimeError, ImportError, OSError, AttributeError) as exc:
+        except (_BackendFailed, ImportError) as exc:
             if not rest:
                 raise RenderUnavailable(f"{UNAVAILABLE} (MUJOCO_GL={first}: {exc})") from None
             return _in_child(loaded, out, rest[0], views, tile, collision, start)

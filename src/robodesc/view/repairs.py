@@ -77,8 +77,7 @@ def find_repairs(before: Robot, after: Robot, findings: list[Finding]) -> list[J
             if into is not None:
                 merged.setdefault(renamed.get(into, into), []).append(link.name)
             continue
-        dropped = (len(link.visuals) - len(new.visuals), len(link.collisions) - len(new.collisions))
-        if dropped[0] > 0 or dropped[1] > 0:
+        if _shapes_text(link) != _shapes_text(new):
             out.append(
                 {
                     "kind": "dropped",

@@ -15,6 +15,7 @@ import os
 import tempfile
 from dataclasses import dataclass, field
 
+from robodesc.frontends.options import MissingMesh
 from robodesc.ir.diagnostics import Finding, Findings
 from robodesc.ir.model import Robot
 from robodesc.options import CompileOptions
@@ -52,6 +53,13 @@ def load_for_view(source: Source, options: CompileOptions | None = None, target:
     if target is None:
         return Loaded(robot=robot, findings=list(findings), source_name=_name(source))
     before = robot
+    if opts.missing_mesh is not MissingMesh.WARN:
+        # "Before" is the source as written: a mesh the options drop or replace is shown as a
+        # repair, so it must still be there. (The compile below applies the options.)
+        as_written = copy.copy(opts)
+        as_written.missing_mesh = MissingMesh.WARN
+        before = load_source(source, as_written, Findings())
+        verify_source(before, as_written, Findings(), repairing=True)
     spec = target_spec(target)
     compiled_opts = copy.copy(opts)
     compiled_opts.validate = False  # the picture needs the IR, not a second opinion on the file
@@ -60,7 +68,7 @@ def load_for_view(source: Source, options: CompileOptions | None = None, target:
         suffix = {"usd": ".usda", "urdf": ".urdf", "sdf": ".sdf"}.get(target, "")
         out = os.path.join(tmp, "robot" + ("" if spec.folder else suffix))
         # The compile reads the source again: the passes change the robot they are given.
-        result = compile_robot(copy.deepcopy(before), target, out, compiled_opts)
+        result = compile_robot(robot, target, out, compiled_opts)
     # The source's findings come first; the compile repeats them (it verified the same robot), so
     # only its new ones (the passes' and the emitter's) are added.
     seen = {(f.code, f.element, f.message) for f in findings}
