@@ -935,7 +935,10 @@ def _cmd_render(args: argparse.Namespace) -> int:
     )
     for why in done.skipped:
         print(f"warning: not drawn: {why}", file=sys.stderr)
-    print(f"robodesc: {_path(done.path)}: {done.width}x{done.height} ({done.backend}) in {done.seconds:.2f} s", file=sys.stderr)
+    print(
+        f"robodesc: {_path(done.path)}: {done.width}x{done.height} ({done.backend}) in {done.seconds:.2f} s",
+        file=sys.stderr,
+    )
     return 0
 
 

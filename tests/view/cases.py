@@ -35,7 +35,6 @@ DEFECTS = """<?xml version="1.0"?>
 """
 
 
-
 @functools.cache
 def gl_backend() -> tuple[str | None, str]:
     """A backend MuJoCo renders offscreen with here, tried in a child process (so this process's
@@ -57,4 +56,3 @@ def gl_backend() -> tuple[str | None, str]:
             return name, ""
         why += f"MUJOCO_GL={name}: {(done.stderr.strip().splitlines() or ['failed'])[-1]}; "
     return None, why
-

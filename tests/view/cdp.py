@@ -54,7 +54,7 @@ class Browser:
     """One headless Chromium with a fresh profile, and one page target."""
 
     def __init__(self, width: int = 1280, height: int = 800, executable: str | None = None) -> None:
-        import websocket  # type: ignore[import-untyped]
+        import websocket
 
         exe = executable or find_chromium()
         if exe is None:

@@ -78,7 +78,7 @@ def test_page_fetches_nothing(tmp_path: pathlib.Path) -> None:
 def _glb_ok(blob: bytes) -> tuple[int, int]:
     magic, version, length = struct.unpack("<III", blob[:12])
     assert (magic, version, length) == (0x46546C67, 2, len(blob))
-    json_len, kind = struct.unpack("<II", blob[12:20])
+    json_len, _ = struct.unpack("<II", blob[12:20])
     doc = json.loads(blob[20 : 20 + json_len])
     accessors = doc["accessors"]
     return accessors[0]["count"], accessors[1]["count"]
@@ -99,7 +99,7 @@ def test_glb_is_read_back_by_trimesh(tmp_path: pathlib.Path) -> None:
     import trimesh
 
     _, data = written(tmp_path, GRIPPER)
-    scene = trimesh.load(io.BytesIO(base64.b64decode(data["meshes"][0])), file_type="glb")
+    scene: Any = trimesh.load(io.BytesIO(base64.b64decode(data["meshes"][0])), file_type="glb")
     mesh = next(iter(scene.geometry.values()))
     points, indices = _glb_ok(base64.b64decode(data["meshes"][0]))
     assert len(mesh.faces) * 3 == indices and len(mesh.vertices) <= points

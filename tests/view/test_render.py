@@ -24,7 +24,8 @@ BACKGROUND_STD = 4.0  # the sky gradient alone varies less than this
 
 def shrink(image: np.ndarray, k: int = 4) -> np.ndarray:
     h, w = image.shape[0] // k * k, image.shape[1] // k * k
-    return image[:h, :w].astype(float).reshape(h // k, k, w // k, k, 3).mean(axis=(1, 3))
+    out: np.ndarray = image[:h, :w].astype(float).reshape(h // k, k, w // k, k, 3).mean(axis=(1, 3))
+    return out
 
 
 def assert_close_to(image: np.ndarray, golden: pathlib.Path, update: bool) -> None:

@@ -56,7 +56,14 @@ def mesh_glb(mesh: MeshData) -> bytes:
         ],
         "accessors": [
             # glTF requires min/max on POSITION; the readers' extent is exactly that.
-            {"bufferView": 0, "componentType": _FLOAT, "count": count, "type": "VEC3", "min": list(lo), "max": list(hi)},
+            {
+                "bufferView": 0,
+                "componentType": _FLOAT,
+                "count": count,
+                "type": "VEC3",
+                "min": list(lo),
+                "max": list(hi),
+            },
             {"bufferView": 1, "componentType": _UNSIGNED_INT, "count": len(mesh.face_vertex_indices), "type": "SCALAR"},
         ],
     }

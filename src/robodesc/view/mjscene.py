@@ -133,7 +133,7 @@ def build_model(robot: Robot, size: tuple[int, int] = (640, 480)) -> BuiltModel:
         for v in link.visuals:
             visuals += builder.geom(body, v.geometry, v.origin, _rgba(v.material, named), VISUAL_GROUP)
         for c in link.collisions:
-            collisions += builder.geom(body, c.geometry, c.origin, list(COLLIDER_RGBA[:3]) + [1.0], COLLISION_GROUP)
+            collisions += builder.geom(body, c.geometry, c.origin, [*COLLIDER_RGBA[:3], 1.0], COLLISION_GROUP)
     model = _compile(builder)
     return BuiltModel(model=model, visuals=visuals, collisions=collisions, skipped=builder.skipped)
 

@@ -74,9 +74,7 @@ def scene_data(loaded: Loaded) -> dict[str, Any]:
     data = build_scene(loaded.robot, loaded.findings, table)
     data["meshes"], data["mesh_notes"] = embed_meshes(table)
     data["mesh_files"] = [os.path.basename(path) for path, _ in table.keys]
-    data["repairs"] = (
-        find_repairs(loaded.before, loaded.robot, loaded.findings) if loaded.before is not None else []
-    )
+    data["repairs"] = find_repairs(loaded.before, loaded.robot, loaded.findings) if loaded.before is not None else []
     data["target"] = loaded.target
     data["source"] = loaded.source_name
     data["generator"] = f"robodesc {__version__}, three.js {THREE_VERSION}"

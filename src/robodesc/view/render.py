@@ -17,6 +17,7 @@ import subprocess
 import sys
 import time
 from dataclasses import dataclass, field
+
 import numpy as np
 
 from robodesc.ir.diagnostics import RobodescError

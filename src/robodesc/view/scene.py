@@ -147,10 +147,14 @@ def finding_link(finding: Finding, robot: Robot, renamed: dict[str, str] | None 
         for joint in robot.joints:
             if joint.name == name:
                 return joint.child
-    if kind in ("sensor", "fixed_frame"):
-        for item in (*robot.sensors, *robot.fixed_frames):
-            if item.name == name:
-                return item.parent
+    if kind == "sensor":
+        for sensor in robot.sensors:
+            if sensor.name == name:
+                return sensor.parent
+    if kind == "fixed_frame":
+        for frame in robot.fixed_frames:
+            if frame.name == name:
+                return frame.parent
     return None
 
 

@@ -176,7 +176,7 @@
     for (const name in jointObjs) {
       const j = jointObjs[name];
       if (!j.data.range || j.axis.lengthSq() === 0) continue;
-      const arrow = new THREE.ArrowHelper(j.axis, new THREE.Vector3(), 0.12 * s, 0xc02090, 0.03 * s, 0.015 * s);
+      const arrow = new THREE.ArrowHelper(j.axis, new THREE.Vector3(), 0.2 * s, 0xc02090, 0.04 * s, 0.02 * s);
       j.frame.add(arrow);
       layers.axes.push(arrow);
     }
@@ -422,8 +422,10 @@
 
   // ---- start -------------------------------------------------------------------------------
   document.getElementById('title').textContent = data.robot + (data.target ? ' as compiled for ' + data.target : '');
-  document.getElementById('counts').textContent =
-    data.links.length + ' links, ' + data.joints.length + ' joints, ' + data.meshes.length + ' meshes — ' + data.source;
+  const counts = document.getElementById('counts');
+  counts.textContent = data.links.length + ' links, ' + data.joints.length + ' joints, ' + data.meshes.length +
+    ' meshes — ' + data.source.split(/[\\/]/).pop();
+  counts.title = data.source + ' — ' + data.generator;
   document.getElementById('home').addEventListener('click', () => {
     for (const k of Object.keys(q)) delete q[k];
     for (const name in sliders) sliders[name].input.value = String(jointObjs[name].data.home);
