@@ -16,7 +16,7 @@ import pytest
 from robodesc.cli import main
 from robodesc.view.png import decode_png, write_png
 from robodesc.view.render import parse_size, render_png
-from robodesc.view.thumbs import SummaryRow, write_preview_png, write_summary_html
+from robodesc.view.thumbs import SummaryRow, summary_rows, write_preview_png, write_summary_html
 from tests.view.cases import GOLDEN, GRIPPER, QUADRUPED
 
 BACKGROUND_STD = 4.0  # the sky gradient alone varies less than this
@@ -104,3 +104,28 @@ def test_preview_and_summary(tmp_path: pathlib.Path, gl: str) -> None:
     text = pathlib.Path(out).read_text()
     assert text.count("data:image/png;base64,") == 1 and "no picture" in text
     assert "http" not in text.replace("http-equiv", "")
+
+
+def test_summary_rows_from_a_batch_summary(tmp_path: pathlib.Path) -> None:
+    thumb = tmp_path / "t.png"
+    write_png(str(thumb), np.full((18, 24, 3), 200, dtype=np.uint8))
+    summary = {
+        "jobs": [
+            {
+                "id": "a",
+                "status": "ok",
+                "input": GRIPPER,
+                "output": "a/a.usda",
+                "error": None,
+                "findings": {"warning": 2},
+            },
+            {"id": "b", "status": "error", "input": "b.urdf", "output": "b/b.usda", "error": "not XML", "findings": {}},
+        ]
+    }
+    rows = summary_rows(summary, thumbnails={"a": str(thumb)})
+    assert [(r.name, r.outcome, r.message, r.source is None) for r in rows] == [
+        ("a", "ok", "2 warning", False),
+        ("b", "error", "not XML", True),
+    ]
+    text = pathlib.Path(write_summary_html(str(tmp_path / "summary.html"), rows)).read_text()
+    assert text.count("data:image/png;base64,") == 1 and "no picture" in text

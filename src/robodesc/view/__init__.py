@@ -21,6 +21,7 @@ __all__ = [
     "RenderUnavailable",
     "SummaryRow",
     "render_png",
+    "summary_rows",
     "write_preview_png",
     "write_summary_html",
     "write_view_html",
@@ -29,7 +30,7 @@ __all__ = [
 if TYPE_CHECKING:
     from robodesc.view.page import PageResult, write_view_html
     from robodesc.view.render import RenderResult, RenderUnavailable, render_png
-    from robodesc.view.thumbs import SummaryRow, write_preview_png, write_summary_html
+    from robodesc.view.thumbs import SummaryRow, summary_rows, write_preview_png, write_summary_html
 
 _HOME = {
     "PageResult": "robodesc.view.page",
@@ -38,6 +39,7 @@ _HOME = {
     "RenderUnavailable": "robodesc.view.render",
     "render_png": "robodesc.view.render",
     "SummaryRow": "robodesc.view.thumbs",
+    "summary_rows": "robodesc.view.thumbs",
     "write_preview_png": "robodesc.view.thumbs",
     "write_summary_html": "robodesc.view.thumbs",
 }

@@ -10,8 +10,9 @@ from __future__ import annotations
 import base64
 import html
 import os
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 from robodesc.emit.common.files import write_atomic
 from robodesc.ir.diagnostics import RobodescError
@@ -27,14 +28,46 @@ THUMB_SIZE = (240, 180)
 @dataclass(slots=True, frozen=True)
 class SummaryRow:
     """One robot of a batch run: its name, outcome (``ok``, ``warnings``, ``failed``, ...), a
-    one-line message, the output it produced, and where to draw it from (a source path or an IR
-    robot; None: no picture)."""
+    one-line message, the output it produced, and its picture: ``thumbnail``, a PNG already made
+    (a worker's :func:`write_preview_png`), else drawn now from ``source`` (an input path or an IR
+    robot) with ``options``; neither: a placeholder."""
 
     name: str
     outcome: str
     message: str = ""
     output: str | None = None
     source: Source | None = None
+    options: CompileOptions | None = None
+    thumbnail: str | None = None
+
+
+def summary_rows(
+    summary: Mapping[str, Any],
+    options: Mapping[str, CompileOptions] | None = None,
+    thumbnails: Mapping[str, str] | None = None,
+) -> list[SummaryRow]:
+    """Rows for :func:`write_summary_html` from a batch summary (``robodesc.batch.summary.
+    build_summary``'s dict): each job's id, status, error or finding counts and output; its input
+    as the source (drawn with ``options[job id]``) unless ``thumbnails[job id]`` names a PNG."""
+    rows = []
+    for job in summary.get("jobs", []):
+        ident = str(job["id"])
+        counts = ", ".join(f"{n} {s}" for s, n in dict(job.get("findings") or {}).items() if n)
+        message = str(job.get("error") or counts)
+        # Only these wrote an output (robodesc.batch.jobs.WROTE_OUTPUTS): the others have no robot.
+        failed = job.get("status") not in ("ok", "validation-failed")
+        rows.append(
+            SummaryRow(
+                name=ident,
+                outcome=str(job.get("status", "")),
+                message=message,
+                output=job.get("output"),
+                source=None if failed else job.get("input"),
+                options=(options or {}).get(ident),
+                thumbnail=(thumbnails or {}).get(ident),
+            )
+        )
+    return rows
 
 
 def write_preview_png(
@@ -72,7 +105,7 @@ table { border-collapse: collapse; }
 td, th { border-bottom: 1px solid #dde; padding: 6px 10px; text-align: left; vertical-align: middle; }
 img { display: block; width: 240px; height: 180px; background: #eef0f3; }
 .none { width: 240px; height: 180px; background: #eef0f3; color: #889; display: flex; align-items: center; justify-content: center; }
-.ok { color: #17743c; } .warnings { color: #b07000; } .failed, .refused, .crashed, .timeout { color: #c02020; }
+.ok { color: #17743c; } .validation-failed { color: #b07000; } .error, .crashed, .timeout, .not-run { color: #c02020; }
 """
 
 
@@ -96,7 +129,12 @@ def write_summary_html(
         "<table><tr><th>picture</th><th>robot</th><th>outcome</th><th>message</th><th>output</th></tr>",
     ]
     for row in rows:
-        uri = thumbnail_data_uri(row.source, tmp_png, options) if row.source is not None else None
+        uri = None
+        if row.thumbnail is not None and os.path.isfile(row.thumbnail):
+            with open(row.thumbnail, "rb") as handle:
+                uri = "data:image/png;base64," + base64.b64encode(handle.read()).decode("ascii")
+        elif row.source is not None:
+            uri = thumbnail_data_uri(row.source, tmp_png, row.options or options)
         picture = f'<img alt="{html.escape(row.name)}" src="{uri}">' if uri else '<div class="none">no picture</div>'
         output = html.escape(row.output or "")
         lines.append(
