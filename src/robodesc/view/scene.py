@@ -28,6 +28,7 @@ COLLIDER_RGBA = (0.95, 0.55, 0.15, 0.45)
 FREE_RANGE = {"angular": math.pi, "linear": 0.5}
 
 _ELEMENT = re.compile(r"^(\w+) '(.*?)'")
+_IN_MESSAGE = re.compile(r"\b(link|joint) '([^']*)'")
 
 
 @dataclass(slots=True)
@@ -130,6 +131,9 @@ def finding_link(finding: Finding, robot: Robot, renamed: dict[str, str] | None 
     """The link a finding is about: the link it names, a joint's child link, a merged link's new
     body; None for findings about the whole robot (or elements without a link)."""
     match = _ELEMENT.match(finding.element)
+    if match is None:
+        # Frontend findings often name the element in the message only ("... in link 'base'").
+        match = _IN_MESSAGE.search(finding.message)
     if match is None:
         return None
     kind, name = match.group(1), match.group(2)
