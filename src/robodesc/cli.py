@@ -865,7 +865,7 @@ COMMANDS = {
 
 # ---- view and render (robodesc.view): one block, ported as is ---------------------------------
 def _add_view_parsers(sub: Any) -> None:
-    from robodesc.view.camera import VIEWS
+    from robodesc.view.views import VIEWS  # numpy-free: building the parser must not import numpy
 
     for name, what in (("view", "an HTML viewer page"), ("render", "a PNG picture")):
         p = sub.add_parser(

@@ -129,3 +129,22 @@ def test_summary_rows_from_a_batch_summary(tmp_path: pathlib.Path) -> None:
     ]
     text = pathlib.Path(write_summary_html(str(tmp_path / "summary.html"), rows)).read_text()
     assert text.count("data:image/png;base64,") == 1 and "no picture" in text
+
+
+def test_render_after_mujoco_chose_another_backend(tmp_path: pathlib.Path, gl: str) -> None:
+    """A process whose MuJoCo was imported without MUJOCO_GL (GLFW, which needs a display) still
+    renders: in a child process with a headless backend."""
+    import os
+    import subprocess
+    import sys
+
+    out = tmp_path / "child.png"
+    code = (
+        "import mujoco\n"
+        "from robodesc.view.render import render_png\n"
+        f"print(render_png({GRIPPER!r}, {str(out)!r}, size=(64, 48)).backend)\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k not in ("MUJOCO_GL", "PYOPENGL_PLATFORM")}
+    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    assert done.stdout.strip() in ("egl", "osmesa")
+    assert decode_png(out.read_bytes()).shape == (48, 64, 3)

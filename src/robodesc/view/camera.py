@@ -14,14 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-# azimuth, elevation in degrees (MuJoCo's free camera: azimuth 0 looks along +x, elevation < 0
-# looks down). URDF robots face +x: "front" stands in front of the robot looking back at it.
-VIEWS: dict[str, tuple[float, float]] = {
-    "front": (180.0, -8.0),
-    "side": (90.0, -8.0),
-    "top": (180.0, -89.0),
-    "iso": (140.0, -28.0),
-}
+from robodesc.view.views import VIEWS
 
 _SIGNS = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=float)
 Points = NDArray[np.float64]

@@ -23,10 +23,11 @@ import numpy as np
 from robodesc.ir.diagnostics import RobodescError
 from robodesc.options import CompileOptions
 from robodesc.pipeline import Source
-from robodesc.view.camera import VIEWS, corners, frame_camera
+from robodesc.view.camera import corners, frame_camera
 from robodesc.view.mjscene import COLLISION_GROUP, VISUAL_GROUP, build_model
 from robodesc.view.png import Image, write_png
 from robodesc.view.source import Loaded, load_for_view
+from robodesc.view.views import VIEWS
 
 BACKENDS = ("egl", "osmesa")
 GRID_VIEWS = ("front", "side", "top", "iso")
@@ -67,6 +68,15 @@ UNAVAILABLE = (
     "OSMesa (Debian/Ubuntu: apt-get install libosmesa6, then MUJOCO_GL=osmesa). `robodesc view` makes "
     "a browser page instead, which needs neither"
 )
+
+
+def _chosen_backend() -> str | None:
+    """The backend this process's MuJoCo already chose (it reads ``MUJOCO_GL`` once, when it is
+    imported: "" means GLFW, which needs a display); None when MuJoCo is not imported yet."""
+    if "mujoco" not in sys.modules:
+        return None
+    module = sys.modules.get("mujoco.rendering.classic.gl_context") or sys.modules.get("mujoco.gl_context")
+    return str(getattr(module, "_MUJOCO_GL", "")).strip().lower()
 
 
 def _select(backend: str) -> None:
@@ -142,7 +152,8 @@ def render_png(
     if not candidates:
         raise RenderUnavailable(UNAVAILABLE)
     first, rest = candidates[0], candidates[1:]
-    if "mujoco" not in sys.modules or os.environ.get("MUJOCO_GL") == first:
+    chosen = _chosen_backend()
+    if chosen is None or chosen == first:
         _select(first)
         try:
             images, skipped = render_views(loaded, views, tile, collision)
@@ -153,7 +164,15 @@ def render_png(
         image = grid(images) if grid_views else images[0]
         write_png(out, image)
         return RenderResult(out, image.shape[1], image.shape[0], first, time.perf_counter() - start, skipped)
-    return _in_child(loaded, out, first, views, tile, collision, start)
+    # This process's MuJoCo chose another backend when it was imported (a worker that validated
+    # first, a test run): render in a child process that chooses ours.
+    failures = []
+    for backend in candidates:
+        try:
+            return _in_child(loaded, out, backend, views, tile, collision, start)
+        except RenderUnavailable as exc:
+            failures.append(str(exc))
+    raise RenderUnavailable(failures[-1])
 
 
 def _in_child(
