@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 import pathlib
+import resource
 import subprocess
 import sys
 import tempfile
@@ -82,7 +83,8 @@ def renders() -> None:
 
 
 def measure() -> None:
-    """Wall time of each command in a fresh process (as a user runs it), and the page's size."""
+    """Wall and CPU time of each command in a fresh process (as a user runs it), and the output's
+    size. CPU time is the steadier number on a shared machine."""
     root, _ = _erd()
     env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
     with tempfile.TemporaryDirectory() as tmp:
@@ -90,6 +92,7 @@ def measure() -> None:
             src = os.path.join(root, "robots", rel)
             for cmd, out in (("view", f"{name}.html"), ("render", f"{name}.png")):
                 path = os.path.join(tmp, out)
+                before = resource.getrusage(resource.RUSAGE_CHILDREN)
                 start = time.perf_counter()
                 done = subprocess.run(
                     [sys.executable, "-m", "robodesc", cmd, src, "-o", path, "--package", f"example-robot-data={root}"],
@@ -99,9 +102,11 @@ def measure() -> None:
                     check=True,
                 )
                 wall = time.perf_counter() - start
-                print(
-                    f"{name:11} {cmd:6} {wall:5.2f} s wall, {os.path.getsize(path) / 1e6:6.2f} MB  | {done.stderr.strip().splitlines()[-1]}"
-                )
+                after = resource.getrusage(resource.RUSAGE_CHILDREN)
+                cpu = after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime
+                last = done.stderr.strip().splitlines()[-1]
+                size = os.path.getsize(path) / 1e6
+                print(f"{name:11} {cmd:6} {wall:5.2f} s wall, {cpu:5.2f} s CPU, {size:6.2f} MB  | {last}")
 
 
 if __name__ == "__main__":

@@ -115,11 +115,21 @@ class _Builder:
         return True
 
 
-def build_model(robot: Robot, size: tuple[int, int] = (640, 480)) -> BuiltModel:
+def build_model(robot: Robot, size: tuple[int, int] = (640, 480), collision: bool = False) -> BuiltModel:
     """The picture model of ``robot`` at its home pose (every joint at zero, or at the limit nearest
-    zero; mimic joints follow), for an offscreen buffer of ``size`` (width, height)."""
+    zero; mimic joints follow), for an offscreen buffer of ``size`` (width, height): its visuals,
+    or with ``collision`` (or when it has no visual that can be drawn) its colliders. Only the
+    shapes drawn are built: MuJoCo's mesh processing is most of a render's time."""
     import mujoco
 
+    if not collision:
+        built = _build(mujoco, robot, size, visual=True)
+        if built.visuals:
+            return built
+    return _build(mujoco, robot, size, visual=False)
+
+
+def _build(mujoco: Any, robot: Robot, size: tuple[int, int], visual: bool) -> BuiltModel:
     builder = _Builder(mujoco, size)
     named = {m.name: m for m in robot.materials}
     q = {j.name: home(j) for j in robot.joints if j.mimic is None and j.type.dof == 1}
@@ -130,9 +140,9 @@ def build_model(robot: Robot, size: tuple[int, int] = (640, 480)) -> BuiltModel:
         if frame is None:  # not reachable from a root: the verifier refused such robots already
             continue
         body = builder.spec.worldbody.add_body(name=link.name, pos=list(frame.translation), quat=list(frame.quat()))
-        for v in link.visuals:
+        for v in link.visuals if visual else ():
             visuals += builder.geom(body, v.geometry, v.origin, _rgba(v.material, named), VISUAL_GROUP)
-        for c in link.collisions:
+        for c in () if visual else link.collisions:
             collisions += builder.geom(body, c.geometry, c.origin, [*COLLIDER_RGBA[:3], 1.0], COLLISION_GROUP)
     model = _compile(builder)
     return BuiltModel(model=model, visuals=visuals, collisions=collisions, skipped=builder.skipped)

@@ -90,12 +90,12 @@ def render_views(
     """One image per view of the loaded robot, each ``size`` (width, height)."""
     import mujoco
 
-    built = build_model(loaded.robot, size)
+    built = build_model(loaded.robot, size, collision)
     model = built.model
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
     # Visuals unless asked for colliders, or the robot has no visual to show.
-    group = COLLISION_GROUP if collision or built.visuals == 0 else VISUAL_GROUP
+    group = VISUAL_GROUP if built.visuals else COLLISION_GROUP
     option = mujoco.MjvOption()
     option.geomgroup[:] = 0
     option.geomgroup[group] = 1
