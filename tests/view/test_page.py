@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import base64
+import gzip
 import html.parser
 import json
 import pathlib
@@ -88,8 +89,9 @@ def test_every_mesh_is_embedded(tmp_path: pathlib.Path) -> None:
     _, data = written(tmp_path, GRIPPER)
     used = {s["mesh"] for link in data["links"] for s in link["visuals"] + link["collisions"] if s["kind"] == "mesh"}
     assert used == set(range(len(data["meshes"]))) and used
+    assert data["mesh_encoding"] == "glb+gzip+base64"
     for blob in data["meshes"]:
-        points, indices = _glb_ok(base64.b64decode(blob))
+        points, indices = _glb_ok(gzip.decompress(base64.b64decode(blob)))
         assert points > 0 and indices % 3 == 0
 
 
@@ -99,9 +101,10 @@ def test_glb_is_read_back_by_trimesh(tmp_path: pathlib.Path) -> None:
     import trimesh
 
     _, data = written(tmp_path, GRIPPER)
-    scene: Any = trimesh.load(io.BytesIO(base64.b64decode(data["meshes"][0])), file_type="glb")
+    glb = gzip.decompress(base64.b64decode(data["meshes"][0]))
+    scene: Any = trimesh.load(io.BytesIO(glb), file_type="glb")
     mesh = next(iter(scene.geometry.values()))
-    points, indices = _glb_ok(base64.b64decode(data["meshes"][0]))
+    points, indices = _glb_ok(glb)
     assert len(mesh.faces) * 3 == indices and len(mesh.vertices) <= points
 
 

@@ -2,12 +2,13 @@
 
 Nothing is fetched when the page opens: the scripts and the stylesheet are inlined from
 ``assets/`` (three.js is vendored there, see ``assets/README.md``), the meshes are GLB files in
-base64 inside the scene's JSON. So the file opens from disk, offline, in any browser with WebGL.
+base64 (gzipped) inside the scene's JSON. So the file opens from disk, offline, in any browser with WebGL.
 """
 
 from __future__ import annotations
 
 import base64
+import gzip
 import html
 import json
 import os
@@ -53,7 +54,8 @@ def _script_safe(text: str) -> str:
 
 
 def embed_meshes(table: MeshTable) -> tuple[list[str | None], list[str]]:
-    """Each mesh of the table as base64 GLB (None when it cannot be read), and a note per failure."""
+    """Each mesh of the table as gzipped GLB in base64 (None when it cannot be read), and a note
+    per failure."""
     cache = MeshCache()
     out: list[str | None] = []
     notes: list[str] = []
@@ -64,7 +66,9 @@ def embed_meshes(table: MeshTable) -> tuple[list[str | None], list[str]]:
             out.append(None)
             notes.append(f"{path}: {exc}")
             continue
-        out.append(base64.b64encode(mesh_glb(data)).decode("ascii"))
+        # gzip first: mesh arrays shrink to about half, which keeps a big robot's page small; the
+        # browser inflates them itself (DecompressionStream), still without any request.
+        out.append(base64.b64encode(gzip.compress(mesh_glb(data), compresslevel=1, mtime=0)).decode("ascii"))
     return out, notes
 
 
@@ -74,6 +78,7 @@ def scene_data(loaded: Loaded) -> dict[str, Any]:
     data = build_scene(loaded.robot, loaded.findings, table)
     data["meshes"], data["mesh_notes"] = embed_meshes(table)
     data["mesh_files"] = [os.path.basename(path) for path, _ in table.keys]
+    data["mesh_encoding"] = "glb+gzip+base64"
     data["repairs"] = find_repairs(loaded.before, loaded.robot, loaded.findings) if loaded.before is not None else []
     data["target"] = loaded.target
     data["source"] = loaded.source_name

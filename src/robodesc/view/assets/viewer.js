@@ -68,11 +68,17 @@
     for (let i = 0; i < raw.length; i++) bytes[i] = raw.charCodeAt(i);
     return bytes.buffer;
   }
-  function parseGlb(text) {
-    if (text === null) return Promise.resolve(null);
+  // Meshes are gzipped GLB in base64: inflated by the browser's own DecompressionStream.
+  function inflate(buffer) {
+    const stream = new Blob([buffer]).stream().pipeThrough(new DecompressionStream('gzip'));
+    return new Response(stream).arrayBuffer();
+  }
+  async function parseGlb(text) {
+    if (text === null) return null;
+    const buffer = await inflate(base64Buffer(text));
     const loader = new THREE.GLTFLoader();
     return new Promise((resolve) => {
-      loader.parse(base64Buffer(text), '', (gltf) => {
+      loader.parse(buffer, '', (gltf) => {
         let geometry = null;
         gltf.scene.traverse((o) => { if (o.isMesh && !geometry) geometry = o.geometry; });
         resolve(geometry);
