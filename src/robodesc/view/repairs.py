@@ -28,7 +28,9 @@ def _inertia_text(inertial: Inertial | None) -> str:
     i = inertial.inertia
     if i is not None:
         text += f", ixx iyy izz {i.ixx:.4g} {i.iyy:.4g} {i.izz:.4g}"
-        if i.ixy or i.ixz or i.iyz:
+        # Products of inertia that are rounding noise (1e-36 after a rotation) are not shown.
+        scale = max(abs(i.ixx), abs(i.iyy), abs(i.izz), 1e-300)
+        if max(abs(i.ixy), abs(i.ixz), abs(i.iyz)) > 1e-9 * scale:
             text += f", ixy ixz iyz {i.ixy:.3g} {i.ixz:.3g} {i.iyz:.3g}"
     return text
 
