@@ -71,11 +71,17 @@ def summary_rows(
 
 
 def write_preview_png(
-    robot: Robot | Source, folder: str, *, size: tuple[int, int] = (800, 600), options: CompileOptions | None = None
+    robot: Robot | Source,
+    folder: str,
+    *,
+    size: tuple[int, int] = (800, 600),
+    options: CompileOptions | None = None,
+    name: str = "preview.png",
 ) -> str | None:
-    """``folder/preview.png``: an iso picture of ``robot`` (the compiled IR, ``result.robot``, or
-    any source). Returns its path, or None when no picture could be made (nothing is raised)."""
-    path = os.path.join(folder, "preview.png")
+    """``folder/preview.png`` (or ``name``): an iso picture of ``robot`` (the compiled IR,
+    ``result.robot``, or any source). Returns its path, or None when no picture could be made
+    (no GL backend, a mesh-less robot without shapes ...): nothing is raised."""
+    path = os.path.join(folder, name)
     source: Source | Loaded = Loaded(robot=robot, findings=[]) if isinstance(robot, Robot) else robot
     try:
         render_png(source, path, view="iso", size=size, options=options)
