@@ -190,3 +190,4 @@ def test_cli_view_and_inspect_html(tmp_path: pathlib.Path, capsys: pytest.Captur
     assert main(["inspect", GRIPPER, "--html", str(also)]) == 0
     assert page_data(also.read_text())["robot"] == "gripper_arm"
     assert main(["view", str(tmp_path / "missing.urdf"), "-o", str(out)]) == 2
+    assert main(["view", GRIPPER, "-o", GRIPPER]) == 2  # never over its input

@@ -22,7 +22,7 @@ from robodesc.emit.common.files import write_atomic
 from robodesc.meshes.buffers import MeshReadError
 from robodesc.meshes.data import MeshCache
 from robodesc.options import CompileOptions
-from robodesc.pipeline import Source
+from robodesc.pipeline import Source, check_output
 from robodesc.view.glb import mesh_glb
 from robodesc.view.repairs import find_repairs
 from robodesc.view.scene import MeshTable, build_scene
@@ -120,6 +120,7 @@ def write_view_html(
     """Write the viewer page for ``source`` (any input robodesc reads, an IR ``Robot``, or an
     already :class:`Loaded` robot) to ``out``; with ``target``, the robot as compiled for it."""
     start = time.perf_counter()
+    check_output(out, folder=False, source=None if isinstance(source, Loaded) else source)
     loaded = source if isinstance(source, Loaded) else load_for_view(source, options, target)
     data = scene_data(loaded)
     text = build_page(data)

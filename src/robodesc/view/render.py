@@ -22,7 +22,7 @@ import numpy as np
 
 from robodesc.ir.diagnostics import RobodescError
 from robodesc.options import CompileOptions
-from robodesc.pipeline import Source
+from robodesc.pipeline import Source, check_output
 from robodesc.view.camera import corners, frame_camera
 from robodesc.view.mjscene import COLLISION_GROUP, VISUAL_GROUP, build_model
 from robodesc.view.png import Image, write_png
@@ -145,6 +145,7 @@ def render_png(
     width, height = size
     if width < 16 or height < 16 or width > 8192 or height > 8192:
         raise RobodescError(f"--size {width}x{height}: each side between 16 and 8192 pixels")
+    check_output(out, folder=False, source=None if isinstance(source, Loaded) else source)
     loaded = source if isinstance(source, Loaded) else load_for_view(source, options, target)
     tile = (width // 2, height // 2) if grid_views else (width, height)
     views = list(GRID_VIEWS) if grid_views else [view]

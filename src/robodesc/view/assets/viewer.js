@@ -376,6 +376,8 @@
   }
 
   function bindToggles() {
+    // A robot drawn by its colliders alone (no visual anywhere) starts with them shown.
+    if (!data.links.some((l) => l.visuals.length)) document.getElementById('toggle-collision').checked = true;
     for (const name of Object.keys(layers)) {
       const box = document.getElementById('toggle-' + name);
       const apply = () => { for (const o of layers[name]) o.visible = box.checked; requestRender(); };
