@@ -13,7 +13,16 @@
 
   // ---- renderer, camera, lights ------------------------------------------------------------
   const host = document.getElementById('view');
-  const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  let renderer;
+  try {
+    renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  } catch (err) {
+    // No WebGL (disabled, or no GPU and no software fallback): say so instead of a blank page.
+    host.textContent = 'This browser cannot draw WebGL here (' + err.message + '). Open the page in a browser with WebGL.';
+    host.className = 'nogl';
+    api.errors.push(String(err.message));
+    return;
+  }
   renderer.setPixelRatio(window.devicePixelRatio || 1);
   host.appendChild(renderer.domElement);
   const scene = new THREE.Scene();
