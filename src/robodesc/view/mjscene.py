@@ -48,6 +48,9 @@ class _Builder:
         self.spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
         self.spec.visual.global_.offwidth = max(size[0], 64)
         self.spec.visual.global_.offheight = max(size[1], 64)
+        # No shadow map: the headlight casts none, and a 4096² depth buffer costs a software GL
+        # context about a quarter of a second to make.
+        self.spec.visual.quality.shadowsize = 0
         self.spec.visual.headlight.ambient = [0.35, 0.35, 0.35]
         self.spec.visual.headlight.diffuse = [0.65, 0.65, 0.65]
         self.spec.visual.headlight.specular = [0.1, 0.1, 0.1]
