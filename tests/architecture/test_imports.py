@@ -90,7 +90,7 @@ LEAVES = {"robodesc._version", "robodesc._files"}
 
 
 # Packages of the driver layer: they may import everything, and only the CLI imports them.
-DRIVER_PACKAGES = {"batch", "cli"}
+DRIVER_PACKAGES = {"batch", "cli", "view"}
 
 
 def stage(module: str) -> str:

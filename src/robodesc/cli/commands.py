@@ -96,6 +96,16 @@ def cmd_compile(args: argparse.Namespace) -> int:
         from robodesc._files import write_atomic
 
         write_atomic(args.report, report.to_markdown())
+    if args.preview and args.output and target_spec(target).folder:
+        # A folder is what a user opens first: its picture of the robot as compiled. Written once the
+        # folder is in place; a machine without an offscreen GL backend gets none, and is told.
+        from robodesc.view import write_preview_png
+
+        preview = write_preview_png(result.robot, args.output)
+        if preview is not None:
+            result.files["preview"] = preview
+        elif not args.quiet and not args.json:
+            print("note: no preview.png (no offscreen OpenGL: EGL or OSMesa; docs/view.md)", file=sys.stderr)
     if args.json:
         print(json.dumps(render.json_doc("compile", 0, target=target, output=args.output, result=result), indent=2))
         return 0
@@ -186,6 +196,10 @@ def cmd_inspect(args: argparse.Namespace) -> int:
         from robodesc.pipeline import refuse_warnings
 
         refuse_warnings(report.findings, [])
+    if args.html:
+        from robodesc.view import write_view_html
+
+        write_view_html(args.input, args.html, options=build_options(_input_options(args)))
     if args.json:
         doc = report.as_dict()
         doc["findings"] = [render.finding_dict(f) for f in report.findings]
@@ -195,6 +209,44 @@ def cmd_inspect(args: argparse.Namespace) -> int:
     render.print_findings(report.findings, args.quiet, args.verbose)
     if not args.quiet:
         sys.stdout.write(report.render())
+    return 0
+
+
+def _view_options(args: argparse.Namespace) -> CompileOptions:
+    return build_options({**_input_options(args), "preset": getattr(args, "preset", None)})
+
+
+def cmd_view(args: argparse.Namespace) -> int:
+    from robodesc.view import write_view_html
+
+    page = write_view_html(args.input, args.output, options=_view_options(args), target=args.target)
+    print(
+        f"robodesc: {render.display_path(page.path)}: {page.links} links, {page.meshes} meshes, "
+        f"{page.findings} findings, {page.repairs} repairs; {page.bytes / 1e6:.1f} MB in {page.seconds:.2f} s",
+        file=sys.stderr,
+    )
+    return 0
+
+
+def cmd_render(args: argparse.Namespace) -> int:
+    from robodesc.view.render import parse_size, render_png
+
+    done = render_png(
+        args.input,
+        args.output,
+        view=args.view,
+        size=parse_size(args.size),
+        grid_views=args.grid,
+        collision=args.collision,
+        options=_view_options(args),
+        target=args.target,
+    )
+    for why in done.skipped:
+        print(f"warning: not drawn: {why}", file=sys.stderr)
+    print(
+        f"robodesc: {render.display_path(done.path)}: {done.width}x{done.height} ({done.backend}) in {done.seconds:.2f} s",
+        file=sys.stderr,
+    )
     return 0
 
 
@@ -226,4 +278,6 @@ COMMANDS = {
     "expand": cmd_expand,
     "validate": cmd_validate,
     "inspect": cmd_inspect,
+    "view": cmd_view,
+    "render": cmd_render,
 }

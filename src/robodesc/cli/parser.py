@@ -123,7 +123,7 @@ def build_parser() -> argparse.ArgumentParser:
     from robodesc.batch.command import add_batch_parser
 
     add_batch_parser(sub, compile_parser)  # takes compile's own options
-    commands = [compile_parser, _inspect_parser(sub), _validate_parser(sub), _expand_parser(sub)]
+    commands = [compile_parser, _inspect_parser(sub), _validate_parser(sub), _expand_parser(sub), *_view_parsers(sub)]
     for sp in commands:
         sp.add_argument(
             "--debug", action="store_true", default=argparse.SUPPRESS, help="show the traceback of an internal error"
@@ -184,6 +184,13 @@ def _compile_parser(sub: Any) -> argparse.ArgumentParser:
         "compare masses, inertias, joints, limits and forward kinematics with the IR (default: on)",
     )
     val.add_argument("--report", metavar="FILE.md", help="also write the validation report as Markdown")
+    out.add_argument(
+        "--preview",
+        action=argparse.BooleanOptionalAction,
+        default=True,
+        help="folder targets (--isaac-sim, --ros2): also write preview.png, a picture of the robot as compiled "
+        "(default: on; about 1 s)",
+    )
     comp.add_argument(
         "--json", action="store_true", help="print a JSON summary (findings, files, validation) on standard output"
     )
@@ -299,3 +306,44 @@ def _expand_parser(sub: Any) -> argparse.ArgumentParser:
     exp.add_argument("input")
     add_package_and_arg(exp)
     return exp
+
+
+def _view_parsers(sub: Any) -> list[argparse.ArgumentParser]:
+    """``view`` (an HTML page) and ``render`` (a PNG): robodesc.view, docs/view.md."""
+    from robodesc.view.views import VIEWS  # numpy-free: building the parser must not import numpy
+
+    made = []
+    for name, what in (("view", "an HTML viewer page"), ("render", "a PNG picture")):
+        p: argparse.ArgumentParser = sub.add_parser(
+            name,
+            help=f"{what} of a robot" + (" (self-contained, offline)" if name == "view" else " (MuJoCo, headless)"),
+            description=(
+                "Write one self-contained HTML file that shows INPUT in the browser, offline: the robot at its "
+                "home pose, the kinematic tree, a slider per joint, colliders, frames, axes, centres of mass, "
+                "inertia boxes, robodesc's findings linked to their links and, with --target, what the passes "
+                "repaired (before and after). docs/view.md"
+                if name == "view"
+                else "Render INPUT to a PNG with MuJoCo's offscreen renderer (EGL or OSMesa: no display or GPU "
+                "needed), the camera framing the robot. docs/view.md"
+            ),
+        )
+        p.add_argument("input", help=f"the robot: {describe_inputs()}")
+        p.add_argument("-o", "--output", required=True, metavar="FILE.html" if name == "view" else "FILE.png")
+        p.add_argument(
+            "-t",
+            "--target",
+            choices=list(TARGETS),
+            help="show the robot as compiled for this target, after its passes (with their repairs)",
+        )
+        p.add_argument("--preset", choices=list(PRESETS), help="the passes' preset (with --target), as for compile")
+        if name == "render":
+            p.add_argument("--view", choices=list(VIEWS), default="iso", help="camera direction (default iso)")
+            p.add_argument("--size", default="800x600", metavar="WxH", help="image size in pixels (default 800x600)")
+            p.add_argument("--grid", action="store_true", help="front, side, top and iso in a 2x2 grid")
+            p.add_argument("--collision", action="store_true", help="draw the colliders only")
+        add_input_options(p)
+        made.append(p)
+    sub.choices["inspect"].add_argument(
+        "--html", metavar="FILE.html", help="also write the viewer page (robodesc view) to FILE.html"
+    )
+    return made

@@ -1,0 +1,171 @@
+"""A MuJoCo model built straight from the IR with ``mujoco.MjSpec``, for pictures only.
+
+Every link is a body welded to the world at its home-pose frame (no joints: a picture needs
+positions, not dynamics), every visual and collider a geom that collides with nothing. Meshes go
+in as vertex and face arrays from robodesc's own readers, so no mesh file is converted and no
+MJCF is written. Visuals are geom group 1, colliders group 3: the renderer picks one or the other.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Material, Mesh, Pose, Sphere
+from robodesc.ir.model import Robot
+from robodesc.ir.rigid import link_frames, pose_frame
+from robodesc.meshes.buffers import MeshReadError
+from robodesc.meshes.data import MeshCache
+from robodesc.view.scene import COLLIDER_RGBA, DEFAULT_RGBA, home
+
+VISUAL_GROUP = 1
+COLLISION_GROUP = 3
+
+
+@dataclass(slots=True)
+class BuiltModel:
+    model: Any  # mujoco.MjModel
+    visuals: int = 0
+    collisions: int = 0
+    skipped: list[str] = field(default_factory=list)  # shapes left out, and why
+
+
+def _rgba(material: Material | None, named: dict[str, Material]) -> list[float]:
+    if material is not None and material.color is None:
+        material = named.get(material.name, material)
+    return list(material.color) if material is not None and material.color is not None else list(DEFAULT_RGBA)
+
+
+class _Builder:
+    def __init__(self, mujoco: Any, size: tuple[int, int]) -> None:
+        self.mj = mujoco
+        self.spec = mujoco.MjSpec()
+        self.spec.modelname = "robodesc_picture"
+        # No inertia from geometry: a body without joints needs none, and degenerate meshes (open,
+        # flat, inside out) would otherwise stop the compile on their volume.
+        self.spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
+        self.spec.visual.global_.offwidth = max(size[0], 64)
+        self.spec.visual.global_.offheight = max(size[1], 64)
+        # No shadow map: the headlight casts none, and a 4096² depth buffer costs a software GL
+        # context about a quarter of a second to make.
+        self.spec.visual.quality.shadowsize = 0
+        self.spec.visual.headlight.ambient = [0.35, 0.35, 0.35]
+        self.spec.visual.headlight.diffuse = [0.65, 0.65, 0.65]
+        self.spec.visual.headlight.specular = [0.1, 0.1, 0.1]
+        self.spec.add_texture(
+            name="sky",
+            type=mujoco.mjtTexture.mjTEXTURE_SKYBOX,
+            builtin=mujoco.mjtBuiltin.mjBUILTIN_GRADIENT,
+            rgb1=[0.96, 0.97, 0.98],
+            rgb2=[0.80, 0.82, 0.86],
+            width=64,
+            height=64,
+        )
+        self.meshes = MeshCache()
+        self.mesh_names: dict[tuple[str, Any], str | None] = {}
+        self.skipped: list[str] = []
+
+    def mesh(self, geometry: Mesh) -> str | None:
+        if geometry.path is None:
+            self.skipped.append(f"{geometry.uri}: file not found")
+            return None
+        key = (geometry.path, geometry.scale)
+        if key not in self.mesh_names:
+            try:
+                data = self.meshes.get(geometry.path, geometry.scale)
+            except MeshReadError as exc:
+                self.skipped.append(f"{geometry.uri}: {exc}")
+                self.mesh_names[key] = None
+                return None
+            name = f"mesh{len(self.mesh_names)}"
+            mesh = self.spec.add_mesh(name=name)
+            # The readers' buffers as numpy views: MuJoCo copies them without a Python list between.
+            mesh.uservert = np.frombuffer(data.points, dtype=np.float32)
+            mesh.userface = np.frombuffer(data.face_vertex_indices, dtype=np.int32)
+            mesh.inertia = self.mj.mjtMeshInertia.mjMESH_INERTIA_SHELL
+            self.mesh_names[key] = name
+        return self.mesh_names[key]
+
+    def geom(self, body: Any, geometry: Geometry, origin: Pose | None, rgba: list[float], group: int) -> bool:
+        g = self.mj.mjtGeom
+        frame = pose_frame(origin)
+        kw: dict[str, Any] = {
+            "pos": list(frame.translation),
+            "quat": list(frame.quat()),
+            "rgba": rgba,
+            "group": group,
+            "contype": 0,
+            "conaffinity": 0,
+        }
+        if isinstance(geometry, Box):
+            kw.update(type=g.mjGEOM_BOX, size=[s / 2 for s in geometry.size])
+        elif isinstance(geometry, Cylinder):
+            kw.update(type=g.mjGEOM_CYLINDER, size=[geometry.radius, geometry.length / 2, 0])
+        elif isinstance(geometry, Sphere):
+            kw.update(type=g.mjGEOM_SPHERE, size=[geometry.radius, 0, 0])
+        elif isinstance(geometry, Capsule):
+            kw.update(type=g.mjGEOM_CAPSULE, size=[geometry.radius, geometry.length / 2, 0])
+        else:
+            name = self.mesh(geometry)
+            if name is None:
+                return False
+            kw.update(type=g.mjGEOM_MESH, meshname=name)
+        if any(not (s > 0) for s in kw.get("size", [1.0])[:1]):
+            return False
+        body.add_geom(**kw)
+        return True
+
+
+def build_model(robot: Robot, size: tuple[int, int] = (640, 480), collision: bool = False) -> BuiltModel:
+    """The picture model of ``robot`` at its home pose (every joint at zero, or at the limit nearest
+    zero; mimic joints follow), for an offscreen buffer of ``size`` (width, height): its visuals,
+    or with ``collision`` (or when it has no visual that can be drawn) its colliders. Only the
+    shapes drawn are built: MuJoCo's mesh processing is most of a render's time."""
+    import mujoco
+
+    if not collision:
+        built = _build(mujoco, robot, size, visual=True)
+        if built.visuals:
+            return built
+    return _build(mujoco, robot, size, visual=False)
+
+
+def _build(mujoco: Any, robot: Robot, size: tuple[int, int], visual: bool) -> BuiltModel:
+    builder = _Builder(mujoco, size)
+    named = {m.name: m for m in robot.materials}
+    q = {j.name: home(j) for j in robot.joints if j.mimic is None and j.type.dof == 1}
+    frames = link_frames(robot, q)
+    visuals = collisions = 0
+    for link in robot.links:
+        frame = frames.get(link.name)
+        if frame is None:  # not reachable from a root: the verifier refused such robots already
+            continue
+        body = builder.spec.worldbody.add_body(name=link.name, pos=list(frame.translation), quat=list(frame.quat()))
+        for v in link.visuals if visual else ():
+            visuals += builder.geom(body, v.geometry, v.origin, _rgba(v.material, named), VISUAL_GROUP)
+        for c in () if visual else link.collisions:
+            collisions += builder.geom(body, c.geometry, c.origin, [*COLLIDER_RGBA[:3], 1.0], COLLISION_GROUP)
+    model = _compile(builder)
+    return BuiltModel(model=model, visuals=visuals, collisions=collisions, skipped=builder.skipped)
+
+
+def _compile(builder: _Builder) -> Any:
+    """Compile the spec; a mesh MuJoCo refuses (too few faces, all points in a plane ...) is taken
+    out and the compile tried again, so one bad file does not cost the whole picture."""
+    spec = builder.spec
+    for _ in range(len(spec.meshes) + 1):
+        try:
+            return spec.compile()
+        except ValueError as exc:
+            text = str(exc)
+            bad = next((m for m in spec.meshes if f"'{m.name}'" in text or f"{m.name}" in text.split()), None)
+            if bad is None:
+                raise
+            builder.skipped.append(f"{bad.name}: MuJoCo refused it ({text.splitlines()[0]})")
+            for geom in list(spec.geoms):
+                if geom.meshname == bad.name:
+                    spec.delete(geom)
+            spec.delete(bad)
+    return spec.compile()

@@ -1,0 +1,137 @@
+"""The viewer page: one HTML file with three.js, the viewer script, the scene data and every mesh.
+
+Nothing is fetched when the page opens: the scripts and the stylesheet are inlined from
+``assets/`` (three.js is vendored there, see ``assets/README.md``), the meshes are GLB files in
+base64 (gzipped) inside the scene's JSON. So the file opens from disk, offline, in any browser with WebGL.
+"""
+
+from __future__ import annotations
+
+import base64
+import gzip
+import html
+import json
+import os
+import time
+from dataclasses import dataclass
+from importlib import resources
+from typing import Any
+
+from robodesc._files import write_atomic
+from robodesc._version import __version__
+from robodesc.emit.common.staging import check_output
+from robodesc.frontends.load import Source
+from robodesc.meshes.buffers import MeshReadError
+from robodesc.meshes.data import MeshCache
+from robodesc.options import CompileOptions
+from robodesc.view.glb import mesh_glb
+from robodesc.view.repairs import find_repairs
+from robodesc.view.scene import MeshTable, build_scene
+from robodesc.view.source import Loaded, load_for_view
+
+THREE_VERSION = "0.187.0"
+
+
+@dataclass(slots=True, frozen=True)
+class PageResult:
+    """What :func:`write_view_html` wrote: the file, its size, the robot's counts and the time."""
+
+    path: str
+    bytes: int
+    links: int
+    meshes: int
+    findings: int
+    repairs: int
+    seconds: float
+
+
+def asset(name: str) -> str:
+    return resources.files("robodesc.view").joinpath("assets", name).read_text(encoding="utf-8")
+
+
+def _script_safe(text: str) -> str:
+    # Inside <script>, only "</" can end the element early; JSON allows "<\/" for the same text.
+    return text.replace("</", "<\\/")
+
+
+def embed_meshes(table: MeshTable) -> tuple[list[str | None], list[str]]:
+    """Each mesh of the table as gzipped GLB in base64 (None when it cannot be read), and a note
+    per failure."""
+    cache = MeshCache()
+    out: list[str | None] = []
+    notes: list[str] = []
+    for path, scale in table.keys:
+        try:
+            data = cache.get(path, scale)
+        except MeshReadError as exc:
+            out.append(None)
+            notes.append(f"{path}: {exc}")
+            continue
+        # gzip first: mesh arrays shrink to about half, which keeps a big robot's page small; the
+        # browser inflates them itself (DecompressionStream), still without any request.
+        out.append(base64.b64encode(gzip.compress(mesh_glb(data), compresslevel=1, mtime=0)).decode("ascii"))
+    return out, notes
+
+
+def scene_data(loaded: Loaded) -> dict[str, Any]:
+    """The page's data: the scene, the meshes as base64 GLB, the repairs, and where it came from."""
+    table = MeshTable()
+    data = build_scene(loaded.robot, loaded.findings, table)
+    data["meshes"], data["mesh_notes"] = embed_meshes(table)
+    data["mesh_files"] = [os.path.basename(path) for path, _ in table.keys]
+    data["mesh_encoding"] = "glb+gzip+base64"
+    data["repairs"] = find_repairs(loaded.before, loaded.robot, loaded.findings) if loaded.before is not None else []
+    data["target"] = loaded.target
+    data["source"] = loaded.source_name
+    data["generator"] = f"robodesc {__version__}, three.js {THREE_VERSION}"
+    return data
+
+
+def build_page(data: dict[str, Any]) -> str:
+    """The HTML text of the page for ``data`` (from :func:`scene_data`)."""
+    title = f"{data['robot']}" + (f" for {data['target']}" if data.get("target") else "") + " - robodesc view"
+    template = asset("page.html")
+    parts = {
+        "{{TITLE}}": html.escape(title),
+        "{{STYLE}}": asset("viewer.css"),
+        "{{THREE}}": _script_safe(asset("three-bundle.min.js")),
+        "{{DATA}}": _script_safe(json.dumps(data, separators=(",", ":"), allow_nan=False)),
+        "{{VIEWER}}": _script_safe(asset("viewer.js")),
+    }
+    # One pass over the template, so a placeholder-like text inside an inserted part stays as it is.
+    out: list[str] = []
+    rest = template
+    while "{{" in rest:
+        head, _, tail = rest.partition("{{")
+        key = "{{" + tail.partition("}}")[0] + "}}"
+        out.append(head)
+        out.append(parts[key])
+        rest = tail[len(key) - 2 :]
+    out.append(rest)
+    return "".join(out)
+
+
+def write_view_html(
+    source: Source | Loaded,
+    out: str,
+    *,
+    options: CompileOptions | None = None,
+    target: str | None = None,
+) -> PageResult:
+    """Write the viewer page for ``source`` (any input robodesc reads, an IR ``Robot``, or an
+    already :class:`Loaded` robot) to ``out``; with ``target``, the robot as compiled for it."""
+    start = time.perf_counter()
+    check_output(out, folder=False, source=None if isinstance(source, Loaded) else source)
+    loaded = source if isinstance(source, Loaded) else load_for_view(source, options, target)
+    data = scene_data(loaded)
+    text = build_page(data)
+    write_atomic(out, text)
+    return PageResult(
+        path=out,
+        bytes=len(text.encode("utf-8")),
+        links=len(loaded.robot.links),
+        meshes=len(data["meshes"]),
+        findings=len(data["findings"]),
+        repairs=len(data["repairs"]),
+        seconds=time.perf_counter() - start,
+    )
