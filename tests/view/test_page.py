@@ -14,6 +14,7 @@ from typing import Any
 import pytest
 
 from robodesc.cli import main
+from robodesc.frontends.options import LoadOptions
 from robodesc.ir.model import JointType
 from robodesc.options import CompileOptions, build_options
 from robodesc.view import write_view_html
@@ -177,7 +178,7 @@ def test_every_input_kind(tmp_path: pathlib.Path, source: str) -> None:
 
 def test_loads_xacro_with_packages() -> None:
     root = pathlib.Path(__file__).resolve().parents[2]
-    opts = CompileOptions(package_paths={"robodesc_examples": str(root / "examples/urdf")})
+    opts = CompileOptions(load=LoadOptions(package_paths={"robodesc_examples": str(root / "examples/urdf")}))
     loaded = load_for_view(str(root / "examples/urdf/pendulum.urdf.xacro"), opts)
     assert loaded.robot.links
 
