@@ -27,6 +27,7 @@ def test_pipeline_reads_like_a_table_of_contents() -> None:
         "merge_fixed",
         "strip_tags",
         "armature",
+        "explicit_damping",
         "isaac_limits",
         "keep_bodies",
         "zero_pose",
@@ -39,7 +40,7 @@ def test_presets_list_the_passes_their_options_enable(name: str) -> None:
 
 
 def test_preset_names() -> None:
-    assert set(PRESETS) == set(PRESET_OPTIONS) == {"isaac_sim", "ros2", "gazebo", "mujoco", "quad_sdk"}
+    assert set(PRESETS) == set(PRESET_OPTIONS) == {"isaac_sim", "ros2", "gazebo", "mujoco", "quad_sdk", "gazebo_parity"}
 
 
 def test_unknown_option_and_preset_name_the_closest() -> None:
