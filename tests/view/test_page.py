@@ -21,6 +21,7 @@ from robodesc.view import write_view_html
 from robodesc.view.source import load_for_view
 from tests.view.cases import GRIPPER, QUADRUPED
 
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 VOID = {"meta", "input", "br", "img", "link", "hr", "col", "source", "wbr", "area", "base", "embed", "track"}
 
 
@@ -192,3 +193,33 @@ def test_cli_view_and_inspect_html(tmp_path: pathlib.Path, capsys: pytest.Captur
     assert page_data(also.read_text())["robot"] == "gripper_arm"
     assert main(["view", str(tmp_path / "missing.urdf"), "-o", str(out)]) == 2
     assert main(["view", GRIPPER, "-o", GRIPPER]) == 2  # never over its input
+
+
+def test_batch_writes_summary_html(tmp_path: pathlib.Path) -> None:
+    """Every batch writes summary.html beside summary.md: a row per robot (thumbnails with --thumbnails)."""
+    robots = tmp_path / "robots"
+    robots.mkdir()
+    (robots / "arm.urdf").write_text(
+        (ROOT / "examples/urdf/gripper_arm.urdf")
+        .read_text()
+        .replace("package://robodesc_examples/", str(ROOT / "examples/urdf") + "/")
+    )
+    out = tmp_path / "out"
+    assert main(["batch", str(robots), "-o", str(out), "-q", "--no-validate"]) == 0
+    page = (out / "summary.html").read_text()
+    assert "<table" in page and ">arm<" in page and "ok" in page
+
+
+def test_folder_targets_get_a_preview(tmp_path: pathlib.Path) -> None:
+    from robodesc.view.render import backend_candidates
+
+    if not backend_candidates():
+        pytest.skip("no offscreen OpenGL (EGL or OSMesa): the compile says so and writes no preview")
+    out = tmp_path / "isaac"
+    assert main(["compile", str(ROOT / "examples/quadruped.yaml"), "--isaac-sim", "-o", str(out), "-q"]) == 0
+    assert (out / "preview.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert (
+        main(["compile", str(ROOT / "examples/quadruped.yaml"), "--isaac-sim", "-o", str(out), "-q", "--no-preview"])
+        == 0
+    )
+    assert not (out / "preview.png").exists()
