@@ -24,6 +24,10 @@ _INERTIA = Advice(
 )
 
 ADVICE: dict[str, Advice] = {
+    "consumer-warning": Advice(
+        "the consumer that checked the output printed this while loading it; the output is written as is",
+        "the message names the element to edit in the source",
+    ),
     "bad-inertia": _INERTIA,
     "bad-mass": _INERTIA,
     "massless-link": Advice(

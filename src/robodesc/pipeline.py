@@ -180,6 +180,7 @@ def compile_robot(
             result.validation = validate_emitted(robot, spec, emitted, stage, options)
             if result.validation is not None:
                 result.source_failures = source_defect_failures(findings, result.validation)
+                consumer_messages(result.validation, findings)
         result.findings = _unique(findings)
         if options.strict:
             refuse_warnings(result.findings, result.source_failures)
@@ -298,6 +299,19 @@ def source_defect_failures(findings: Findings | list[Finding], report: Validatio
             check.message += CARRIED
             out.append(check)
     return out
+
+
+def consumer_messages(report: ValidationReport, findings: Findings) -> None:
+    """What the consumer said while loading the output (MuJoCo's ``WARNING: ...`` lines, captured
+    rather than printed), as findings: a user sees them with the rest, and ``-q`` silences them."""
+    for check in report.checks:
+        if check.name.endswith("-warning") and check.status is Status.WARN:
+            findings.warn(
+                "consumer-warning",
+                f"{report.consumer} says: {check.message}",
+                element=check.element if check.element not in ("model", "document") else f"robot {report.robot!r}",
+                stage="validate",
+            )
 
 
 def _unique(findings: Findings) -> list[Finding]:

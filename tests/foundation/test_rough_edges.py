@@ -115,3 +115,22 @@ def test_a_composition_that_exits_is_an_error_not_a_success(tmp_path: Path, caps
     out = tmp_path / "out"
     assert main(["batch", str(script), "-o", str(out), "-q"]) == 2
     assert not [p for p in out.rglob("*") if p.name.startswith(".robodesc-") and p.is_file() and "batch" not in str(p)]
+
+
+DUPLICATE_GEOMS = """<robot name="dup">
+  <link name="a"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision name="c"><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
+    <collision name="c"><geometry><box size="0.1 0.1 0.2"/></geometry></collision></link>
+</robot>"""
+
+
+def test_consumer_output_becomes_findings_and_q_silences_it(tmp_path: Path) -> None:
+    """MuJoCo's own 'WARNING: Geom with duplicate name' lines reached the terminal even with -q."""
+    src = tmp_path / "dup.urdf"
+    src.write_text(DUPLICATE_GEOMS)
+    run = [sys.executable, "-m", "robodesc", "compile", str(src), "-o", str(tmp_path / "out.urdf")]
+    quiet = subprocess.run([*run, "-q"], capture_output=True, text=True, timeout=120)
+    assert quiet.returncode == 0 and quiet.stdout == "" and quiet.stderr == ""
+    loud = subprocess.run(run, capture_output=True, text=True, timeout=120)
+    assert "warning: robot 'dup': mujoco says: Geom with duplicate name 'c'" in loud.stderr
+    assert "WARNING: Geom" not in loud.stdout + loud.stderr

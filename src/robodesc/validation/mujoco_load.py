@@ -11,7 +11,10 @@ every other comparison. Patched links are skipped by the inertial comparison.
 
 from __future__ import annotations
 
+import os
 import re
+import sys
+import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -53,13 +56,38 @@ def with_compiler_options(urdf_text: str) -> str:
 
 @contextmanager
 def captured_warnings(sink: list[str]) -> Iterator[None]:
-    """Collect MuJoCo's warnings (printed to stdout otherwise) for the report."""
+    """Collect MuJoCo's warnings for the report, where they become findings: those it reports
+    through its warning callback, and those its parsers print straight to the C streams
+    (``WARNING: Geom with duplicate name ...``), which would otherwise reach the user's terminal
+    even with ``-q``."""
     previous = mujoco.get_mju_user_warning()
     mujoco.set_mju_user_warning(lambda msg: sink.append(str(msg).strip()))
     try:
-        yield
+        with _c_output(sink):
+            yield
     finally:
         mujoco.set_mju_user_warning(previous)
+
+
+@contextmanager
+def _c_output(sink: list[str]) -> Iterator[None]:
+    """Standard output and error of the C library, written to a file instead and added to ``sink``."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    saved = [os.dup(1), os.dup(2)]
+    with tempfile.TemporaryFile() as capture:
+        os.dup2(capture.fileno(), 1)
+        os.dup2(capture.fileno(), 2)
+        try:
+            yield
+        finally:
+            os.dup2(saved[0], 1)
+            os.dup2(saved[1], 2)
+            for fd in saved:
+                os.close(fd)
+            capture.seek(0)
+            text = capture.read().decode("utf-8", errors="replace")
+            sink.extend(line.strip().removeprefix("WARNING: ") for line in text.splitlines() if line.strip())
 
 
 def _geom_links(spec: Any) -> dict[str, list[tuple[Any, str]]]:
