@@ -221,8 +221,10 @@ def compare_joints(robot: Robot, model: Any, options: ValidateOptions, report: V
             _compare_mimic(joint, model, ids, j, mimics)
     for k in range(model.njnt):
         name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, k)
-        if int(model.jnt_type[k]) == FREE and not name:
-            continue  # the free joint added for a floating base
+        if int(model.jnt_type[k]) == FREE and name not in ir_joint_names:
+            # The free joint added for a floating base: unnamed from MuJoCo's URDF loader, named
+            # (``<freejoint name=...>``) in MJCF written for a floating robot.
+            continue
         if name not in ir_joint_names:
             present.fail(f"joint {name!r}", "MuJoCo has a joint that the robot does not")
     present.finish("movable joints")
@@ -272,18 +274,42 @@ def _compare_mimic(joint: Joint, model: Any, ids: Ids, j: int, tally: Tally) -> 
     assert joint.mimic is not None
     label = joint_label(joint.name)
     leader = ids.joint(joint.mimic.joint)
+    mult = joint.mimic.multiplier if joint.mimic.multiplier is not None else 1.0
+    off = joint.mimic.offset if joint.mimic.offset is not None else 0.0
     for e in range(model.neq):
-        if int(model.eq_type[e]) == EQ_JOINT and int(model.eq_obj1id[e]) == j and int(model.eq_obj2id[e]) == leader:
-            mult = joint.mimic.multiplier if joint.mimic.multiplier is not None else 1.0
-            off = joint.mimic.offset if joint.mimic.offset is not None else 0.0
-            got_off, got_mult = float(model.eq_data[e][0]), float(model.eq_data[e][1])
-            tally.measure(
-                label,
-                max(abs(got_off - off), abs(got_mult - mult)),
-                (f"MuJoCo couples q = {got_mult:.9g}·q_leader + {got_off:.9g}, source {mult:.9g}·q_leader + {off:.9g}"),
-            )
-            return
+        coupling = _joint_coupling(model, e, j, leader)
+        if coupling is None:
+            continue
+        got_mult, got_off, nonlinear = coupling
+        tally.measure(
+            label,
+            max(abs(got_off - off), abs(got_mult - mult), nonlinear),
+            f"MuJoCo couples q = {got_mult:.9g}·q_leader + {got_off:.9g}"
+            + (f" + terms up to {nonlinear:.3g}·q_leader^k (k > 1)" if nonlinear else "")
+            + f", source {mult:.9g}·q_leader + {off:.9g}",
+        )
+        return
     tally.fail(label, f"no MuJoCo equality constraint makes it follow joint {joint.mimic.joint!r}")
+
+
+def _joint_coupling(model: Any, e: int, j: int, leader: int) -> tuple[float, float, float] | None:
+    """(multiplier, offset, largest non-linear coefficient) of ``q_j = multiplier·q_leader + offset``
+    as joint equality ``e`` states it, or None when ``e`` does not couple these two joints.
+
+    MuJoCo's ``<equality joint>`` says ``q1 = a0 + a1·q2 + a2·q2² + ...``. MuJoCo's URDF loader puts
+    the mimicking joint first; other converters write the leader first, which states the same
+    linear coupling inverted (``q = (q_leader - a0) / a1``).
+    """
+    if int(model.eq_type[e]) != EQ_JOINT:
+        return None
+    pair = (int(model.eq_obj1id[e]), int(model.eq_obj2id[e]))
+    a0, a1, *higher = (float(x) for x in model.eq_data[e][:5])
+    nonlinear = max(abs(h) for h in higher)
+    if pair == (j, leader):
+        return a1, a0, nonlinear
+    if pair == (leader, j) and a1 != 0.0:
+        return 1.0 / a1, -a0 / a1, nonlinear
+    return None
 
 
 # ---- forward kinematics -----------------------------------------------------------------------
@@ -321,7 +347,7 @@ def mujoco_fk(model: Any, data: Any, ids: Ids, q: dict[str, float]) -> None:
     mujoco.mj_kinematics(model, data)
 
 
-def _body_pose(data: Any, b: int) -> Mat:
+def body_pose(data: Any, b: int) -> Mat:
     t = np.eye(4)
     t[:3, :3] = quat_wxyz_to_matrix(tuple(float(x) for x in data.xquat[b]))  # type: ignore[arg-type]
     t[:3, 3] = data.xpos[b]
@@ -371,12 +397,12 @@ def compare_fk(robot: Robot, model: Any, options: ValidateOptions, report: Valid
     for q in configs:
         expected = forward_kinematics(robot, q)
         mujoco_fk(model, data, ids, resolve_mimic(robot, q))
-        inv_root = np.linalg.inv(_body_pose(data, root_id))
+        inv_root = np.linalg.inv(body_pose(data, root_id))
         for link in robot.links:
             b = ids.body(link.name)
             if b < 0 or link.name not in expected:
                 continue
-            keep_worst(worst, link.name, inv_root @ _body_pose(data, b), expected[link.name], q, options)
+            keep_worst(worst, link.name, inv_root @ body_pose(data, b), expected[link.name], q, options)
     report_fk(robot, worst, len(configs), options, report)
 
 

@@ -22,6 +22,7 @@ class ValidateOptions:
     rotation_tol: float = 1e-6  # rad: FK orientations
     axis_tol: float = 1e-9  # unit-vector difference
     limit_tol: float = 1e-9  # rad or m
+    gain_rel_tol: float = 1e-9  # MJCF actuator kp/kv, relative: written at full precision
     # Simulation: hold every joint at its start position and step under gravity.
     simulate: bool = True
     sim_duration: float = 0.5  # s
