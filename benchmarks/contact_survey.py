@@ -27,7 +27,9 @@ from robodesc.validation.corpora import all_robots
 
 def survey(robot_entry: Any) -> dict[str, Any] | None:
     try:
-        robot = load_path(robot_entry.path, LoadOptions(package_paths=robot_entry.packages, xacro_args=robot_entry.xacro_args)).robot
+        robot = load_path(
+            robot_entry.path, LoadOptions(package_paths=robot_entry.packages, xacro_args=robot_entry.xacro_args)
+        ).robot
     except Exception as exc:  # a corpus robot robodesc refuses is counted, not fatal
         return {"robot": robot_entry.name, "error": str(exc).splitlines()[0][:120]}
     params: Counter[str] = Counter()
@@ -45,11 +47,14 @@ def survey(robot_entry: Any) -> dict[str, Any] | None:
             opts = {"package_paths": robot_entry.packages, "xacro_args": robot_entry.xacro_args, "validate": False}
             usd = robodesc.compile_to_usd(robot_entry.path, os.path.join(tmp, "r.usda"), **opts)
             sdf = robodesc.compile_to_sdf(robot_entry.path, os.path.join(tmp, "r.sdf"), **opts)
-            text = open(usd.files["usd"], encoding="utf-8").read()
+            with open(usd.files["usd"], encoding="utf-8") as handle:
+                text = handle.read()
             row["usd_materials"] = text.count('def Material "contact')
             row["usd_bindings"] = text.count("material:binding:physics")
             row["sdf_surfaces"] = (sdf.text or "").count("<surface>")
-            row["not_representable"] = sorted({f.message.split(";")[0] for f in usd.findings if f.code == "contact-not-representable"})
+            row["not_representable"] = sorted(
+                {f.message.split(";")[0] for f in usd.findings if f.code == "contact-not-representable"}
+            )
     return row
 
 
