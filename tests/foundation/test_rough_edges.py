@@ -134,3 +134,11 @@ def test_consumer_output_becomes_findings_and_q_silences_it(tmp_path: Path) -> N
     loud = subprocess.run(run, capture_output=True, text=True, timeout=120)
     assert "warning: robot 'dup': mujoco says: Geom with duplicate name 'c'" in loud.stderr
     assert "WARNING: Geom" not in loud.stdout + loud.stderr
+
+
+def test_isaac_findings_name_no_absolute_path(tmp_path: Path) -> None:
+    """findings.md travels with the folder: no path of this machine in it."""
+    out = tmp_path / "isaac"
+    assert main(["compile", str(ROOT / "examples" / "quadruped.yaml"), "--isaac-sim", "-o", str(out), "-q", "--no-preview"]) == 0
+    text = (out / "findings.md").read_text()
+    assert str(ROOT) not in text and str(tmp_path) not in text and "quadruped.yaml:" in text

@@ -24,7 +24,7 @@ from robodesc.emit.isaac.settings import IsaacSettings, importer_settings_json
 from robodesc.emit.urdf.writer import UrdfOptions, emit_urdf
 from robodesc.emit.usd.emitter import emit_usd
 from robodesc.emit.usd.options import UsdOptions
-from robodesc.ir.diagnostics import Finding, Findings
+from robodesc.ir.diagnostics import Finding, Findings, SourceLoc
 from robodesc.ir.model import Robot
 
 
@@ -85,12 +85,24 @@ def write_isaac_folder(
     return {**{role: os.path.join(out_dir, name) for role, name in names.items()}, **extra}
 
 
+def _portable(loc: SourceLoc, source_file: str | None) -> SourceLoc:
+    """``loc`` with its file relative to the input's folder: the folder travels to other machines,
+    and this machine's absolute paths mean nothing there (and say more than they should)."""
+    if not loc.file or not os.path.isabs(loc.file.removesuffix(" (expanded)")):
+        return loc
+    path, expanded = loc.file.removesuffix(" (expanded)"), loc.file.endswith(" (expanded)")
+    base = os.path.dirname(os.path.abspath(source_file)) if source_file else os.path.dirname(path)
+    rel = os.path.relpath(path, base)
+    shown = os.path.basename(path) if rel.startswith("..") else rel
+    return SourceLoc(shown + (" (expanded)" if expanded else ""), loc.line, loc.column)
+
+
 def findings_markdown(robot: Robot, findings: list[Finding]) -> str:
     lines = [f"# robodesc findings for {robot.name}", "", f"robodesc {__version__}; {len(findings)} findings.", ""]
     if findings:
         lines += ["| severity | stage | element | where | message |", "|---|---|---|---|---|"]
         for f in findings:
-            where = str(f.loc) if f.loc else ""
+            where = str(_portable(f.loc, robot.source_file)) if f.loc else ""
             message = f.message.replace("|", "\\|")
             lines.append(f"| {f.severity.value} | {f.stage} | {f.element} | {where} | {message} |")
     return "\n".join(lines) + "\n"
