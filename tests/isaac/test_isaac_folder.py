@@ -299,6 +299,10 @@ def test_cli_isaac_sim_writes_the_folder(tmp_path: Path, capsys: pytest.CaptureF
     err = capsys.readouterr().err
     assert code == 0, err
     assert err.splitlines()[-1].startswith("robodesc: isaac ")  # the one summary line
+    from robodesc.view.render import backend_candidates
+
+    # preview.png: the robot as compiled, where this machine can render offscreen (docs/view.md).
+    preview = {"preview.png"} if backend_candidates() else set()
     assert {p.name for p in out.iterdir()} == {
         "gripper_arm.usda",
         "gripper_arm.urdf",
@@ -307,6 +311,7 @@ def test_cli_isaac_sim_writes_the_folder(tmp_path: Path, capsys: pytest.CaptureF
         "validation.md",
         "validation.json",
         "findings.md",
+        *preview,
     }
     assert (
         main(
