@@ -260,6 +260,7 @@ TARGETS: dict[str, str] = {
     "usd": "robodesc.emit.usd",
     "ros2": "robodesc.emit.ros2",
     "isaac": "robodesc.emit.isaac",
+    "mjcf": "robodesc.emit.mjcf",  # i-mjcf: the MJCF target (docs/mjcf.md)
 }
 
 
@@ -593,6 +594,13 @@ def validate_emitted(
                 f"loop_joint {loop.name!r}",
                 "Drake models kinematic trees only; the tree was checked without this closure",
             )
+    elif spec.validator == "mjcf":
+        # i-mjcf: to be replaced by the target's own validate callable.
+        try:
+            from robodesc.validation.mujoco_mjcf import validate_mjcf
+        except ImportError:
+            from robodesc.validation.mjcf_load import validate_mjcf
+        report = validate_mjcf(robot, emitted, vopts)
     elif spec.validator == "usd" and "usd" in emitted.files:
         from robodesc.validation.mujoco_usd import validate_usd
 

@@ -39,7 +39,7 @@ def test_presets_list_the_passes_their_options_enable(name: str) -> None:
 
 
 def test_preset_names() -> None:
-    assert set(PRESETS) == set(PRESET_OPTIONS) == {"isaac_sim", "ros2", "gazebo", "mujoco", "quad_sdk"}
+    assert set(PRESETS) == set(PRESET_OPTIONS) == {"isaac_sim", "ros2", "gazebo", "mujoco", "mjcf", "quad_sdk"}
 
 
 def test_unknown_option_and_preset_name_the_closest() -> None:

@@ -1,0 +1,114 @@
+"""Mesh assets: STL and OBJ referenced where they are, every other format converted to OBJ.
+
+MuJoCo reads STL, OBJ and MSH only. A COLLADA (or any trimesh-readable) file is read through
+robodesc's own readers (:func:`robodesc.meshes.data.build_mesh`, scale applied) and written as an
+OBJ under ``meshes/`` beside robot.xml. Converted files are named after their content (a hash):
+a later run that fails validation leaves the files an earlier robot.xml refers to untouched.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import xml.etree.ElementTree as ET
+
+from robodesc.emit.common.files import write_atomic
+from robodesc.emit.common.numbers import fmt_vec
+from robodesc.emit.common.paths import PathMode, file_reference
+from robodesc.emit.mjcf.context import MjcfContext
+from robodesc.ir.geometry import Mesh
+from robodesc.meshes.buffers import MeshData, MeshReadError
+from robodesc.meshes.data import build_mesh
+
+READABLE = (".stl", ".obj")
+MESH_DIR = "meshes"
+
+
+class MeshAssets:
+    """One ``<mesh>`` asset per (file, scale, collider or not), named after the file."""
+
+    def __init__(self, ctx: MjcfContext) -> None:
+        self.ctx = ctx
+        self._by_key: dict[tuple[str, tuple[float, float, float] | None, bool], str] = {}
+        self._names: set[str] = set()
+
+    def asset(self, mesh: Mesh, element: str, collider: bool) -> str | None:
+        """The asset name for ``mesh``; None (with a warning) when MuJoCo could not load it."""
+        ctx = self.ctx
+        if mesh.path is None or not os.path.isfile(mesh.path):
+            ctx.warn(
+                "mjcf-missing-mesh",
+                f"mesh {mesh.uri!r} does not exist: this geometry is left out (MuJoCo cannot load a missing file)",
+                element,
+                mesh.src,
+            )
+            return None
+        # The hull cap only matters for colliders: visual meshes get their own asset without it.
+        capped = collider and ctx.options.maxhullvert is not None
+        key = (mesh.path, mesh.scale, capped)
+        if key in self._by_key:
+            return self._by_key[key]
+        ext = os.path.splitext(mesh.path)[1].lower()
+        el = ET.Element("mesh")
+        if ext in READABLE:
+            file = _reference(ctx, mesh)
+            scale = mesh.scale
+        else:
+            try:
+                data = build_mesh(mesh.path, mesh.scale)
+            except MeshReadError as exc:
+                ctx.warn("mjcf-bad-mesh", f"mesh {mesh.uri!r} cannot be read ({exc}): left out", element, mesh.src)
+                return None
+            file = self._convert(mesh.path, data)
+            scale = None  # applied while converting
+            ctx.info("mjcf-mesh-converted", f"{mesh.uri} converted to {file} (MuJoCo reads STL and OBJ)", element)
+        name = self._name(os.path.splitext(os.path.basename(mesh.path))[0], capped)
+        el.set("name", name)
+        el.set("file", file)
+        if scale is not None and scale != (1.0, 1.0, 1.0):
+            el.set("scale", fmt_vec(scale))
+        if capped:
+            el.set("maxhullvert", str(ctx.options.maxhullvert))
+        ctx.asset.append(el)
+        self._by_key[key] = name
+        return name
+
+    def _name(self, stem: str, capped: bool) -> str:
+        base = stem + ("_hull" if capped else "")
+        name, n = base, 1
+        while name in self._names:
+            n += 1
+            name = f"{base}_{n}"
+        self._names.add(name)
+        return name
+
+    def _convert(self, path: str, data: MeshData) -> str:
+        text = obj_text(data)
+        digest = hashlib.sha256(text).hexdigest()[:12]
+        stem = os.path.splitext(os.path.basename(path))[0]
+        rel = f"{MESH_DIR}/{stem}_{digest}.obj"
+        target = os.path.join(self.ctx.out_dir, MESH_DIR, f"{stem}_{digest}.obj")
+        if not os.path.isfile(target):
+            os.makedirs(os.path.dirname(target), exist_ok=True)
+            write_atomic(target, text)
+        self.ctx.written[f"mesh:{rel}"] = target
+        return rel
+
+
+def _reference(ctx: MjcfContext, mesh: Mesh) -> str:
+    """MuJoCo resolves a relative file against the model's folder and knows no package://."""
+    mode = ctx.mesh_paths if ctx.mesh_paths in (PathMode.RELATIVE, PathMode.ABSOLUTE) else PathMode.RELATIVE
+    return file_reference(mesh.uri, mesh.path, mesh.package, mode, ctx.out_dir)
+
+
+def obj_text(data: MeshData) -> bytes:
+    """A Wavefront OBJ of the mesh's points and triangles. The points are float32 (what the readers
+    give); ``%.9g`` writes every float32 exactly."""
+    pts = data.points
+    lines = [b"# written by robodesc\n"]
+    for i in range(0, len(pts), 3):
+        lines.append(b"v %.9g %.9g %.9g\n" % (pts[i], pts[i + 1], pts[i + 2]))
+    idx = data.face_vertex_indices
+    for i in range(0, len(idx), 3):
+        lines.append(b"f %d %d %d\n" % (idx[i] + 1, idx[i + 1] + 1, idx[i + 2] + 1))
+    return b"".join(lines)
