@@ -150,6 +150,19 @@ def compile_to_usd(
     return _compile("usd", source, out, progress, options, UsdOptions)
 
 
+def compile_to_mjcf(
+    source: Source, out: str | os.PathLike[str], *, progress: Progress | None = None, **options: Any
+) -> CompileResult:
+    """Compile to MuJoCo XML: ``out`` (robot.xml), ``scene.xml`` beside it and converted meshes under
+    ``meshes/`` (i-mjcf). Options: ``fix_base``, ``target_type``, ``stiffness``/``damping`` (SI; a
+    number or a ``{regex: value}`` table), ``actuator`` (position | velocity | motor | none),
+    ``self_collision``, ``maxhullvert``, ``integrator``, ``init_pos``, ``init_joint_pos``, ``scene``
+    (docs/mjcf.md)."""
+    from robodesc.emit.mjcf import MjcfOptions
+
+    return _compile("mjcf", source, out, progress, options, MjcfOptions)
+
+
 def compile_for_isaac_sim(
     source: Source, out_dir: str | os.PathLike[str] | None = None, *, progress: Progress | None = None, **options: Any
 ) -> CompileResult:

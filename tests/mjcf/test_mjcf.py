@@ -1,0 +1,161 @@
+"""The MJCF target: golden files, MuJoCo loads without warnings, numbers equal the IR, gain units,
+every example, every input kind through the API."""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+
+import mujoco
+import pytest
+
+from robodesc.api import compile_to_mjcf, compile_to_usd, load
+from robodesc.pipeline import load_source
+from tests.conftest import EXAMPLES, HOLO_ARM, SPIRIT_XACRO
+from tests.mjcf.helpers import check_mass_and_fk, load_clean, normalised
+
+DATA = Path(__file__).parent / "data"
+PKG = {"robodesc_examples": str(EXAMPLES / "urdf")}
+
+GOLDEN = {
+    "gripper_arm": EXAMPLES / "urdf/gripper_arm.urdf",  # mimic, camera, fixed frame, mesh
+    "quadruped": EXAMPLES / "quadruped.yaml",  # floating base, armature, transmissions
+    "four_bar": EXAMPLES / "four_bar.py",  # loop joint
+    "dae_arm": DATA / "dae_arm.urdf",  # COLLADA converted to OBJ, scale, rotated inertial frame
+}
+
+
+@pytest.mark.parametrize("name", sorted(GOLDEN))
+def test_golden(name: str, tmp_path: Path, golden: object) -> None:
+    out = tmp_path / "robot.xml"
+    result = compile_to_mjcf(str(GOLDEN[name]), str(out), package_paths=PKG)
+    assert result.validation is not None and result.validation.ok
+    golden.check(f"{name}.xml", normalised(out.read_text()))  # type: ignore[attr-defined]
+    load_clean(out)
+    load_clean(tmp_path / "scene.xml")
+
+
+@pytest.mark.parametrize("name", sorted(GOLDEN))
+def test_numbers_equal_ir(name: str, tmp_path: Path) -> None:
+    out = tmp_path / "robot.xml"
+    result = compile_to_mjcf(str(GOLDEN[name]), str(out), package_paths=PKG)
+    check_mass_and_fk(result.robot, load_clean(out))
+
+
+def test_spirit_floats_and_matches(tmp_path: Path) -> None:
+    if not SPIRIT_XACRO.exists():
+        pytest.skip("corpus not present")
+    out = tmp_path / "robot.xml"
+    result = compile_to_mjcf(str(SPIRIT_XACRO), str(out), fix_base=False)
+    model = load_clean(out)
+    load_clean(tmp_path / "scene.xml")
+    assert model.jnt_type[0] == mujoco.mjtJoint.mjJNT_FREE
+    assert model.nu == 12
+    check_mass_and_fk(result.robot, model)
+
+
+def test_dae_converted(tmp_path: Path) -> None:
+    out = tmp_path / "robot.xml"
+    result = compile_to_mjcf(str(DATA / "dae_arm.urdf"), str(out), actuator="motor")
+    meshes = [p for role, p in result.files.items() if role.startswith("mesh:")]
+    assert meshes and all(p.endswith(".obj") and os.path.isfile(p) for p in meshes)
+    model = load_clean(out)
+    # 10 cm cube in centimetres (unit 0.01), scaled 2 2 1.
+    mid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_MESH, "cube")
+    verts = model.mesh_vert[model.mesh_vertadr[mid] : model.mesh_vertadr[mid] + model.mesh_vertnum[mid]]
+    # MuJoCo turns a mesh into its principal axes: compare the sorted extents.
+    assert sorted(verts.max(axis=0) - verts.min(axis=0)) == pytest.approx([0.1, 0.2, 0.2], rel=1e-6)
+    # The transmission's reduction is the motor's gear; ctrl is motor torque (effort / gear).
+    assert model.actuator_gear[0, 0] == 50
+    assert list(model.actuator_ctrlrange[0]) == pytest.approx([-30 / 50, 30 / 50])
+
+
+def test_gain_units_same_as_usd(tmp_path: Path) -> None:
+    """The IsaacSim#842 class of bug (per-degree gains in per-radian slots, x57.3) cannot happen:
+    the same --stiffness/--damping give USD's per-degree value x 180/pi == MuJoCo's kp/kv."""
+    src = str(EXAMPLES / "urdf/gripper_arm.urdf")
+    gains = {"stiffness": {"elbow": 250.0, ".*": 40.0}, "damping": 3.0}
+    compile_to_mjcf(src, str(tmp_path / "m/robot.xml"), **gains)
+    compile_to_usd(src, str(tmp_path / "robot.usda"), **gains)
+    from pxr import Usd
+
+    stage = Usd.Stage.Open(str(tmp_path / "robot.usda"))
+    model = load_clean(tmp_path / "m/robot.xml")
+    checked = 0
+    for prim in stage.Traverse():
+        kp_attr = prim.GetAttribute("drive:angular:physics:stiffness")
+        if not kp_attr.IsValid() or not kp_attr.HasAuthoredValue():
+            continue
+        name = prim.GetName()
+        aid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_ACTUATOR, name)
+        assert aid >= 0, name
+        kp = model.actuator_gainprm[aid, 0]
+        kv = -model.actuator_biasprm[aid, 2]
+        usd_kp = kp_attr.Get() * (180.0 / math.pi)
+        usd_kv = prim.GetAttribute("drive:angular:physics:damping").Get() * (180.0 / math.pi)
+        assert kp == pytest.approx(usd_kp, rel=1e-6)  # USD stores float32
+        assert kv == pytest.approx(usd_kv, rel=1e-6)
+        assert kp == (250.0 if name == "elbow" else 40.0)
+        checked += 1
+    assert checked == 4  # the revolute and continuous joints
+
+
+EXAMPLE_FILES = sorted(
+    [p for p in EXAMPLES.iterdir() if p.suffix in (".yaml", ".py", ".holo")]
+    + [p for p in (EXAMPLES / "urdf").iterdir() if p.suffix in (".urdf", ".xacro")]
+)
+
+
+@pytest.mark.parametrize("path", EXAMPLE_FILES, ids=lambda p: p.name)
+def test_every_example_default_flags(path: Path, tmp_path: Path) -> None:
+    out = tmp_path / "robot.xml"
+    result = compile_to_mjcf(str(path), str(out), package_paths=PKG)
+    assert result.validation.ok
+    load_clean(out)
+    load_clean(tmp_path / "scene.xml")
+
+
+def test_every_input_kind(tmp_path: Path) -> None:
+    sources: list[object] = [
+        str(EXAMPLES / "urdf/gripper_arm.urdf"),
+        str(EXAMPLES / "urdf/pendulum.urdf.xacro"),
+        str(EXAMPLES / "quadruped.yaml"),
+    ]
+    if HOLO_ARM.exists():
+        sources.append(str(HOLO_ARM))
+    import runpy
+
+    sources.append(runpy.run_path(str(EXAMPLES / "four_bar.py"))["build"]())  # a builder-made Robot
+    for i, source in enumerate(sources):
+        out = tmp_path / str(i) / "robot.xml"
+        result = compile_to_mjcf(source, str(out), package_paths=PKG)  # type: ignore[arg-type]
+        assert result.validation.ok, source
+        load_clean(out)
+
+
+def test_failed_run_leaves_earlier_output(tmp_path: Path) -> None:
+    out = tmp_path / "robot.xml"
+    compile_to_mjcf(str(EXAMPLES / "urdf/gripper_arm.urdf"), str(out), package_paths=PKG)
+    before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+    with pytest.raises(Exception):
+        compile_to_mjcf(str(EXAMPLES / "urdf/gripper_arm.urdf"), str(out), stiffness=-1.0)
+    assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
+
+
+def test_home_keyframe_and_mimic(tmp_path: Path) -> None:
+    out = tmp_path / "robot.xml"
+    compile_to_mjcf(
+        str(EXAMPLES / "urdf/gripper_arm.urdf"), str(out), package_paths=PKG, init_joint_pos={"elbow": 9.0}
+    )
+    model = load_clean(out)
+    key = model.key("home")
+    jid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "elbow")
+    assert key.qpos[model.jnt_qposadr[jid]] == 2.2  # clamped into [-2.2, 2.2]
+    assert model.neq == 1 and model.eq_type[0] == mujoco.mjtEq.mjEQ_JOINT
+    assert list(model.eq_data[0, :5]) == [0, 1, 0, 0, 0]
+
+
+def test_load_source_untouched() -> None:
+    robot = load(str(EXAMPLES / "urdf/gripper_arm.urdf"))
+    assert load_source(robot, type("O", (), {})(), None) is not robot  # type: ignore[arg-type]
