@@ -5,12 +5,14 @@ from __future__ import annotations
 
 import math
 import os
+import shutil
 from pathlib import Path
 
 import mujoco
 import pytest
 
 from robodesc.api import compile_to_mjcf, compile_to_usd, load
+from robodesc.ir.diagnostics import ValidationFailed
 from robodesc.pipeline import load_source
 from tests.conftest import EXAMPLES, HOLO_ARM, SPIRIT_XACRO
 from tests.mjcf.helpers import check_mass_and_fk, load_clean, normalised
@@ -134,20 +136,42 @@ def test_every_input_kind(tmp_path: Path) -> None:
         load_clean(out)
 
 
-def test_failed_run_leaves_earlier_output(tmp_path: Path) -> None:
-    out = tmp_path / "robot.xml"
-    compile_to_mjcf(str(EXAMPLES / "urdf/gripper_arm.urdf"), str(out), package_paths=PKG)
-    before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
-    with pytest.raises(Exception):
-        compile_to_mjcf(str(EXAMPLES / "urdf/gripper_arm.urdf"), str(out), stiffness=-1.0)
-    assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
+def _snapshot(folder: Path) -> dict[str, bytes]:
+    return {str(p.relative_to(folder)): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def test_failed_run_leaves_earlier_output(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A run that fails validation after writing leaves every earlier file byte-identical. The
+    scene is rewritten only with identical bytes; converted meshes are named by content, so a new
+    mesh is an added file (left behind: the documented cost of siblings of a file target)."""
+    src = tmp_path / "src"
+    shutil.copytree(DATA, src)
+    out_dir = tmp_path / "out"
+    out = out_dir / "robot.xml"
+    compile_to_mjcf(str(src / "dae_arm.urdf"), str(out))
+    before = _snapshot(out_dir)
+    urdf = src / "dae_arm.urdf"
+    urdf.write_text(urdf.read_text().replace('scale="2 2 1"', 'scale="3 3 1"'))
+
+    from robodesc.validation import mjcf_load
+    from robodesc.validation.report import Status, ValidationReport
+
+    def failing(robot: object, emitted: object, options: object = None) -> ValidationReport:
+        report = ValidationReport(robot="x", target="mjcf", consumer="test")
+        report.add("forced", Status.FAIL, "document", "forced failure")
+        return report
+
+    monkeypatch.setattr(mjcf_load, "validate_mjcf", failing)
+    with pytest.raises(ValidationFailed):
+        compile_to_mjcf(str(urdf), str(out))
+    after = _snapshot(out_dir)
+    assert {k: after[k] for k in before} == before
+    assert all(k.startswith("meshes/") for k in set(after) - set(before))
 
 
 def test_home_keyframe_and_mimic(tmp_path: Path) -> None:
     out = tmp_path / "robot.xml"
-    compile_to_mjcf(
-        str(EXAMPLES / "urdf/gripper_arm.urdf"), str(out), package_paths=PKG, init_joint_pos={"elbow": 9.0}
-    )
+    compile_to_mjcf(str(EXAMPLES / "urdf/gripper_arm.urdf"), str(out), package_paths=PKG, init_joint_pos={"elbow": 9.0})
     model = load_clean(out)
     key = model.key("home")
     jid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "elbow")

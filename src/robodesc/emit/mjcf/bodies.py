@@ -149,7 +149,9 @@ class BodyWriter:
                     f"link {link.name!r}",
                     link.src,
                 )
-                ET.SubElement(body, "inertial", pos="0 0 0", mass=num(STUB_MASS), diaginertia=fmt_vec([STUB_INERTIA] * 3))
+                ET.SubElement(
+                    body, "inertial", pos="0 0 0", mass=num(STUB_MASS), diaginertia=fmt_vec([STUB_INERTIA] * 3)
+                )
             return
         assert inertial is not None
         el = ET.SubElement(body, "inertial")

@@ -24,7 +24,9 @@ def home_keyframe(ctx: MjcfContext, worldbody: ET.Element, actuator: ET.Element 
         if kind == "ball":
             qpos.extend((1.0, 0.0, 0.0, 0.0))
             continue
-        wanted = lookup(dict(ctx.options.init_joint_pos), name, "init_joint_pos") if ctx.options.init_joint_pos else None
+        wanted = (
+            lookup(dict(ctx.options.init_joint_pos), name, "init_joint_pos") if ctx.options.init_joint_pos else None
+        )
         q = wanted if wanted is not None else 0.0
         joint = joints.get(ir_name) if ir_name is not None else None
         limit = joint.limit if joint is not None and joint.type.value != "continuous" else None

@@ -44,7 +44,9 @@ class MjcfOptions:
     maxhullvert: int | None = field(
         default=None, metadata=flag("vertex cap of collision hulls", name="--mjcf-maxhullvert", type=int)
     )
-    self_collision: bool = field(default=False, metadata=flag("collide the robot's links with each other", kind="switch"))
+    self_collision: bool = field(
+        default=False, metadata=flag("collide the robot's links with each other", kind="switch")
+    )
     integrator: str = field(
         default="implicitfast", metadata=flag("MuJoCo integrator", name="--mjcf-integrator", choices=INTEGRATORS)
     )
@@ -55,7 +57,9 @@ class MjcfOptions:
         default_factory=dict, metadata=flag("joint positions of the home keyframe", kind="rules", rules_only=True)
     )
     # Write scene.xml beside the robot (floor, light, sky).
-    scene: bool = field(default=True, metadata=flag("write scene.xml beside the robot", name="--mjcf-scene", kind="switch"))
+    scene: bool = field(
+        default=True, metadata=flag("write scene.xml beside the robot", name="--mjcf-scene", kind="switch")
+    )
 
     def check(self) -> None:
         _one_of("drive_type", self.drive_type, DRIVE_TYPES)

@@ -4,6 +4,7 @@ its scene and converted meshes beside the file (docs/mjcf.md, Outputs)."""
 from __future__ import annotations
 
 import os
+
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
 from robodesc.emit.mjcf.emitter import emit_mjcf
 from robodesc.emit.mjcf.options import MjcfOptions
