@@ -597,7 +597,7 @@ def validate_emitted(
     elif spec.validator == "mjcf":
         # i-mjcf: to be replaced by the target's own validate callable.
         try:
-            from robodesc.validation.mujoco_mjcf import validate_mjcf
+            from robodesc.validation.mujoco_mjcf import validate_mjcf  # type: ignore[import-not-found,unused-ignore]
         except ImportError:
             from robodesc.validation.mjcf_load import validate_mjcf
         report = validate_mjcf(robot, emitted, vopts)

@@ -7,6 +7,7 @@ import math
 import os
 import shutil
 from pathlib import Path
+from typing import Any
 
 import mujoco
 import pytest
@@ -77,7 +78,7 @@ def test_gain_units_same_as_usd(tmp_path: Path) -> None:
     """The IsaacSim#842 class of bug (per-degree gains in per-radian slots, x57.3) cannot happen:
     the same --stiffness/--damping give USD's per-degree value x 180/pi == MuJoCo's kp/kv."""
     src = str(EXAMPLES / "urdf/gripper_arm.urdf")
-    gains = {"stiffness": {"elbow": 250.0, ".*": 40.0}, "damping": 3.0}
+    gains: dict[str, Any] = {"stiffness": {"elbow": 250.0, ".*": 40.0}, "damping": 3.0}
     compile_to_mjcf(src, str(tmp_path / "m/robot.xml"), **gains)
     compile_to_usd(src, str(tmp_path / "robot.usda"), **gains)
     from pxr import Usd

@@ -10,8 +10,8 @@ from robodesc.emit.mjcf.context import MjcfContext
 
 # Properties pulled into the defaults, with MuJoCo's own default value (what an element that does
 # not write the attribute would otherwise get).
-_JOINT = {"damping": "0", "frictionloss": "0", "armature": "0"}
-_ACTUATOR = {"kp": None, "kv": None, "forcerange": None}
+_JOINT: dict[str, str | None] = {"damping": "0", "frictionloss": "0", "armature": "0"}
+_ACTUATOR: dict[str, str | None] = {"kp": None, "kv": None, "forcerange": None}
 
 
 def defaults(ctx: MjcfContext, worldbody: ET.Element, actuator: ET.Element | None) -> ET.Element:

@@ -18,7 +18,7 @@ from robodesc.emit.mjcf.options import MjcfOptions
 from robodesc.emit.mjcf.scene import scene_name, scene_text
 from robodesc.emit.mjcf.sensors import sites_and_sensors
 from robodesc.ir.diagnostics import Findings
-from robodesc.ir.model import Robot
+from robodesc.ir.model import Collision, Robot, Visual
 from robodesc.ir.rigid import Frame, link_frames, pose_frame
 
 
@@ -109,7 +109,8 @@ def _root_pose(robot: Robot, options: MjcfOptions, floating: bool) -> Frame:
     lowest = 0.0
     frames = link_frames(robot)
     for link in robot.links:
-        for shape in [*link.collisions, *link.visuals]:
+        shapes: list[Collision | Visual] = [*link.collisions, *link.visuals]
+        for shape in shapes:
             at = frames[link.name] @ pose_frame(shape.origin)
             lowest = min(lowest, at.translation[2] - bounding_radius(shape.geometry))
     return Frame(translation=(0.0, 0.0, -lowest))

@@ -23,12 +23,12 @@ _RAY = Frame(((0.0, 0.0, 1.0), (0.0, 1.0, 0.0), (-1.0, 0.0, 0.0)))
 
 
 def sites_and_sensors(ctx: MjcfContext) -> ET.Element | None:
-    for frame in ctx.robot.fixed_frames:
-        body = ctx.bodies.get(frame.parent)
+    for fixed in ctx.robot.fixed_frames:
+        body = ctx.bodies.get(fixed.parent)
         if body is None:
             continue
-        site = ET.Element("site", name=ctx.unique_site(frame.name))
-        set_pose(site, frame.origin)
+        site = ET.Element("site", name=ctx.unique_site(fixed.name))
+        set_pose(site, fixed.origin)
         _insert_site(body, site)
     out = ET.Element("sensor")
     for sensor in ctx.robot.sensors:
