@@ -69,6 +69,11 @@ def test_dae_converted(tmp_path: Path) -> None:
     verts = model.mesh_vert[model.mesh_vertadr[mid] : model.mesh_vertadr[mid] + model.mesh_vertnum[mid]]
     # MuJoCo turns a mesh into its principal axes: compare the sorted extents.
     assert sorted(verts.max(axis=0) - verts.min(axis=0)) == pytest.approx([0.1, 0.2, 0.2], rel=1e-6)
+    # The two-material OBJ is two meshes, each with its .mtl colour.
+    for mesh, rgba in (("two_colour_red", [1, 0, 0, 1]), ("two_colour_blue", [0, 0, 1, 0.5])):
+        mesh_id = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_MESH, mesh)
+        geoms = [g for g in range(model.ngeom) if model.geom_dataid[g] == mesh_id]
+        assert len(geoms) == 1 and list(model.geom_rgba[geoms[0]]) == pytest.approx(rgba)
     # The transmission's reduction is the motor's gear; ctrl is motor torque (effort / gear).
     assert model.actuator_gear[0, 0] == 50
     assert list(model.actuator_ctrlrange[0]) == pytest.approx([-30 / 50, 30 / 50])

@@ -184,6 +184,17 @@ class BodyWriter:
                 set_pose(el, collision.origin)
                 body.append(el)
         for i, visual in enumerate(link.visuals):
+            if isinstance(visual.geometry, Mesh):
+                parts = self.meshes.visual_parts(visual.geometry)
+                if parts is not None:
+                    for name, rgba in parts:
+                        el = ET.SubElement(body, "geom", type="mesh", mesh=name)
+                        el.set("class", "visual")
+                        set_pose(el, visual.origin)
+                        colour = rgba if rgba is not None else self._rgba(visual.material)
+                        if colour is not None:
+                            el.set("rgba", fmt_vec(colour))
+                    continue
             el = self._geom(visual.geometry, f"{label} visual {i}", collider=False)
             if el is None:
                 continue

@@ -16,7 +16,8 @@ from robodesc.emit.common.files import write_atomic
 from robodesc.emit.common.numbers import fmt_vec
 from robodesc.emit.common.paths import PathMode, file_reference
 from robodesc.emit.mjcf.context import MjcfContext
-from robodesc.ir.geometry import Mesh
+from robodesc.emit.mjcf.objsplit import split_by_material
+from robodesc.ir.geometry import RGBA, Mesh
 from robodesc.meshes.buffers import MeshData, MeshReadError
 from robodesc.meshes.data import build_mesh
 
@@ -31,6 +32,7 @@ class MeshAssets:
         self.ctx = ctx
         self._by_key: dict[tuple[str, tuple[float, float, float] | None, bool], str] = {}
         self._names: set[str] = set()
+        self._parts: dict[tuple[str, tuple[float, float, float] | None], list[tuple[str, RGBA | None]] | None] = {}
 
     def asset(self, mesh: Mesh, element: str, collider: bool) -> str | None:
         """The asset name for ``mesh``; None (with a warning) when MuJoCo could not load it."""
@@ -73,6 +75,32 @@ class MeshAssets:
         self._by_key[key] = name
         return name
 
+    def visual_parts(self, mesh: Mesh) -> list[tuple[str, RGBA | None]] | None:
+        """A multi-material OBJ visual as one asset per material, with that material's colour;
+        None when the file is not such an OBJ."""
+        if mesh.path is None or not mesh.path.lower().endswith(".obj") or not os.path.isfile(mesh.path):
+            return None
+        key = (mesh.path, mesh.scale)
+        if key in self._parts:
+            return self._parts[key]
+        try:
+            parts = split_by_material(mesh.path)
+        except (ValueError, IndexError):
+            parts = None  # a face MuJoCo would refuse too: the file is referenced whole
+        out = None
+        if parts is not None:
+            out = []
+            stem = os.path.splitext(os.path.basename(mesh.path))[0]
+            for part in parts:
+                el = ET.SubElement(self.ctx.asset, "mesh")
+                el.set("name", self._name(f"{stem}_{part.material}", False))
+                el.set("file", self._write(f"{stem}_{_safe(part.material)}", part.text))
+                if mesh.scale is not None and mesh.scale != (1.0, 1.0, 1.0):
+                    el.set("scale", fmt_vec(mesh.scale))
+                out.append((el.get("name", ""), part.rgba))
+        self._parts[key] = out
+        return out
+
     def _name(self, stem: str, capped: bool) -> str:
         base = stem + ("_hull" if capped else "")
         name, n = base, 1
@@ -83,9 +111,10 @@ class MeshAssets:
         return name
 
     def _convert(self, path: str, data: MeshData) -> str:
-        text = obj_text(data)
+        return self._write(os.path.splitext(os.path.basename(path))[0], obj_text(data))
+
+    def _write(self, stem: str, text: bytes) -> str:
         digest = hashlib.sha256(text).hexdigest()[:12]
-        stem = os.path.splitext(os.path.basename(path))[0]
         rel = f"{MESH_DIR}/{stem}_{digest}.obj"
         target = os.path.join(self.ctx.out_dir, MESH_DIR, f"{stem}_{digest}.obj")
         if not os.path.isfile(target):
@@ -93,6 +122,11 @@ class MeshAssets:
             write_atomic(target, text)
         self.ctx.written[f"mesh:{rel}"] = target
         return rel
+
+
+def _safe(name: str) -> str:
+    """A material name as part of a file name."""
+    return "".join(c if c.isalnum() or c in "-_" else "_" for c in name) or "material"
 
 
 def _reference(ctx: MjcfContext, mesh: Mesh) -> str:
