@@ -92,7 +92,7 @@ PRESETS: dict[str, tuple[str, ...]] = {
     "ros2": ("unique_materials", "geometric_inertia", "strip_tags", "zero_pose"),
     "gazebo": ("unique_materials", "geometric_inertia", "repair_inertia", "strip_tags", "zero_pose"),
     "mujoco": ("unique_materials", "geometric_inertia", "repair_inertia", "strip_tags", "zero_pose"),
-    "mjcf": ("geometric_inertia", "repair_inertia"),
+    "mjcf": ("geometric_inertia", "repair_inertia", "zero_pose"),
     "quad_sdk": ("rename", "unique_materials", "repair_inertia", "strip_tags", "armature", "zero_pose"),
 }
 
