@@ -30,7 +30,7 @@ def validate_mjcf(robot: Robot, emitted: Any, options: Any = None) -> Validation
         try:
             with os.fdopen(fd, "w", encoding="utf-8") as handle:
                 handle.write(_include(text, staged))
-            _load(report, "mujoco-scene", tmp, scene)
+            _load(report, "mujoco-compile", tmp, scene)  # same name: classified as the other targets
         finally:
             os.unlink(tmp)
     return report

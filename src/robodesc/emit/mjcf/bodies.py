@@ -15,7 +15,7 @@ from robodesc.emit.common.numbers import fmt_vec
 from robodesc.emit.mjcf.context import MjcfContext, num, set_pose
 from robodesc.emit.mjcf.meshes import MeshAssets
 from robodesc.ir.diagnostics import UnsupportedError
-from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Inertial, Material, Mesh, Sphere
+from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Inertial, Material, Mesh, Pose, Sphere
 from robodesc.ir.inertia import rotate, tensor
 from robodesc.ir.model import Joint, JointType, Link
 from robodesc.ir.rigid import Frame, pose_frame, rpy_rotation
@@ -181,7 +181,7 @@ class BodyWriter:
             el = self._geom(collision.geometry, f"{label} collision {i}", collider=True)
             if el is not None:
                 el.set("class", "collision")
-                set_pose(el, collision.origin)
+                _place(el, collision.origin)
                 body.append(el)
         for i, visual in enumerate(link.visuals):
             if isinstance(visual.geometry, Mesh):
@@ -199,7 +199,7 @@ class BodyWriter:
             if el is None:
                 continue
             el.set("class", "visual")
-            set_pose(el, visual.origin)
+            _place(el, visual.origin)
             rgba = self._rgba(visual.material)
             if rgba is not None:
                 el.set("rgba", fmt_vec(rgba))
@@ -227,6 +227,13 @@ class BodyWriter:
             el.set("type", "capsule")
             el.set("size", f"{num(geometry.radius)} {num(geometry.length / 2)}")
         elif isinstance(geometry, Mesh):
+            flat = self.meshes.flat_box(geometry, element)
+            if flat is not None:
+                el.set("type", "box")
+                el.set("size", fmt_vec(flat[0]))
+                if any(flat[1]):
+                    el.set("robodesc-offset", fmt_vec(flat[1]))  # composed with the origin by the caller
+                return el
             name = self.meshes.asset(geometry, element, collider)
             if name is None:
                 return None
@@ -235,6 +242,16 @@ class BodyWriter:
         else:  # pragma: no cover - the IR has no other shape
             return None
         return el
+
+
+def _place(el: ET.Element, origin: Pose | None) -> None:
+    """The geom's pose: its origin, then the centre of a box standing in for a flat mesh."""
+    offset = el.attrib.pop("robodesc-offset", None)
+    if offset is None:
+        set_pose(el, origin)
+        return
+    x, y, z = (float(v) for v in offset.split())
+    set_pose(el, pose_frame(origin) @ Frame(translation=(x, y, z)))
 
 
 def _body_frame_inertia(inertial: Inertial) -> tuple[float, ...]:

@@ -17,12 +17,19 @@ from robodesc.emit.common.numbers import fmt_vec
 from robodesc.emit.common.paths import PathMode, file_reference
 from robodesc.emit.mjcf.context import MjcfContext
 from robodesc.emit.mjcf.objsplit import split_by_material
-from robodesc.ir.geometry import RGBA, Mesh
+from robodesc.ir.geometry import RGBA, Mesh, Vec3
 from robodesc.meshes.buffers import MeshData, MeshReadError
 from robodesc.meshes.data import build_mesh
 
 READABLE = (".stl", ".obj")
 MESH_DIR = "meshes"
+# MuJoCo's STL decoder refuses more faces than this; such a file is converted to OBJ.
+STL_FACE_LIMIT = 200000
+# A mesh thinner than this (relative to its largest extent) has no convex hull, which MuJoCo needs
+# for every mesh: it is written as a thin box over its extent instead.
+FLAT = 1e-9
+# The thin box's half thickness, m.
+FLAT_HALF = 5e-5
 
 
 class MeshAssets:
@@ -52,6 +59,8 @@ class MeshAssets:
             return self._by_key[key]
         ext = os.path.splitext(mesh.path)[1].lower()
         el = ET.Element("mesh")
+        if ext == ".stl" and _stl_faces(mesh.path) > STL_FACE_LIMIT:
+            ext = ".stl-large"  # converted below
         if ext in READABLE:
             file = _reference(ctx, mesh)
             scale = mesh.scale
@@ -74,6 +83,29 @@ class MeshAssets:
         ctx.asset.append(el)
         self._by_key[key] = name
         return name
+
+    def flat_box(self, mesh: Mesh, element: str) -> tuple[Vec3, Vec3] | None:
+        """(half sizes, centre) of a box standing in for a flat mesh; None for a solid one."""
+        if mesh.path is None or not os.path.isfile(mesh.path):
+            return None
+        try:
+            data = build_mesh(mesh.path, mesh.scale)
+        except MeshReadError:
+            return None
+        lo, hi = data.extent
+        size = [h - low for low, h in zip(lo, hi, strict=True)]
+        if max(size) <= 0 or min(size) > FLAT * max(size):
+            return None
+        self.ctx.warn(
+            "mjcf-flat-mesh",
+            f"mesh {mesh.uri!r} is flat: MuJoCo cannot build its convex hull, so a box of its extent "
+            f"({FLAT_HALF * 2:g} m thick) stands in for it",
+            element,
+            mesh.src,
+        )
+        half = tuple(max(s / 2, FLAT_HALF) for s in size)
+        centre = tuple((low + h) / 2 for low, h in zip(lo, hi, strict=True))
+        return half, centre  # type: ignore[return-value]
 
     def visual_parts(self, mesh: Mesh) -> list[tuple[str, RGBA | None]] | None:
         """A multi-material OBJ visual as one asset per material, with that material's colour;
@@ -122,6 +154,18 @@ class MeshAssets:
             write_atomic(target, text)
         self.ctx.written[f"mesh:{rel}"] = target
         return rel
+
+
+def _stl_faces(path: str) -> int:
+    """The face count a binary STL declares (0 for ASCII or a short file)."""
+    try:
+        with open(path, "rb") as handle:
+            head = handle.read(84)
+    except OSError:
+        return 0
+    if len(head) < 84 or head[:5].lower() == b"solid":
+        return 0
+    return int.from_bytes(head[80:84], "little")
 
 
 def _safe(name: str) -> str:
