@@ -23,7 +23,7 @@ from robodesc.meshes.data import build_mesh
 
 READABLE = (".stl", ".obj")
 MESH_DIR = "meshes"
-# MuJoCo's STL decoder refuses more faces than this; such a file is converted to OBJ.
+# MuJoCo reads binary STL only, and refuses more faces than this: other STL files are converted to OBJ.
 STL_FACE_LIMIT = 200000
 # A mesh thinner than this (relative to its largest extent) has no convex hull, which MuJoCo needs
 # for every mesh: it is written as a thin box over its extent instead.
@@ -59,8 +59,8 @@ class MeshAssets:
             return self._by_key[key]
         ext = os.path.splitext(mesh.path)[1].lower()
         el = ET.Element("mesh")
-        if ext == ".stl" and _stl_faces(mesh.path) > STL_FACE_LIMIT:
-            ext = ".stl-large"  # converted below
+        if ext == ".stl" and not 0 < _stl_faces(mesh.path) <= STL_FACE_LIMIT:
+            ext = ".stl-unreadable"  # ASCII or over the limit: converted below
         if ext in READABLE:
             file = _reference(ctx, mesh)
             scale = mesh.scale
@@ -76,6 +76,10 @@ class MeshAssets:
         name = self._name(os.path.splitext(os.path.basename(mesh.path))[0], capped)
         el.set("name", name)
         el.set("file", file)
+        # MuJoCo computes every mesh's inertia even though geoms add no mass here
+        # (inertiafromgeom="false"); an open or thin mesh has too little volume for the default
+        # and would be refused, its surface is always enough.
+        el.set("inertia", "shell")
         if scale is not None and scale != (1.0, 1.0, 1.0):
             el.set("scale", fmt_vec(scale))
         if capped:
@@ -127,6 +131,7 @@ class MeshAssets:
                 el = ET.SubElement(self.ctx.asset, "mesh")
                 el.set("name", self._name(f"{stem}_{part.material}", False))
                 el.set("file", self._write(f"{stem}_{_safe(part.material)}", part.text))
+                el.set("inertia", "shell")  # open parts of a closed mesh: see asset()
                 if mesh.scale is not None and mesh.scale != (1.0, 1.0, 1.0):
                     el.set("scale", fmt_vec(mesh.scale))
                 out.append((el.get("name", ""), part.rgba))
@@ -157,15 +162,17 @@ class MeshAssets:
 
 
 def _stl_faces(path: str) -> int:
-    """The face count a binary STL declares (0 for ASCII or a short file)."""
+    """The face count of a binary STL (0 for an ASCII or broken file)."""
     try:
         with open(path, "rb") as handle:
             head = handle.read(84)
     except OSError:
         return 0
-    if len(head) < 84 or head[:5].lower() == b"solid":
+    if len(head) < 84:
         return 0
-    return int.from_bytes(head[80:84], "little")
+    count = int.from_bytes(head[80:84], "little")
+    # Binary when the size says so (binary headers often start with "solid" too).
+    return count if os.path.getsize(path) == 84 + 50 * count else 0
 
 
 def _safe(name: str) -> str:
