@@ -189,3 +189,44 @@ def test_home_keyframe_and_mimic(tmp_path: Path) -> None:
 def test_load_source_untouched() -> None:
     robot = load(str(EXAMPLES / "urdf/gripper_arm.urdf"))
     assert load_source(robot, type("O", (), {})(), None) is not robot  # type: ignore[arg-type]
+
+
+def _urdf(joint_type: str, inertia: str, child_inertial: bool = True) -> str:
+    inertial = f'<inertial><mass value="0.1"/><inertia {inertia}/></inertial>' if child_inertial else ""
+    limit = '<limit lower="-1" upper="1" effort="1" velocity="1"/>' if joint_type in ("revolute", "prismatic") else ""
+    return f"""<robot name="r">
+  <link name="base"><inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="a">{inertial}</link>
+  <link name="b"><inertial><mass value="0.1"/><inertia ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="j" type="{joint_type}"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/>{limit}</joint>
+  <joint name="k" type="revolute"><parent link="a"/><child link="b"/><axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>"""
+
+
+GOOD = 'ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"'
+
+
+def test_what_mujoco_refuses_is_repaired_and_said(tmp_path: Path) -> None:
+    # An axial moment of 1e-16 next to 1e-4: MuJoCo's eigen-decomposition refuses the tensor.
+    thin = _urdf("revolute", 'ixx="1e-4" iyy="1e-4" izz="1e-16" ixy="1e-12" ixz="0" iyz="1e-12"')
+    result = compile_to_mjcf(thin, str(tmp_path / "a/robot.xml"))
+    assert "mjcf-inertia-floor" in {f.code for f in result.warnings}
+    load_clean(tmp_path / "a/robot.xml")
+    # A massless moving link between two jointed links.
+    massless = _urdf("revolute", GOOD, child_inertial=False)
+    result = compile_to_mjcf(massless, str(tmp_path / "b/robot.xml"))
+    assert "mjcf-massless-body" in {f.code for f in result.warnings}
+    load_clean(tmp_path / "b/robot.xml")
+
+
+def test_planar_and_floating(tmp_path: Path) -> None:
+    result = compile_to_mjcf(_urdf("planar", GOOD), str(tmp_path / "p/robot.xml"))
+    model = load_clean(tmp_path / "p/robot.xml")
+    names = [model.joint(i).name for i in range(model.njnt)]
+    assert names == ["j_x", "j_y", "j_rz", "k"]
+    assert result.validation.ok
+    from robodesc.ir.diagnostics import UnsupportedError
+
+    with pytest.raises(UnsupportedError, match="free joint"):
+        compile_to_mjcf(_urdf("floating", GOOD), str(tmp_path / "f/robot.xml"))
+    assert not (tmp_path / "f/robot.xml").exists()

@@ -23,6 +23,8 @@ from robodesc.ir.rigid import Frame, pose_frame, rpy_rotation
 # A moving body needs mass and inertia above mjMINVAL; a massless one gets these (said in a warning).
 STUB_MASS = 1e-3
 STUB_INERTIA = 1e-6
+# The smallest principal moment written, relative to the largest (see _body_frame_inertia).
+SMALLEST_MOMENT = 1e-6
 
 
 class BodyWriter:
@@ -160,7 +162,15 @@ class BodyWriter:
         el.set("mass", num(mass))
         if inertial.inertia is None:
             return
-        values = _body_frame_inertia(inertial)
+        values, raised = _body_frame_inertia(inertial)
+        if raised:
+            self.ctx.warn(
+                "mjcf-inertia-floor",
+                f"principal moment {raised[0]:.3g} kg·m² is below {SMALLEST_MOMENT:g} of the largest "
+                f"({raised[1]:.3g}); MuJoCo refuses such a tensor, so every moment was raised by {raised[2]:.3g}",
+                f"link {link.name!r}",
+                inertial.src,
+            )
         el.set("fullinertia", fmt_vec(values))
 
     def _welded_mass(self, link: Link) -> bool:
@@ -254,16 +264,29 @@ def _place(el: ET.Element, origin: Pose | None) -> None:
     set_pose(el, pose_frame(origin) @ Frame(translation=(x, y, z)))
 
 
-def _body_frame_inertia(inertial: Inertial) -> tuple[float, ...]:
+def _body_frame_inertia(inertial: Inertial) -> tuple[tuple[float, ...], tuple[float, float, float] | None]:
     """The tensor in the body's axes: MJCF's ``fullinertia`` takes no ``quat``, so a rotated inertial
-    frame is turned into the body frame (exactly the source's numbers when it is not rotated)."""
+    frame is turned into the body frame (exactly the source's numbers when it is not rotated).
+
+    A principal moment below SMALLEST_MOMENT of the largest (a rod's axial moment written as 1e-15)
+    makes MuJoCo's eigen-decomposition give a non-positive value, which it refuses: every moment is
+    then raised by the gap, keeping the axes. Returns the six numbers and (smallest, largest, added)
+    when that happened."""
     assert inertial.inertia is not None
     i = inertial.inertia
     origin = inertial.origin
-    if origin is None or origin.rpy == (0.0, 0.0, 0.0):
-        return (i.ixx, i.iyy, i.izz, i.ixy, i.ixz, i.iyz)
-    m = rotate(tensor(i), np.asarray(rpy_rotation(origin.rpy)))
-    return tuple(float(x) for x in (m[0, 0], m[1, 1], m[2, 2], m[0, 1], m[0, 2], m[1, 2]))
+    m = tensor(i)
+    if origin is not None and origin.rpy != (0.0, 0.0, 0.0):
+        m = rotate(m, np.asarray(rpy_rotation(origin.rpy)))
+    raised = None
+    eig = np.linalg.eigvalsh(m)
+    if eig[2] > 0 and eig[0] < SMALLEST_MOMENT * eig[2]:
+        delta = float(SMALLEST_MOMENT * eig[2] - eig[0])
+        m = m + delta * np.eye(3)
+        raised = (float(eig[0]), float(eig[2]), delta)
+    elif origin is None or origin.rpy == (0.0, 0.0, 0.0):
+        return (i.ixx, i.iyy, i.izz, i.ixy, i.ixz, i.iyz), None
+    return tuple(float(x) for x in (m[0, 0], m[1, 1], m[2, 2], m[0, 1], m[0, 2], m[1, 2])), raised
 
 
 def bounding_radius(geometry: Geometry) -> float:
