@@ -34,11 +34,11 @@ def reductions(ctx: MjcfContext) -> dict[str, float]:
     return out
 
 
-def actuators(ctx: MjcfContext) -> tuple[ET.Element | None, dict[str, float]]:
-    """The ``<actuator>`` element and each position actuator's home ctrl by name."""
+def actuators(ctx: MjcfContext) -> ET.Element | None:
+    """The ``<actuator>`` element (None when there is nothing to actuate or ``none`` was asked)."""
     kind = actuator_kind(ctx)
     if kind == "none":
-        return None, {}
+        return None
     if ctx.options.drive_type == "acceleration":
         ctx.warn(
             "mjcf-acceleration-drive",
@@ -59,7 +59,7 @@ def actuators(ctx: MjcfContext) -> tuple[ET.Element | None, dict[str, float]]:
                 )
             continue
         root.append(_actuator(ctx, kind, joint, gears.get(joint.name)))
-    return (root if len(root) else None), {}
+    return root if len(root) else None
 
 
 def _actuator(ctx: MjcfContext, kind: str, joint: Joint, gear: float | None) -> ET.Element:

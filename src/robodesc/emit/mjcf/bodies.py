@@ -300,6 +300,3 @@ def bounding_radius(geometry: Geometry) -> float:
     if isinstance(geometry, Capsule):
         return geometry.radius + geometry.length / 2
     return 0.0
-
-
-__all__ = ["BodyWriter", "bounding_radius", "pose_frame"]

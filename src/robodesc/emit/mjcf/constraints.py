@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 
-from robodesc.emit.mjcf.context import MjcfContext, num, set_pose
+from robodesc.emit.mjcf.context import MjcfContext, insert_site, num, set_pose
 from robodesc.ir.model import JointType
 
 
@@ -46,7 +46,7 @@ def equality(ctx: MjcfContext) -> ET.Element | None:
                 break
             site = ET.Element("site", name=ctx.unique_site(f"{loop.name}_{i}"))
             set_pose(site, side.origin)
-            _insert_site(body, site)
+            insert_site(body, site)
             sites.append(site.get("name", ""))
         else:
             kind = loop.type.lower()
@@ -61,13 +61,6 @@ def equality(ctx: MjcfContext) -> ET.Element | None:
                 )
             ET.SubElement(root, tag, name=loop.name, site1=sites[0], site2=sites[1])
     return root if len(root) else None
-
-
-def _insert_site(body: ET.Element, site: ET.Element) -> None:
-    """Sites go after the body's own inertial, joints and geoms and before its child bodies."""
-    children = list(body)
-    index = next((i for i, c in enumerate(children) if c.tag == "body"), len(children))
-    body.insert(index, site)
 
 
 def contact(ctx: MjcfContext) -> ET.Element | None:

@@ -62,5 +62,12 @@ def set_pose(el: ET.Element, frame: Frame | Pose | None) -> None:
         el.set("quat", fmt_vec(quat))
 
 
+def insert_site(body: ET.Element, site: ET.Element) -> None:
+    """Sites go after the body's own inertial, joints and geoms and before its child bodies."""
+    children = list(body)
+    index = next((i for i, c in enumerate(children) if c.tag == "body"), len(children))
+    body.insert(index, site)
+
+
 def num(value: float) -> str:
     return fmt(value)

@@ -6,7 +6,6 @@ import os
 import xml.etree.ElementTree as ET
 
 from robodesc.emit.common.files import write_atomic
-from robodesc.emit.common.numbers import fmt_vec
 from robodesc.emit.common.paths import PathMode
 from robodesc.emit.mjcf.actuators import actuators
 from robodesc.emit.mjcf.bodies import BodyWriter, bounding_radius
@@ -39,7 +38,7 @@ def build_mjcf(
     ET.SubElement(root, "option", integrator=options.integrator)
     writer = BodyWriter(ctx)
     worldbody = writer.worldbody(_root_pose(robot, options, floating), floating)
-    act = actuators(ctx)[0]
+    act = actuators(ctx)
     # Sites and constraints are attached to the bodies, so they come before <default> pulls values.
     sensor = sites_and_sensors(ctx)
     eq = equality(ctx)
@@ -116,4 +115,4 @@ def _root_pose(robot: Robot, options: MjcfOptions, floating: bool) -> Frame:
     return Frame(translation=(0.0, 0.0, -lowest))
 
 
-__all__ = ["build_mjcf", "emit_mjcf", "fmt_vec"]
+__all__ = ["build_mjcf", "emit_mjcf"]

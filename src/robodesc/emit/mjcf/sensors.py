@@ -10,8 +10,7 @@ from __future__ import annotations
 import math
 import xml.etree.ElementTree as ET
 
-from robodesc.emit.mjcf.constraints import _insert_site
-from robodesc.emit.mjcf.context import MjcfContext, num, set_pose
+from robodesc.emit.mjcf.context import MjcfContext, insert_site, num, set_pose
 from robodesc.ir.model import SensorType
 from robodesc.ir.rigid import Frame, pose_frame
 
@@ -29,7 +28,7 @@ def sites_and_sensors(ctx: MjcfContext) -> ET.Element | None:
             continue
         site = ET.Element("site", name=ctx.unique_site(fixed.name))
         set_pose(site, fixed.origin)
-        _insert_site(body, site)
+        insert_site(body, site)
     out = ET.Element("sensor")
     for sensor in ctx.robot.sensors:
         label = f"sensor {sensor.name!r}"
@@ -48,13 +47,13 @@ def sites_and_sensors(ctx: MjcfContext) -> ET.Element | None:
                 cam.set("fovy", num(math.degrees(fovy)))  # MuJoCo's fovy is in degrees whatever the angle unit
             if spec is not None and spec.width and spec.height:
                 cam.set("resolution", f"{spec.width} {spec.height}")
-            _insert_site(body, cam)
+            insert_site(body, cam)
             if sensor.type is SensorType.DEPTH:
                 ctx.info("mjcf-depth-camera", "a depth camera is a MuJoCo camera; render depth from it", label)
             continue
         site = ET.Element("site", name=ctx.unique_site(sensor.name))
         set_pose(site, frame @ _RAY if sensor.type is SensorType.RAY else frame)
-        _insert_site(body, site)
+        insert_site(body, site)
         name = site.get("name", sensor.name)
         if sensor.type is SensorType.IMU:
             ET.SubElement(out, "accelerometer", name=f"{sensor.name}_acc", site=name)
