@@ -170,8 +170,8 @@ def compile_robot(
     stage = Staging(out, spec.folder)
     try:
         request = _request(spec, stage, options, findings)
-        if spec.owned is not None:
-            stage.protect(spec.owned(request.options))
+        if spec.owned is not None and stage.final is not None:
+            stage.protect(spec.owned(request.options, stage.final))
         emitted = _emit(robot, spec, request, stage, resolved, findings, progress)
         result = CompileResult(robot=robot, findings=[], target=spec.name, text=emitted.text, files=emitted.files)
         if options.validate:

@@ -18,6 +18,7 @@ TARGETS: dict[str, str] = {
     "usd": "robodesc.emit.usd",
     "ros2": "robodesc.emit.ros2",
     "isaac": "robodesc.emit.isaac",
+    "mjcf": "robodesc.emit.mjcf",
 }
 
 

@@ -139,6 +139,11 @@ def test_consumer_output_becomes_findings_and_q_silences_it(tmp_path: Path) -> N
 def test_isaac_findings_name_no_absolute_path(tmp_path: Path) -> None:
     """findings.md travels with the folder: no path of this machine in it."""
     out = tmp_path / "isaac"
-    assert main(["compile", str(ROOT / "examples" / "quadruped.yaml"), "--isaac-sim", "-o", str(out), "-q", "--no-preview"]) == 0
+    assert (
+        main(
+            ["compile", str(ROOT / "examples" / "quadruped.yaml"), "--isaac-sim", "-o", str(out), "-q", "--no-preview"]
+        )
+        == 0
+    )
     text = (out / "findings.md").read_text()
     assert str(ROOT) not in text and str(tmp_path) not in text and "quadruped.yaml:" in text

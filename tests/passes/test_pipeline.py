@@ -40,7 +40,11 @@ def test_presets_list_the_passes_their_options_enable(name: str) -> None:
 
 
 def test_preset_names() -> None:
-    assert set(PRESETS) == set(PRESET_OPTIONS) == {"isaac_sim", "ros2", "gazebo", "mujoco", "quad_sdk", "gazebo_parity"}
+    assert (
+        set(PRESETS)
+        == set(PRESET_OPTIONS)
+        == {"isaac_sim", "ros2", "gazebo", "mujoco", "mjcf", "quad_sdk", "gazebo_parity"}
+    )
 
 
 def test_unknown_option_and_preset_name_the_closest() -> None:

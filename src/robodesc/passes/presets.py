@@ -60,6 +60,14 @@ PRESET_OPTIONS: dict[str, dict[str, object]] = {
         "strip": frozenset(STRIP_KINDS),
         "convert_meshes": {".dae": ".obj"},
     },
+    # The MJCF target's implied preset: MuJoCo refuses an invalid inertia on a moving body, so invalid
+    # ones are repaired from geometry (as for Isaac); links without an inertial are left to the
+    # emitter (a massless welded body is fine in MuJoCo), so no mass is invented for frame links.
+    "mjcf": {
+        "fill_inertia": True,
+        "repair_inertia": RepairPolicy.GEOMETRY,
+        "repair_missing": False,
+    },
     "quad_sdk": {
         "rename": QUAD_SDK_RENAME,
         "strip": frozenset(STRIP_KINDS),
@@ -111,6 +119,7 @@ PRESETS: dict[str, tuple[str, ...]] = {
     "ros2": ("unique_materials", "geometric_inertia", "strip_tags", "zero_pose"),
     "gazebo": ("unique_materials", "geometric_inertia", "repair_inertia", "strip_tags", "zero_pose"),
     "mujoco": ("unique_materials", "geometric_inertia", "repair_inertia", "strip_tags", "zero_pose"),
+    "mjcf": ("geometric_inertia", "repair_inertia", "zero_pose"),
     "quad_sdk": ("rename", "unique_materials", "repair_inertia", "strip_tags", "armature", "zero_pose"),
     # An overlay: these on top of the target's own preset's passes.
     "gazebo_parity": ("explicit_damping", "zero_pose"),

@@ -48,7 +48,7 @@ from robodesc.validation.compare import (
 from robodesc.validation.menagerie import add_menagerie_check
 from robodesc.validation.mujoco_load import captured_warnings
 from robodesc.validation.mujoco_urdf import without_dangling_mimics
-from robodesc.validation.options import ValidateOptions
+from robodesc.validation.options import TOKEN_MASS, ValidateOptions
 from robodesc.validation.report import Status, Tally, ValidationReport
 
 Mat = Any  # numpy 4x4 / 3x3 arrays
@@ -62,7 +62,7 @@ BIAS_AFFINE = int(mujoco.mjtBias.mjBIAS_AFFINE)
 # MuJoCo refuses a moving body without mass, so a converter gives a massless link a token mass
 # (1e-6 kg is common). Up to this much on a link the source leaves massless is that repair, not
 # a changed mass: it is reported as a warning and left out of the mass comparison.
-PLACEHOLDER_MASS = 1e-4  # kg
+PLACEHOLDER_MASS = TOKEN_MASS  # kg: what robodesc's MJCF writer gives a moving massless link
 
 
 def validate_mjcf(
@@ -387,8 +387,11 @@ def _compare_forcerange(joint: Joint, model: Any, j: int, a: int, tally: Tally) 
         return
     label = joint_label(joint.name)
     if model.actuator_forcelimited[a]:
-        lo, hi = (float(x) for x in model.actuator_forcerange[a])
-        where = "forcerange"
+        # The joint gets gear x the actuator's force: a motor through a reduction is clamped at
+        # effort / gear (robodesc writes it so); a servo's gear is 1.
+        gear = abs(float(model.actuator_gear[a][0])) or 1.0
+        lo, hi = (float(x) * gear for x in model.actuator_forcerange[a])
+        where = "forcerange x gear"
     elif model.jnt_actfrclimited[j]:
         lo, hi = (float(x) for x in model.jnt_actfrcrange[j])
         where = "joint actuatorfrcrange"

@@ -5,6 +5,10 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
+# MuJoCo refuses a moving body without mass: a converter gives it this much (kg), which validation
+# then reads as a token, not as a changed mass (emit/mjcf writes it; validation/mujoco_mjcf knows it).
+TOKEN_MASS = 1e-3
+
 
 @dataclass(slots=True)
 class ValidateOptions:

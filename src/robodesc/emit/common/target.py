@@ -76,9 +76,9 @@ CheckFunction = Callable[[Robot, Emitted, CheckRequest], ValidationReport | None
 # findings.md and validation.md): (robot, out, findings, validation report or None) -> role -> path.
 FinishFunction = Callable[[Robot, str, list[Finding], ValidationReport | None], dict[str, str]]
 # The names of files or folders beside a file output that the output owns and a run rewrites as a
-# whole (a layered USD's payloads/ folder): the driver sets the earlier ones aside and restores them
-# if the run fails. Given the target's options.
-OwnedFunction = Callable[[Any], tuple[str, ...]]
+# whole (a layered USD's payloads/ folder, an MJCF scene): the driver sets the earlier ones aside and
+# restores them if the run fails. Given the target's options and the final output path.
+OwnedFunction = Callable[[Any, str], tuple[str, ...]]
 
 
 @dataclass(slots=True, frozen=True)

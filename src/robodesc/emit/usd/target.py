@@ -29,6 +29,6 @@ TARGET = Target(
     passes={"sanitize_names": True, "unique_materials": True},
     check=check_usd,
     # A layered asset owns its payload folder beside the file.
-    owned=lambda options: (PAYLOAD_DIR,) if options.layered else (),
+    owned=lambda options, out: (PAYLOAD_DIR,) if options.layered else (),
     options_title="USD and Isaac Sim (-t usd, --isaac-sim; see docs/usd.md, docs/isaac.md)",
 )

@@ -1,0 +1,37 @@
+"""How an MJCF output is checked: MuJoCo loads robot.xml and scene.xml; the numbers are compared
+with the IR (masses, inertias, FK, joints, damping, armature, actuators and their gains, mimic and
+loop equalities); the scene runs mujoco_menagerie's model test (validation/mujoco_mjcf.py)."""
+
+from __future__ import annotations
+
+import os
+import re
+import tempfile
+
+from robodesc.emit.common.target import CheckRequest, Emitted
+from robodesc.ir.model import Robot
+from robodesc.validation.report import ValidationReport
+
+
+def check_mjcf(robot: Robot, emitted: Emitted, request: CheckRequest) -> ValidationReport | None:
+    from robodesc.validation.mujoco_mjcf import validate_mjcf  # MuJoCo loads only when a check runs
+
+    if "mjcf" not in emitted.files:
+        return None
+    robot_file, scene = emitted.files["mjcf"], emitted.files.get("scene")
+    if scene is None:
+        return validate_mjcf(robot, robot_file, None, request.options, expected_drives=emitted.extra.get("drives"))
+    # The scene includes robot.xml by its final name, and the robot is still staged under another:
+    # check a copy of the scene, beside it, that includes the staged file.
+    with open(scene, encoding="utf-8") as handle:
+        text = handle.read()
+    fd, probe = tempfile.mkstemp(prefix=".robodesc-scene-", suffix=".xml", dir=os.path.dirname(scene))
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as handle:
+            handle.write(
+                re.sub(r'<include file="[^"]*"/>', f'<include file="{os.path.basename(robot_file)}"/>', text, count=1)
+            )
+        report = validate_mjcf(robot, robot_file, probe, request.options, expected_drives=emitted.extra.get("drives"))
+    finally:
+        os.unlink(probe)
+    return report

@@ -1,0 +1,123 @@
+"""Assemble robot.xml (and scene.xml) from the IR."""
+
+from __future__ import annotations
+
+import os
+import xml.etree.ElementTree as ET
+
+from robodesc._files import write_atomic
+from robodesc.emit.common.paths import PathMode
+from robodesc.emit.mjcf.actuators import actuators
+from robodesc.emit.mjcf.bodies import BodyWriter, bounding_radius
+from robodesc.emit.mjcf.constraints import contact, equality
+from robodesc.emit.mjcf.context import MjcfContext
+from robodesc.emit.mjcf.defaults import defaults
+from robodesc.emit.mjcf.keyframe import home_keyframe
+from robodesc.emit.mjcf.options import MjcfOptions
+from robodesc.emit.mjcf.scene import scene_name, scene_text
+from robodesc.emit.mjcf.sensors import sites_and_sensors
+from robodesc.ir.diagnostics import Findings
+from robodesc.ir.model import Collision, Robot, Visual
+from robodesc.ir.rigid import Frame, link_frames, pose_frame
+
+
+def build_mjcf(
+    robot: Robot,
+    options: MjcfOptions,
+    findings: Findings,
+    out_dir: str,
+    mesh_paths: PathMode = PathMode.RELATIVE,
+    given: frozenset[str] = frozenset(),
+) -> tuple[str, dict[str, str]]:
+    """robot.xml's text and the files written for it (converted meshes), by role."""
+    options.check()
+    ctx = MjcfContext(robot, options, findings, out_dir, mesh_paths, given)
+    floating = not options.fix_base and robot.root.name != "world"
+    root = ET.Element("mujoco", model=robot.name)
+    ET.SubElement(root, "compiler", angle="radian", autolimits="true", inertiafromgeom="false")
+    ET.SubElement(root, "option", integrator=options.integrator)
+    writer = BodyWriter(ctx)
+    worldbody = writer.worldbody(_root_pose(robot, options, floating), floating)
+    act = actuators(ctx)
+    # Sites and constraints are attached to the bodies, so they come before <default> pulls values.
+    sensor = sites_and_sensors(ctx)
+    eq = equality(ctx)
+    root.append(defaults(ctx, worldbody, act))
+    if len(ctx.asset):
+        root.append(ctx.asset)
+    root.append(worldbody)
+    for part in (contact(ctx), eq, act, sensor, home_keyframe(ctx, worldbody, act)):
+        if part is not None:
+            root.append(part)
+    asked = (
+        {options.collision_approximation}
+        if isinstance(options.collision_approximation, str)
+        else set(options.collision_approximation.values())
+    )
+    if asked - {"convexHull", "none"}:
+        ctx.warn(
+            "mjcf-approximation",
+            f"collision approximation {', '.join(sorted(asked - {'convexHull', 'none'}))}: MuJoCo collides meshes as "
+            "convex hulls, which is what is written",
+            "option 'collision_approximation'",
+        )
+    ET.indent(root, space="  ")
+    return ET.tostring(root, encoding="unicode") + "\n", ctx.written
+
+
+def emit_mjcf(
+    robot: Robot,
+    out: str,
+    options: MjcfOptions | None = None,
+    findings: Findings | None = None,
+    *,
+    mesh_paths: PathMode = PathMode.RELATIVE,
+    given: frozenset[str] = frozenset(),
+    final_name: str | None = None,
+) -> dict[str, str]:
+    """Write ``out`` (robot.xml) and, with ``options.scene``, the scene beside it. ``final_name`` is
+    the robot file's name once it is moved into place (the scene includes it by that name).
+    Returns every written file by role: "mjcf", "scene", "mesh:<path>"."""
+    options = options or MjcfOptions()
+    findings = findings if findings is not None else Findings()
+    out_dir = os.path.dirname(os.path.abspath(out))
+    text, written = build_mjcf(robot, options, findings, out_dir, mesh_paths, given)
+    write_atomic(out, text)
+    files = {"mjcf": out, **written}
+    if options.scene:
+        name = final_name or os.path.basename(out)
+        scene = os.path.join(out_dir, scene_name(name))
+        data = scene_text(name).encode()
+        if not (os.path.isfile(scene) and _read(scene) == data):
+            write_atomic(scene, data)
+        files["scene"] = scene
+    return files
+
+
+def _read(path: str) -> bytes:
+    with open(path, "rb") as handle:
+        return handle.read()
+
+
+def _root_pose(robot: Robot, options: MjcfOptions, floating: bool) -> Frame:
+    """Where the root body starts: ``init_pos``, else the composition's placement, else (floating
+    only) high enough that no primitive collider starts below the floor, so it falls onto its feet."""
+    placement = pose_frame(robot.placement) if robot.placement is not None else None
+    if options.init_pos is not None:
+        rotation = placement.rotation if placement is not None else Frame().rotation
+        return Frame(rotation, tuple(options.init_pos))  # type: ignore[arg-type]
+    if placement is not None:
+        return placement
+    if not floating:
+        return Frame()
+    lowest = 0.0
+    frames = link_frames(robot)
+    for link in robot.links:
+        shapes: list[Collision | Visual] = [*link.collisions, *link.visuals]
+        for shape in shapes:
+            at = frames[link.name] @ pose_frame(shape.origin)
+            lowest = min(lowest, at.translation[2] - bounding_radius(shape.geometry))
+    return Frame(translation=(0.0, 0.0, -lowest))
+
+
+__all__ = ["build_mjcf", "emit_mjcf"]

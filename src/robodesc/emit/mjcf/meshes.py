@@ -1,0 +1,199 @@
+"""Mesh assets: STL and OBJ referenced where they are, every other format converted to OBJ.
+
+MuJoCo reads STL, OBJ and MSH only. A COLLADA (or any trimesh-readable) file is read through
+robodesc's own readers (:func:`robodesc.meshes.data.build_mesh`, scale applied) and written as an
+OBJ under ``meshes/`` beside robot.xml. Converted files are named after their content (a hash):
+a later run that fails validation leaves the files an earlier robot.xml refers to untouched.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import xml.etree.ElementTree as ET
+
+from robodesc._files import write_atomic
+from robodesc.emit.common.numbers import fmt_vec
+from robodesc.emit.common.paths import PathMode, file_reference
+from robodesc.emit.mjcf.context import MjcfContext
+from robodesc.emit.mjcf.objsplit import split_by_material
+from robodesc.ir.geometry import RGBA, Mesh, Vec3
+from robodesc.meshes.buffers import MeshData, MeshReadError
+from robodesc.meshes.data import build_mesh
+
+READABLE = (".stl", ".obj")
+MESH_DIR = "meshes"
+# MuJoCo reads binary STL only, and refuses more faces than this: other STL files are converted to OBJ.
+STL_FACE_LIMIT = 200000
+# A mesh thinner than this (relative to its largest extent) has no convex hull, which MuJoCo needs
+# for every mesh: it is written as a thin box over its extent instead.
+FLAT = 1e-9
+# The thin box's half thickness, m.
+FLAT_HALF = 5e-5
+
+
+class MeshAssets:
+    """One ``<mesh>`` asset per (file, scale, collider or not), named after the file."""
+
+    def __init__(self, ctx: MjcfContext) -> None:
+        self.ctx = ctx
+        self._by_key: dict[tuple[str, tuple[float, float, float] | None, bool], str] = {}
+        self._names: set[str] = set()
+        self._parts: dict[tuple[str, tuple[float, float, float] | None], list[tuple[str, RGBA | None]] | None] = {}
+
+    def asset(self, mesh: Mesh, element: str, collider: bool) -> str | None:
+        """The asset name for ``mesh``; None (with a warning) when MuJoCo could not load it."""
+        ctx = self.ctx
+        if mesh.path is None or not os.path.isfile(mesh.path):
+            ctx.warn(
+                "mjcf-missing-mesh",
+                f"mesh {mesh.uri!r} does not exist: this geometry is left out (MuJoCo cannot load a missing file)",
+                element,
+                mesh.src,
+            )
+            return None
+        # The hull cap only matters for colliders: visual meshes get their own asset without it.
+        capped = collider and ctx.options.maxhullvert is not None
+        key = (mesh.path, mesh.scale, capped)
+        if key in self._by_key:
+            return self._by_key[key]
+        ext = os.path.splitext(mesh.path)[1].lower()
+        el = ET.Element("mesh")
+        if ext == ".stl" and not 0 < _stl_faces(mesh.path) <= STL_FACE_LIMIT:
+            ext = ".stl-unreadable"  # ASCII or over the limit: converted below
+        if ext in READABLE:
+            file = _reference(ctx, mesh)
+            scale = mesh.scale
+        else:
+            try:
+                data = build_mesh(mesh.path, mesh.scale)
+            except MeshReadError as exc:
+                ctx.warn("mjcf-bad-mesh", f"mesh {mesh.uri!r} cannot be read ({exc}): left out", element, mesh.src)
+                return None
+            file = self._convert(mesh.path, data)
+            scale = None  # applied while converting
+            ctx.info("mjcf-mesh-converted", f"{mesh.uri} converted to {file} (MuJoCo reads STL and OBJ)", element)
+        name = self._name(os.path.splitext(os.path.basename(mesh.path))[0], capped)
+        el.set("name", name)
+        el.set("file", file)
+        # MuJoCo computes every mesh's inertia even though geoms add no mass here
+        # (inertiafromgeom="false"); an open or thin mesh has too little volume for the default
+        # and would be refused, its surface is always enough.
+        el.set("inertia", "shell")
+        if scale is not None and scale != (1.0, 1.0, 1.0):
+            el.set("scale", fmt_vec(scale))
+        if capped:
+            el.set("maxhullvert", str(ctx.options.maxhullvert))
+        ctx.asset.append(el)
+        self._by_key[key] = name
+        return name
+
+    def flat_box(self, mesh: Mesh, element: str) -> tuple[Vec3, Vec3] | None:
+        """(half sizes, centre) of a box standing in for a flat mesh; None for a solid one."""
+        if mesh.path is None or not os.path.isfile(mesh.path):
+            return None
+        try:
+            data = build_mesh(mesh.path, mesh.scale)
+        except MeshReadError:
+            return None
+        lo, hi = data.extent
+        size = [h - low for low, h in zip(lo, hi, strict=True)]
+        if max(size) <= 0 or min(size) > FLAT * max(size):
+            return None
+        self.ctx.warn(
+            "mjcf-flat-mesh",
+            f"mesh {mesh.uri!r} is flat: MuJoCo cannot build its convex hull, so a box of its extent "
+            f"({FLAT_HALF * 2:g} m thick) stands in for it",
+            element,
+            mesh.src,
+        )
+        half = tuple(max(s / 2, FLAT_HALF) for s in size)
+        centre = tuple((low + h) / 2 for low, h in zip(lo, hi, strict=True))
+        return half, centre  # type: ignore[return-value]
+
+    def visual_parts(self, mesh: Mesh) -> list[tuple[str, RGBA | None]] | None:
+        """A multi-material OBJ visual as one asset per material, with that material's colour;
+        None when the file is not such an OBJ."""
+        if mesh.path is None or not mesh.path.lower().endswith(".obj") or not os.path.isfile(mesh.path):
+            return None
+        key = (mesh.path, mesh.scale)
+        if key in self._parts:
+            return self._parts[key]
+        try:
+            parts = split_by_material(mesh.path)
+        except (ValueError, IndexError):
+            parts = None  # a face MuJoCo would refuse too: the file is referenced whole
+        out = None
+        if parts is not None:
+            out = []
+            stem = os.path.splitext(os.path.basename(mesh.path))[0]
+            for part in parts:
+                el = ET.SubElement(self.ctx.asset, "mesh")
+                el.set("name", self._name(f"{stem}_{part.material}", False))
+                el.set("file", self._write(f"{stem}_{_safe(part.material)}", part.text))
+                el.set("inertia", "shell")  # open parts of a closed mesh: see asset()
+                if mesh.scale is not None and mesh.scale != (1.0, 1.0, 1.0):
+                    el.set("scale", fmt_vec(mesh.scale))
+                out.append((el.get("name", ""), part.rgba))
+        self._parts[key] = out
+        return out
+
+    def _name(self, stem: str, capped: bool) -> str:
+        base = stem + ("_hull" if capped else "")
+        name, n = base, 1
+        while name in self._names:
+            n += 1
+            name = f"{base}_{n}"
+        self._names.add(name)
+        return name
+
+    def _convert(self, path: str, data: MeshData) -> str:
+        return self._write(os.path.splitext(os.path.basename(path))[0], obj_text(data))
+
+    def _write(self, stem: str, text: bytes) -> str:
+        digest = hashlib.sha256(text).hexdigest()[:12]
+        rel = f"{MESH_DIR}/{stem}_{digest}.obj"
+        target = os.path.join(self.ctx.out_dir, MESH_DIR, f"{stem}_{digest}.obj")
+        if not os.path.isfile(target):
+            os.makedirs(os.path.dirname(target), exist_ok=True)
+            write_atomic(target, text)
+        self.ctx.written[f"mesh:{rel}"] = target
+        return rel
+
+
+def _stl_faces(path: str) -> int:
+    """The face count of a binary STL (0 for an ASCII or broken file)."""
+    try:
+        with open(path, "rb") as handle:
+            head = handle.read(84)
+    except OSError:
+        return 0
+    if len(head) < 84:
+        return 0
+    count = int.from_bytes(head[80:84], "little")
+    # Binary when the size says so (binary headers often start with "solid" too).
+    return count if os.path.getsize(path) == 84 + 50 * count else 0
+
+
+def _safe(name: str) -> str:
+    """A material name as part of a file name."""
+    return "".join(c if c.isalnum() or c in "-_" else "_" for c in name) or "material"
+
+
+def _reference(ctx: MjcfContext, mesh: Mesh) -> str:
+    """MuJoCo resolves a relative file against the model's folder and knows no package://."""
+    mode = ctx.mesh_paths if ctx.mesh_paths in (PathMode.RELATIVE, PathMode.ABSOLUTE) else PathMode.RELATIVE
+    return file_reference(mesh.uri, mesh.path, mesh.package, mode, ctx.out_dir)
+
+
+def obj_text(data: MeshData) -> bytes:
+    """A Wavefront OBJ of the mesh's points and triangles. The points are float32 (what the readers
+    give); ``%.9g`` writes every float32 exactly."""
+    pts = data.points
+    lines = [b"# written by robodesc\n"]
+    for i in range(0, len(pts), 3):
+        lines.append(b"v %.9g %.9g %.9g\n" % (pts[i], pts[i + 1], pts[i + 2]))
+    idx = data.face_vertex_indices
+    for i in range(0, len(idx), 3):
+        lines.append(b"f %d %d %d\n" % (idx[i] + 1, idx[i + 1] + 1, idx[i + 2] + 1))
+    return b"".join(lines)

@@ -1,0 +1,84 @@
+"""Options of the MJCF emitter. Fields shared with the USD target keep USD's names and defaults,
+so one ``--stiffness`` means the same SI gain for both (docs/mjcf.md)."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+from robodesc.emit.common import approximation
+from robodesc.emit.common import flags as common
+from robodesc.emit.common.approximation import Approximation
+from robodesc.emit.common.flags import flag
+from robodesc.emit.usd.options import COLLISION_APPROXIMATION
+from robodesc.ir.diagnostics import ConfigError
+
+DRIVE_TYPES = ("force", "acceleration")
+TARGET_TYPES = ("none", "position", "velocity")
+ACTUATORS = ("position", "velocity", "motor", "none")
+INTEGRATORS = ("implicitfast", "implicit", "Euler", "RK4")
+
+# One number for every joint, or an ordered {regex: value} table (first full match wins).
+Gain = float | Mapping[str, float]
+
+
+@dataclass(slots=True)
+class MjcfOptions:
+    """What the MJCF emitter writes. Gains are SI: N·m/rad (N/m) and N·m·s/rad (N·s/m)."""
+
+    fix_base: bool = field(default=True, metadata=common.FIX_BASE)
+    drive_type: str = field(default="force", metadata=common.DRIVE_TYPE)
+    target_type: str = field(default="position", metadata=common.TARGET_TYPE)
+    stiffness: Gain = field(default=100.0, metadata=common.STIFFNESS)
+    damping: Gain = field(default=1.0, metadata=common.DAMPING)
+    # The MuJoCo actuator kind; when not given it follows target_type (none -> motor).
+    actuator: str = field(
+        default="position",
+        metadata=flag("MuJoCo actuator kind per movable joint", name="--mjcf-actuator", choices=ACTUATORS),
+    )
+    collision_approximation: Approximation = field(default="convexHull", metadata=COLLISION_APPROXIMATION)
+    # MuJoCo's <mesh maxhullvert>: caps the vertices of the convex hull MuJoCo builds (None: no cap).
+    maxhullvert: int | None = field(
+        default=None, metadata=flag("vertex cap of collision hulls", name="--mjcf-maxhullvert", type=int)
+    )
+    self_collision: bool = field(default=False, metadata=common.SELF_COLLISION)
+    integrator: str = field(
+        default="implicitfast", metadata=flag("MuJoCo integrator", name="--mjcf-integrator", choices=INTEGRATORS)
+    )
+    init_pos: tuple[float, float, float] | None = field(default=None, metadata=common.INIT_POS)
+    init_joint_pos: Mapping[str, float] = field(default_factory=dict, metadata=common.INIT_JOINT_POS)
+    # Write scene.xml beside the robot (floor, light, sky).
+    scene: bool = field(
+        default=True, metadata=flag("write scene.xml beside the robot", name="--mjcf-scene", kind="switch")
+    )
+
+    def check(self) -> None:
+        _one_of("drive_type", self.drive_type, DRIVE_TYPES)
+        _one_of("target_type", self.target_type, TARGET_TYPES)
+        _one_of("actuator", self.actuator, ACTUATORS)
+        approximation.check(self.collision_approximation)
+        _one_of("integrator", self.integrator, INTEGRATORS)
+        for name in ("stiffness", "damping"):
+            gain = getattr(self, name)
+            if isinstance(gain, Mapping):
+                for pattern, value in gain.items():
+                    try:
+                        re.compile(pattern)
+                    except re.error as exc:
+                        raise ConfigError(f"{name}: bad regular expression {pattern!r}: {exc}") from None
+                    _non_negative(f"{name}[{pattern!r}]", value)
+            else:
+                _non_negative(name, gain)
+        if self.maxhullvert is not None and (not isinstance(self.maxhullvert, int) or self.maxhullvert < 4):
+            raise ConfigError(f"maxhullvert must be an integer >= 4 (MuJoCo's minimum), got {self.maxhullvert!r}")
+
+
+def _one_of(name: str, value: str, allowed: tuple[str, ...]) -> None:
+    if value not in allowed:
+        raise ConfigError(f"{name} must be one of {', '.join(allowed)}; got {value!r}")
+
+
+def _non_negative(name: str, value: object) -> None:
+    if not isinstance(value, int | float) or isinstance(value, bool) or not value >= 0:
+        raise ConfigError(f"{name} must be a number >= 0, got {value!r}")

@@ -1,0 +1,64 @@
+"""The MJCF target as the pipeline sees it: a file target (``-o OUT/robot.xml``) that also writes
+its scene and converted meshes beside the file (docs/mjcf.md, Outputs)."""
+
+from __future__ import annotations
+
+import os
+
+from robodesc.emit.common.target import EmitRequest, Emitted, Target
+from robodesc.emit.mjcf.actuators import FROM_TARGET
+from robodesc.emit.mjcf.check import check_mjcf
+from robodesc.emit.mjcf.emitter import emit_mjcf
+from robodesc.emit.mjcf.options import MjcfOptions
+from robodesc.emit.mjcf.scene import scene_name
+from robodesc.ir.diagnostics import Findings
+from robodesc.ir.model import Robot
+from robodesc.ir.rules import lookup
+
+
+def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
+    out = request.output("MJCF is written to a file: give one with -o OUT/robot.xml")
+    request.default("fix_base", robot.fixed_base)
+    request.default("init_pos", robot.placement.xyz if robot.placement is not None else None)
+    files = emit_mjcf(
+        robot,
+        out,
+        request.options,
+        findings,
+        mesh_paths=request.mesh_paths,
+        given=request.given,
+        final_name=os.path.basename(request.final or out),
+    )
+    return Emitted(files=files, extra={"mjcf_options": request.options, "drives": _asked_drives(robot, request)})
+
+
+def _asked_drives(robot: Robot, request: EmitRequest) -> dict[str, tuple[float, float]]:
+    """The (kp, kv) the user's options ask of each position actuator, SI: what validation compares."""
+    options: MjcfOptions = request.options
+    kind = options.actuator if "actuator" in request.given else FROM_TARGET[options.target_type]
+    if kind != "position":
+        return {}
+    return {
+        j.name: (
+            lookup(options.stiffness, j.name, "stiffness") or 0.0,
+            lookup(options.damping, j.name, "damping") or 0.0,
+        )
+        for j in robot.actuated_joints()
+        if j.type.dof == 1
+    }
+
+
+# The "mjcf" preset (passes/presets.py): MuJoCo refuses an invalid inertia on a moving body, so
+# invalid ones are repaired from geometry, as the Isaac folder does, and each repair reported.
+TARGET = Target(
+    name="mjcf",
+    emit=emit_target,
+    summary="MuJoCo XML (robot.xml, scene.xml, meshes) for MuJoCo, MJX and Newton; checked by MuJoCo",
+    suffixes=(".xml",),
+    options=MjcfOptions,
+    preset="mjcf",
+    check=check_mjcf,
+    # scene.xml is rewritten with each robot.xml: the earlier one is restored if the run fails.
+    owned=lambda options, out: (scene_name(out),) if options.scene else (),
+    options_title="MJCF (-t mjcf; docs/mjcf.md)",
+)
