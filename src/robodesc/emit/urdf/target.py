@@ -1,11 +1,18 @@
-"""The URDF target as the pipeline sees it."""
+"""The URDF target as the pipeline sees it.
+
+From a composition (YAML, ``.holo``, Python) the URDF is written for ROS: capsules and spherical
+joints are lowered as ``ros.py`` says. From a URDF or xacro input it is a faithful round trip that
+keeps pybullet's extensions, with a warning when ROS will not load the result.
+"""
 
 from __future__ import annotations
 
+import dataclasses
 import os
 
 from robodesc.emit.common.files import write_atomic
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
+from robodesc.emit.urdf.ros import from_composition, ros_equivalent, warn_round_trip
 from robodesc.emit.urdf.writer import UrdfOptions, emit_urdf
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
@@ -23,7 +30,14 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
         )
     out = request.out
     out_dir = os.path.dirname(os.path.abspath(out)) if out else None
-    text = emit_urdf(robot, UrdfOptions(path_mode=request.mesh_paths, out_dir=out_dir))
+    given: UrdfOptions = request.options if isinstance(request.options, UrdfOptions) else UrdfOptions()
+    options = dataclasses.replace(given, path_mode=request.mesh_paths, out_dir=out_dir)
+    if from_composition(robot):
+        written = ros_equivalent(robot, options.capsules, findings)
+    else:
+        warn_round_trip(robot, findings)
+        written = robot
+    text = emit_urdf(written, options, findings)
     emitted = Emitted(text=text)
     if out:
         write_atomic(out, text)
@@ -31,4 +45,4 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     return emitted
 
 
-TARGET = Target(name="urdf", emit=emit_target)
+TARGET = Target(name="urdf", emit=emit_target, options=UrdfOptions)
