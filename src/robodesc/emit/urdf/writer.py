@@ -18,6 +18,9 @@ Two exceptions, so that urdfdom (ROS's parser) loads every URDF robodesc writes:
   armature) gets ``damping="0"``, the default every parser assumes, since urdfdom refuses it
   ("joint dynamics element specified with no damping and no friction").
 
+- an ``<inertial>`` of mass 0 without an inertia tensor gets an all-zero ``<inertia>`` (urdfdom and
+  MuJoCo refuse an ``<inertial>`` without one).
+
 Capsules and spherical joints, which urdfdom refuses too, are lowered in ``ros.py``.
 """
 
@@ -163,7 +166,11 @@ class UrdfEmitter:
         self.origin(el, inertial.origin)
         if inertial.mass is not None:
             E(el, "mass", value=fmt(inertial.mass))
-        if inertial.inertia is not None:
+        if inertial.inertia is None and inertial.mass == 0:
+            # A massless link (a composition's mass: 0) has zero inertia; urdfdom and MuJoCo refuse an
+            # <inertial> without <inertia>, so say it.
+            E(el, "inertia", ixx="0", ixy="0", ixz="0", iyy="0", iyz="0", izz="0")
+        elif inertial.inertia is not None:
             i = inertial.inertia
             E(
                 el,
