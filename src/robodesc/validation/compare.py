@@ -432,16 +432,23 @@ def report_fk(
     n_configs: int,
     options: ValidateOptions,
     report: ValidationReport,
+    tolerances: dict[str, tuple[float, float]] | None = None,
 ) -> None:
-    """Turn the worst (position, rotation, configuration) error per link into ``fk`` rows."""
+    """Turn the worst (position, rotation, configuration) error per link into ``fk`` rows.
+
+    ``tolerances`` (link -> position, rotation) replaces the options' for the links it names: a
+    consumer storing float32 gets one that grows with the rounding of the numbers on the link's path."""
     max_p = max((w[0] for w in worst.values()), default=0.0)
     max_r = max((w[1] for w in worst.values()), default=0.0)
     report.note_error("fk_position", max_p)
     report.note_error("fk_rotation", max_r)
+    default = (options.position_tol, options.rotation_tol)
+    per_link = tolerances or {}
 
     def bad(name: str) -> bool:
         w = worst.get(name)
-        return w is not None and not (w[0] <= options.position_tol and w[1] <= options.rotation_tol)
+        tol_p, tol_r = per_link.get(name, default)
+        return w is not None and not (w[0] <= tol_p and w[1] <= tol_r)
 
     parent_joint = robot.parent_joint()
     failing = [link.name for link in robot.links if bad(link.name)]
@@ -463,7 +470,7 @@ def report_fk(
             f"pose relative to the root differs by {ep:.3g} m and {er:.3g} rad{where} at {q_text}"
             + (f"; {len(below)} links below it are off as a consequence" if below else ""),
             error=max(ep, er),
-            tolerance=max(options.position_tol, options.rotation_tol),
+            tolerance=max(per_link.get(name, default)),
         )
     if not failing:
         report.add(
@@ -472,7 +479,7 @@ def report_fk(
             f"{len(worst)} links × {n_configs} configurations",
             f"largest error {max_p:.3g} m, {max_r:.3g} rad",
             error=max(max_p, max_r),
-            tolerance=max(options.position_tol, options.rotation_tol),
+            tolerance=max([max(default), *(max(t) for t in per_link.values())]),
         )
 
 
