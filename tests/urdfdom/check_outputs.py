@@ -62,8 +62,10 @@ def compile_one(path: str, extra: list[str], target: str, out: str) -> tuple[int
 def check_urdf(path: str) -> tuple[bool, str]:
     proc = subprocess.run(["check_urdf", path], capture_output=True, text=True, timeout=120)
     text = (proc.stdout + proc.stderr).strip().splitlines()
-    errors = [line for line in text if "rror" in line]
-    return proc.returncode == 0, (errors[0] if errors else (text[-1] if text else ""))
+    # urdfdom logs some refusals (a <capsule> visual of URDF 1.0) and still loads the rest, without
+    # the element: an "Error:" line counts as a refusal too.
+    errors = [line.strip() for line in text if line.lstrip().startswith("Error")]
+    return proc.returncode == 0 and not errors, (errors[0] if errors else (text[-1] if text else ""))
 
 
 def main() -> int:
