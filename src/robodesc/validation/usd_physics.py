@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 import os
+import threading
 import warnings
 from dataclasses import dataclass, field
 from typing import Any
@@ -40,6 +41,7 @@ from robodesc.validation.compare import (
     rotation_angle,
     sample_configurations,
 )
+from robodesc.validation.mujoco_load import tree_depth
 from robodesc.validation.options import ValidateOptions
 from robodesc.validation.report import Status, Tally, ValidationReport
 
@@ -106,6 +108,17 @@ def validate_usd_physics(robot: Robot, usd_path: str, options: ValidateOptions |
     if not prim or not prim.IsValid():
         report.add("usd-open", Status.FAIL, "document", "the stage has no default prim (the robot)")
         return report
+    depth = tree_depth(robot)
+    if parser_stack_size(depth) is None:
+        report.add(
+            "usd-open",
+            Status.WARN,
+            "model",
+            f"not parsed: the kinematic tree is {depth} joints deep; usd-core's physics parser recurses once per "
+            f"joint and would need more than {PARSER_MAX_STACK >> 30} GiB of stack. The USD was written; "
+            "its physics was not checked",
+        )
+        return report
     parsed = parse(stage, str(prim.GetPath()), robot)
     report.add(
         "usd-open",
@@ -123,23 +136,57 @@ def validate_usd_physics(robot: Robot, usd_path: str, options: ValidateOptions |
 
 
 # ---- reading -----------------------------------------------------------------------------------
-def load_physics(stage: Any, root: str) -> dict[str, tuple[list[Any], list[Any]]]:
-    """The parser's result keyed by object type name ("RigidBody", "RevoluteJoint" ...)."""
+# usd-core's physics parser walks an articulation recursively on the calling thread: a 50,000-link
+# chain overflowed the main thread's 8 MiB stack (SIGSEGV; 20,000 links fitted). The parser runs on
+# a thread whose stack grows with the tree's depth (reserved, not committed, memory); past the
+# largest stack robodesc asks for, validation says so instead of crashing.
+PARSER_STACK_PER_JOINT = 4096  # bytes: over 10x what the parser was measured to use per level
+PARSER_MIN_STACK = 64 << 20
+PARSER_MAX_STACK = 8 << 30
+
+
+def parser_stack_size(depth: int) -> int | None:
+    """The thread stack (bytes) to parse a tree ``depth`` joints deep, or None when over the cap."""
+    size = max(PARSER_MIN_STACK, depth * PARSER_STACK_PER_JOINT)
+    return size if size <= PARSER_MAX_STACK else None
+
+
+def load_physics(stage: Any, root: str, depth: int = 0) -> dict[str, tuple[list[Any], list[Any]]]:
+    """The parser's result keyed by object type name ("RigidBody", "RevoluteJoint" ...), parsed on
+    a thread with a stack for a tree ``depth`` joints deep (:func:`parser_stack_size`)."""
     from pxr import UsdPhysics
 
     load = getattr(UsdPhysics, "UsdPhysicsLoadStageFromPrimRange", None)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeprecationWarning)
-        if load is None:
-            load = UsdPhysics.LoadUsdPhysicsFromRange
-        raw = load(stage, [root])
-    return {str(kind): (list(paths), list(descs)) for kind, (paths, descs) in raw.items()}
+    result: dict[str, Any] = {}
+
+    def run() -> None:
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", DeprecationWarning)
+                raw = (load or UsdPhysics.LoadUsdPhysicsFromRange)(stage, [root])
+                result["value"] = {str(kind): (list(paths), list(descs)) for kind, (paths, descs) in raw.items()}
+        except BaseException as exc:  # re-raised on the caller's thread
+            result["error"] = exc
+
+    size = parser_stack_size(depth) or PARSER_MAX_STACK
+    previous = threading.stack_size()
+    threading.stack_size(size)
+    try:
+        worker = threading.Thread(target=run, name="usd-physics-parse")
+        worker.start()
+    finally:
+        threading.stack_size(previous)
+    worker.join()
+    if "error" in result:
+        raise result["error"]
+    out: dict[str, tuple[list[Any], list[Any]]] = result["value"]
+    return out
 
 
 def parse(stage: Any, root: str, robot: Robot) -> Parsed:
     """Match the parser's bodies and joints to IR links and joints: by prim name, else by
     ``displayName`` (the original name when the IR given is the unsanitized one)."""
-    raw = load_physics(stage, root)
+    raw = load_physics(stage, root, tree_depth(robot))
     parsed = Parsed(stage, root)
     links = {link.name for link in robot.links}
     body_names: dict[str, str] = {}  # body prim path -> link name
