@@ -47,6 +47,29 @@ ADVICE: dict[str, Advice] = {
         "urdfdom (ROS) refuses the file; pybullet, Drake and the Isaac importer read the first numbers",
         "edit the source",
     ),
+    "number-trailing-dot": Advice(
+        "urdfdom (ROS) refuses the file; pybullet reads the number before the dot", "edit the source"
+    ),
+    "urdf-limit-defaults": Advice(
+        "urdfdom (ROS) refuses a revolute/prismatic <limit> without effort and velocity; the values written are "
+        "what controllers and simulators will enforce",
+        "give effort and velocity in the source (or UrdfOptions.default_effort / default_velocity)",
+    ),
+    "urdf-capsule-split": Advice(
+        "urdfdom (ROS) refuses <capsule>; the cylinder and two spheres are the same solid", "capsules='keep'"
+    ),
+    "urdf-spherical-split": Advice(
+        "urdfdom (ROS) refuses type='spherical'; ros2_control commands the three revolute joints",
+        "edit the source",
+    ),
+    "urdf-not-ros": Advice(
+        "pybullet, MuJoCo and Isaac Sim read it; urdfdom (robot_state_publisher, MoveIt, check_urdf) refuses the file",
+        "--ros2 (or a composition input) writes the URDF 1.0 equivalent",
+    ),
+    "usd-mesh-not-read": Advice(
+        "the USD shows the link without that shape; --copy-meshes refuses the same file",
+        "--package NAME=DIR where the mesh lives, or move the mesh inside the robot's folder",
+    ),
     "comma-vector": Advice("urdfdom (ROS) refuses the file; pybullet reads commas as separators", "edit the source"),
     "extra-shapes": Advice("urdfdom, pybullet and the Isaac importer use the first shape only", "edit the source"),
     "unmodelled-geometry": Advice(

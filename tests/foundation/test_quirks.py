@@ -30,6 +30,7 @@ CASES = {
     "undeclared_prefix.urdf": ("undeclared-prefix", "undeclared_prefix.urdf:2"),
     "world_parent.urdf": ("world-link", "world_parent.urdf:8"),
     "comma_vector.urdf": ("comma-vector", "comma_vector.urdf:11"),
+    "limit_trailing_dot.urdf": ("number-trailing-dot", "limit_trailing_dot.urdf:8"),
 }
 
 
@@ -136,3 +137,10 @@ def test_an_explicit_package_wins_over_the_folder(tmp_path: Path) -> None:
         str(QUIRKS / "folder_package" / "urdf" / "folder_package.urdf"), package_paths={"folder_package": str(other)}
     )
     assert getattr(robot.link_map()["base"].visuals[0].geometry, "path", None) == str(other / "meshes" / "finger.stl")
+
+
+def test_trailing_dot_reads_the_number_before_it(tmp_path: Path) -> None:
+    result = robodesc.compile_to_urdf(str(QUIRKS / "limit_trailing_dot.urdf"), tmp_path / "o.urdf", validate=False)
+    limit = result.robot.joint("j").limit
+    assert limit is not None and limit.lower == -1.57
+    assert 'lower="-1.57"' in (tmp_path / "o.urdf").read_text()

@@ -198,3 +198,16 @@ def test_a_chain_deeper_than_mujoco_takes_is_not_loaded_in_mujoco(tmp_path: Path
     check = result.validation.by_name("mujoco-compile")[0]
     assert check.status.name == "WARN" and "1099 joints deep" in check.message
     assert out.is_file()
+
+
+def test_collada_fanout_does_not_hang_urdf_validation(tmp_path: Path, alarm: None) -> None:
+    """The same limits wherever a mesh is read: validation's conversion for MuJoCo goes through
+    robodesc's COLLADA reader (was: a hang inside trimesh's DAE loader)."""
+    import robodesc
+
+    work = tmp_path / "regressions"
+    shutil.copytree(HERE, work)
+    result = robodesc.compile_to_urdf(str(work / "collada_fanout_collision.urdf"), tmp_path / "o.urdf")
+    assert result.validation is not None and result.validation.ok
+    messages = [c.message for c in result.validation.checks if c.name == "mesh-files"]
+    assert any("instancing visits more than" in m for m in messages), messages

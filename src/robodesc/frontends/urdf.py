@@ -64,6 +64,7 @@ from robodesc.ir.model import (
     Visual,
 )
 
+_TRAILING_DOT = re.compile(r"^([+-]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][+-]?\d+)?)\.+$")
 STAGE = "frontend:urdf"
 T = TypeVar("T")
 # xacro's environment substitutions, sometimes left in a URDF that was never run through xacro.
@@ -238,7 +239,21 @@ class UrdfReader:
         try:
             return float(raw.strip())
         except ValueError:
-            raise self._fail(el, f"<{_tag(el)} {attr}={raw!r}>: expected a number", element) from None
+            pass
+        # pybullet's humanoid has <limit lower="-1.57.">: pybullet (strtod) reads the number before
+        # the stray dot; urdfdom refuses it. Read it as pybullet does, loudly.
+        quirk = _TRAILING_DOT.match(raw.strip())
+        if quirk is None:
+            raise self._fail(el, f"<{_tag(el)} {attr}={raw!r}>: expected a number", element)
+        self.findings.warn(
+            "number-trailing-dot",
+            f"<{_tag(el)} {attr}={raw!r}>: a stray '.' after the number; read as {quirk.group(1)}, as pybullet "
+            "does (urdfdom refuses it)",
+            element=element,
+            loc=self._loc(el),
+            stage=STAGE,
+        )
+        return float(quirk.group(1))
 
     def _vec(self, el: etree._Element, attr: str, n: int, element: str) -> tuple[float, ...] | None:
         raw = el.get(attr)

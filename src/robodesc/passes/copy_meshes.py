@@ -27,9 +27,13 @@ import stat
 import tempfile
 from typing import Any
 
+from robodesc.ir.diagnostics import ConfigError
 from robodesc.ir.geometry import Material, Mesh
 from robodesc.ir.model import Robot
+from robodesc.meshes.roots import allowed_roots, outside_roots
 from robodesc.passes.context import PassContext
+
+__all__ = ["allowed_roots", "copy_meshes", "refusal"]
 
 NAME = "copy_meshes"
 SUBDIR = "meshes"
@@ -49,29 +53,12 @@ _SIGNATURES: dict[str, tuple[bytes, ...]] = {
 _READ_AS_MESH = (".stl", ".obj", ".dae")
 
 
-def allowed_roots(robot: Robot) -> list[str]:
-    """Real paths of the folders files may be copied from: the input's folder and the root of every
-    package a mesh or texture was found in."""
-    roots: list[str] = []
-    if robot.source_file:
-        roots.append(os.path.dirname(os.path.abspath(robot.source_file)))
-    for link in robot.links:
-        geometries = [v.geometry for v in link.visuals] + [c.geometry for c in link.collisions]
-        for geom in geometries:
-            if isinstance(geom, Mesh) and geom.package is not None and geom.path is not None:
-                inner = os.path.normpath(geom.package[1]) if geom.package[1] else ""
-                path = os.path.normpath(geom.path)
-                if inner and inner != "." and path.endswith(os.sep + inner):
-                    roots.append(path[: -len(inner) - 1])
-    return list(dict.fromkeys(os.path.realpath(r) for r in roots))
-
-
 def refusal(source: str, roots: list[str], texture: bool) -> str | None:
     """Why ``source`` must not be copied, or ``None``."""
+    outside = outside_roots(source, roots)
+    if outside is not None:
+        return outside + "; not copied"
     real = os.path.realpath(source)
-    if not any(real == r or real.startswith(r.rstrip(os.sep) + os.sep) for r in roots):
-        where = f" (through a symlink to {real!r})" if real != os.path.abspath(source) else ""
-        return f"{source!r}{where} is outside the input's folder and its packages' roots; not copied"
     try:
         mode = os.stat(real).st_mode
     except OSError as exc:
@@ -101,6 +88,7 @@ def refusal(source: str, roots: list[str], texture: bool) -> str | None:
 class _Copier:
     def __init__(self, out_dir: str, ctx: PassContext) -> None:
         self.dir = os.path.join(os.path.abspath(out_dir), SUBDIR)
+        check_inside(out_dir, self.dir)
         self.ctx = ctx
         self.done: dict[tuple[str, str], str] = {}  # (source, target suffix) -> copied file name
         self.taken: set[str] = set()
@@ -151,6 +139,21 @@ class _Copier:
             return None
         self.done[key] = name
         return name
+
+
+def check_inside(out_dir: str, target: str) -> None:
+    """Refuse to write ``target`` when a symlink already in the output folder (``meshes`` pointing
+    elsewhere) would carry the write outside it. Outputs are written only inside the output path."""
+    if not os.path.lexists(target):
+        return
+    real_out = os.path.realpath(out_dir)
+    real = os.path.realpath(target)
+    if os.path.islink(target) or not (real == real_out or real.startswith(real_out.rstrip(os.sep) + os.sep)):
+        raise ConfigError(
+            f"--copy-meshes: {target!r} is a symlink to {real!r}, outside the output folder; robodesc writes "
+            "only inside the output path, never through a link that leaves it. Remove the link or choose "
+            "another output"
+        )
 
 
 def _umask() -> int:

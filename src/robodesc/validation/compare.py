@@ -86,7 +86,19 @@ def compare_structure(robot: Robot, model: Any, report: ValidationReport) -> set
         if c < 0 or p < 0:
             continue
         actual = int(model.body_parentid[c])
-        if actual != p:
+        if c == 0 and p != 0:
+            # A link named 'world' below another link: MuJoCo (like Gazebo and Drake) takes any link
+            # of that name as the world itself, so it cannot hang from anything. The source's world
+            # joint has its parent and child swapped; robodesc wrote it as given.
+            report.add(
+                "parents",
+                Status.WARN,
+                joint_label(joint.name),
+                f"child link 'world' of parent {joint.parent!r}: MuJoCo reads a link named 'world' as the world "
+                "itself, so the robot hangs from it instead (the source's world joint has parent and child "
+                "swapped; a defect of the source, carried through unchanged)",
+            )
+        elif actual != p:
             got = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, actual) or "world"
             parents.fail(
                 joint_label(joint.name), f"child link {joint.child!r} hangs from {got!r}, not {joint.parent!r}"
@@ -184,7 +196,7 @@ def compare_joints(robot: Robot, model: Any, options: ValidateOptions, report: V
             continue
         ir_joint_names.add(joint.name)
         if joint.type is JointType.PLANAR:
-            present.skip(label, "planar joints are not compared")
+            ir_joint_names.update(_compare_planar(joint, model, ids, present, kinds, axes))
             continue
         if j < 0:
             present.fail(label, f"{joint.type.value} joint is missing from the MuJoCo model")
@@ -233,6 +245,40 @@ def compare_joints(robot: Robot, model: Any, options: ValidateOptions, report: V
     limits.finish("joints", "limit")
     dynamics.finish("values")
     mimics.finish("mimic joints")
+
+
+# MuJoCo's URDF reader expands a planar joint NAME into two slides in the plane and a hinge about
+# its normal (the joint's axis), named so.
+PLANAR_PARTS = (("_TX", SLIDE), ("_TY", SLIDE), ("_RZ", HINGE))
+
+
+def _compare_planar(joint: Joint, model: Any, ids: Ids, present: Tally, kinds: Tally, axes: Tally) -> set[str]:
+    """Check MuJoCo's three joints for a planar joint; returns their names (the robot's, not extras)."""
+    label = joint_label(joint.name)
+    names = {joint.name + suffix: kind for suffix, kind in PLANAR_PARTS}
+    found = {name: ids.joint(name) for name in names}
+    if any(j < 0 for j in found.values()):
+        if ids.joint(joint.name) >= 0:  # a consumer that keeps one planar joint
+            present.ok()
+            return set()
+        missing = ", ".join(n for n, j in found.items() if j < 0)
+        present.fail(label, f"planar joint: MuJoCo lacks {missing} (its expansion into two slides and a hinge)")
+        return {n for n, j in found.items() if j >= 0}
+    present.ok()
+    child = ids.body(joint.child)
+    a_ir = np.asarray(joint.effective_axis, dtype=float)
+    a_ir = a_ir / np.linalg.norm(a_ir)
+    for name, j in found.items():
+        if int(model.jnt_type[j]) != names[name] or (child >= 0 and int(model.jnt_bodyid[j]) != child):
+            kinds.fail(label, f"MuJoCo's {name!r} is not the {_TYPE_NAME[names[name]]} of link {joint.child!r}")
+            return set(found)
+    kinds.ok()
+    normal = np.asarray(model.jnt_axis[found[joint.name + "_RZ"]], dtype=float)
+    slides = [np.asarray(model.jnt_axis[found[joint.name + s]], dtype=float) for s in ("_TX", "_TY")]
+    # The hinge turns about the plane's normal and both slides lie in the plane.
+    err = max(float(np.linalg.norm(normal - a_ir)), *(abs(float(np.dot(v, a_ir))) for v in slides))
+    axes.measure(label, err, f"MuJoCo planar normal {_vec(normal)}, source {_vec(a_ir)} (child link frame)")
+    return set(found)
 
 
 def _compare_limit(joint: Joint, model: Any, j: int, tally: Tally) -> None:
@@ -412,16 +458,23 @@ def report_fk(
     n_configs: int,
     options: ValidateOptions,
     report: ValidationReport,
+    tolerances: dict[str, tuple[float, float]] | None = None,
 ) -> None:
-    """Turn the worst (position, rotation, configuration) error per link into ``fk`` rows."""
+    """Turn the worst (position, rotation, configuration) error per link into ``fk`` rows.
+
+    ``tolerances`` (link -> position, rotation) replaces the options' for the links it names: a
+    consumer storing float32 gets one that grows with the rounding of the numbers on the link's path."""
     max_p = max((w[0] for w in worst.values()), default=0.0)
     max_r = max((w[1] for w in worst.values()), default=0.0)
     report.note_error("fk_position", max_p)
     report.note_error("fk_rotation", max_r)
+    default = (options.position_tol, options.rotation_tol)
+    per_link = tolerances or {}
 
     def bad(name: str) -> bool:
         w = worst.get(name)
-        return w is not None and not (w[0] <= options.position_tol and w[1] <= options.rotation_tol)
+        tol_p, tol_r = per_link.get(name, default)
+        return w is not None and not (w[0] <= tol_p and w[1] <= tol_r)
 
     parent_joint = robot.parent_joint()
     failing = [link.name for link in robot.links if bad(link.name)]
@@ -443,7 +496,7 @@ def report_fk(
             f"pose relative to the root differs by {ep:.3g} m and {er:.3g} rad{where} at {q_text}"
             + (f"; {len(below)} links below it are off as a consequence" if below else ""),
             error=max(ep, er),
-            tolerance=max(options.position_tol, options.rotation_tol),
+            tolerance=max(per_link.get(name, default)),
         )
     if not failing:
         report.add(
@@ -452,7 +505,7 @@ def report_fk(
             f"{len(worst)} links × {n_configs} configurations",
             f"largest error {max_p:.3g} m, {max_r:.3g} rad",
             error=max(max_p, max_r),
-            tolerance=max(options.position_tol, options.rotation_tol),
+            tolerance=max([max(default), *(max(t) for t in per_link.values())]),
         )
 
 

@@ -1,8 +1,11 @@
 """Mesh files as MuJoCo needs them: absolute paths, in a format it decodes.
 
 MuJoCo opens neither ``package://`` nor ``file://`` URIs and decodes only STL, OBJ and its own MSH;
-everything else (DAE, PLY ...) is converted to STL with trimesh into a cache keyed by the source
-file's path, size and modification time, so a corpus run converts each file once.
+everything else is converted to STL into a cache keyed by the source file's path, size and
+modification time, so a corpus run converts each file once. COLLADA (and ASCII STL) go through
+robodesc's own readers (``meshes.data.build_mesh``), the ones the USD writer uses, so the same
+limits apply wherever a mesh is read (an instance fan-out is refused in seconds instead of hanging
+trimesh's DAE loader); other formats (PLY ...) through trimesh, as for the USD writer.
 """
 
 from __future__ import annotations
@@ -19,6 +22,8 @@ from robodesc.ir.model import Robot
 from robodesc.meshes.trimesh_io import load_trimesh
 
 MUJOCO_FORMATS = (".stl", ".obj", ".msh")
+# Formats robodesc reads itself (meshes/), with its size and instancing limits.
+OWN_READERS = (".dae", ".stl", ".obj")
 
 
 class MeshProblem(Exception):
@@ -75,6 +80,30 @@ def default_cache_dir() -> str:
     return os.path.join(tempfile.gettempdir(), f"robodesc-mesh-cache-{os.getuid() if hasattr(os, 'getuid') else 0}")
 
 
+def _stl_bytes(path: str) -> bytes:
+    """A binary STL of the mesh robodesc's reader makes of ``path`` (MeshProblem when it refuses it)."""
+    import numpy as np
+
+    from robodesc.meshes.buffers import MeshReadError
+    from robodesc.meshes.data import build_mesh
+
+    try:
+        data = build_mesh(path, None)
+    except MeshReadError as exc:
+        raise MeshProblem(f"cannot convert {path} for MuJoCo: {exc}") from None
+    points = np.frombuffer(data.points, dtype=np.float32).reshape(-1, 3)
+    faces = np.frombuffer(data.face_vertex_indices, dtype=np.int32).reshape(-1, 3)
+    normals = np.frombuffer(data.normals, dtype=np.float32).reshape(-1, 3)
+    if len(faces) == 0:
+        raise MeshProblem(f"mesh file {path} has no triangles")
+    record = np.dtype([("normal", "<f4", 3), ("vertices", "<f4", (3, 3)), ("attr", "<u2")])
+    body = np.zeros(len(faces), dtype=record)
+    body["normal"] = normals
+    body["vertices"] = points[faces]
+    header = b"robodesc: converted for MuJoCo".ljust(80, b" ") + len(faces).to_bytes(4, "little")
+    return header + body.tobytes()
+
+
 def mujoco_readable(path: str, cache_dir: str | None) -> str:
     """``path`` itself when MuJoCo decodes it, else a converted STL in the cache."""
     if not os.path.isfile(path):
@@ -86,6 +115,9 @@ def mujoco_readable(path: str, cache_dir: str | None) -> str:
     folder = cache_dir or default_cache_dir()
     out = os.path.join(folder, f"{key}.stl")
     if os.path.isfile(out):
+        return out
+    if path.lower().endswith(OWN_READERS):
+        write_atomic(out, _stl_bytes(path))
         return out
     try:
         loaded = load_trimesh(path, process=False)

@@ -21,6 +21,7 @@ from robodesc._version import __version__
 from robodesc.emit.common.paths import PathMode
 from robodesc.emit.isaac.lab import isaac_lab_module
 from robodesc.emit.isaac.settings import IsaacSettings, importer_settings_json
+from robodesc.emit.urdf.ros import ros_equivalent
 from robodesc.emit.urdf.writer import UrdfOptions, emit_urdf
 from robodesc.emit.usd.emitter import emit_usd
 from robodesc.emit.usd.options import UsdOptions
@@ -69,7 +70,12 @@ def write_isaac_folder(
     with staged_folder(out_dir) as staging:
         findings.extend(emit_usd(robot, os.path.join(staging, names["usd"]), usd_options(settings)))
         # Relative mesh paths are computed against the final folder (a sibling of the staging one).
-        urdf = emit_urdf(robot, UrdfOptions(path_mode=path_mode, out_dir=os.path.abspath(out_dir)))
+        # The URDF loads in urdfdom too: capsules and spherical joints lowered (emit/urdf/ros.py).
+        urdf = emit_urdf(
+            ros_equivalent(robot, "split", findings),
+            UrdfOptions(path_mode=path_mode, out_dir=os.path.abspath(out_dir)),
+            findings,
+        )
         write_files(
             staging,
             {

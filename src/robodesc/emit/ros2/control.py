@@ -99,4 +99,4 @@ def ros2_robot(robot: Robot, command: str, findings: Findings) -> Robot:
 
 
 def emit_ros2_urdf(robot: Robot, command: str, options: UrdfOptions, findings: Findings) -> str:
-    return emit_urdf(ros2_robot(robot, command, findings), options)
+    return emit_urdf(ros2_robot(robot, command, findings), options, findings)

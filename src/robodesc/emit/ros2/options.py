@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 
 from robodesc.emit.common.flags import flag
 from robodesc.emit.common.paths import PathMode
+from robodesc.emit.urdf.writer import DEFAULT_EFFORT, DEFAULT_VELOCITY
 
 
 class CommandInterface(enum.Enum):
@@ -35,3 +36,8 @@ class Ros2Options:
     out_dir: str | None = None
     # Height at which ros_gz_sim spawns the robot (m).
     spawn_z: float = 0.0
+    # What the URDF writes so that urdfdom loads it (emit/urdf/writer.py, emit/urdf/ros.py): effort
+    # and velocity for a revolute/prismatic joint that gives none, and capsules "split" or "keep".
+    default_effort: float | None = DEFAULT_EFFORT
+    default_velocity: float | None = DEFAULT_VELOCITY
+    capsules: str = "split"

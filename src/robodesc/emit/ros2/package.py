@@ -27,6 +27,7 @@ from robodesc.emit.ros2.options import CommandInterface, ControllerKind, Ros2Opt
 from robodesc.emit.sdf.options import SdfOptions
 from robodesc.emit.sdf.topics import CLOCK, Topic, sensor_topics
 from robodesc.emit.sdf.world import world_element
+from robodesc.emit.urdf.ros import ros_equivalent
 from robodesc.emit.urdf.writer import UrdfOptions
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
@@ -218,11 +219,19 @@ def launch_py(robot: Robot, options: Ros2Options, urdf_file: str) -> str:
 def build_ros2_package(robot: Robot, options: Ros2Options | None = None) -> Ros2Package:
     opts = options or Ros2Options()
     findings = Findings()
+    # What urdfdom loads: capsules and spherical joints lowered (emit/urdf/ros.py); every file of
+    # the folder names the joints of this robot, so controllers match the URDF.
+    robot = ros_equivalent(robot, opts.capsules, findings)
     slug = _slug(robot.name)
     urdf_file = f"{slug}.urdf"
-    urdf = emit_ros2_urdf(
-        robot, opts.command_interface.value, UrdfOptions(path_mode=opts.path_mode, out_dir=opts.out_dir), findings
+    urdf_options = UrdfOptions(
+        path_mode=opts.path_mode,
+        out_dir=opts.out_dir,
+        default_effort=opts.default_effort,
+        default_velocity=opts.default_velocity,
+        capsules=opts.capsules,
     )
+    urdf = emit_ros2_urdf(robot, opts.command_interface.value, urdf_options, findings)
     files = {
         urdf_file: urdf,
         CONTROLLERS_FILE: controllers_yaml(robot, opts),

@@ -1,12 +1,19 @@
-"""The URDF target as the pipeline sees it."""
+"""The URDF target as the pipeline sees it.
+
+From a composition (YAML, ``.holo``, Python) the URDF is written for ROS: capsules and spherical
+joints are lowered as ``ros.py`` says. From a URDF or xacro input it is a faithful round trip that
+keeps pybullet's extensions, with a warning when ROS will not load the result.
+"""
 
 from __future__ import annotations
 
+import dataclasses
 import os
 
 from robodesc._files import write_atomic
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
 from robodesc.emit.urdf.check import check_urdf
+from robodesc.emit.urdf.ros import from_composition, ros_equivalent, warn_round_trip
 from robodesc.emit.urdf.writer import UrdfOptions, emit_urdf
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
@@ -24,7 +31,14 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
         )
     out = request.out
     out_dir = os.path.dirname(os.path.abspath(out)) if out else None
-    text = emit_urdf(robot, UrdfOptions(path_mode=request.mesh_paths, out_dir=out_dir))
+    given: UrdfOptions = request.options if isinstance(request.options, UrdfOptions) else UrdfOptions()
+    options = dataclasses.replace(given, path_mode=request.mesh_paths, out_dir=out_dir)
+    if from_composition(robot):
+        written = ros_equivalent(robot, options.capsules, findings)
+    else:
+        warn_round_trip(robot, findings)
+        written = robot
+    text = emit_urdf(written, options, findings)
     emitted = Emitted(text=text)
     if out:
         write_atomic(out, text)
@@ -38,5 +52,7 @@ TARGET = Target(
     summary="URDF for ROS 2, Gazebo and every URDF reader; checked by MuJoCo",
     suffixes=(".urdf", ".xml"),
     stdout=True,
+    options=UrdfOptions,
     check=check_urdf,
+    options_title="URDF (-t urdf, and the URDF of --ros2 and --isaac-sim)",
 )

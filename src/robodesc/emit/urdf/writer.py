@@ -4,17 +4,37 @@ Deterministic: robot-level materials, links, joints, then Isaac's extension tags
 and ``ros2_control``, each group in IR order; kept extensions go back right after the element they
 followed. Every number goes through :func:`fmt`. The emitter writes exactly what the IR holds;
 per-target lowering (stripping, Isaac limits, ...) is the passes' job.
+
+Two exceptions, so that urdfdom (ROS's parser) loads every URDF robodesc writes:
+
+- a revolute or prismatic joint's ``<limit>`` always has ``effort`` and ``velocity`` (urdfdom
+  refuses "joint limit: no effort"): missing ones get ``UrdfOptions.default_effort`` /
+  ``default_velocity`` (``DEFAULT_EFFORT`` N·m or N, ``DEFAULT_VELOCITY`` rad/s or m/s, the values
+  Isaac's importer assumes), and a joint without ``<limit>`` gets one with just those two (no
+  lower/upper: urdfdom reads 0, MuJoCo no range, as for the source's own ``limit-unbounded``);
+  ``None`` leaves them out. :func:`emit_urdf` names those joints in one ``urdf-limit-defaults``
+  warning;
+- a ``<dynamics>`` with neither ``damping`` nor ``friction`` (only Isaac's spring or robodesc's
+  armature) gets ``damping="0"``, the default every parser assumes, since urdfdom refuses it
+  ("joint dynamics element specified with no damping and no friction").
+
+- an ``<inertial>`` of mass 0 without an inertia tensor gets an all-zero ``<inertia>`` (urdfdom and
+  MuJoCo refuse an ``<inertial>`` without one).
+
+Capsules and spherical joints, which urdfdom refuses too, are lowered in ``ros.py``.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from lxml import etree
 
+from robodesc.emit.common.flags import flag
 from robodesc.emit.common.numbers import fmt, fmt_vec
 from robodesc.emit.common.paths import PathMode, file_reference, mesh_reference
+from robodesc.ir.diagnostics import Findings
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Extension, Geometry, Inertial, Material, Mesh, Pose, Sphere
 from robodesc.ir.model import (
     Collision,
@@ -30,6 +50,9 @@ from robodesc.ir.model import (
 )
 
 E = etree.SubElement
+DEFAULT_EFFORT = 1000.0  # N·m or N
+DEFAULT_VELOCITY = 100.0  # rad/s or m/s
+CAPSULES = ("split", "keep")
 
 
 @dataclass(slots=True)
@@ -37,6 +60,24 @@ class UrdfOptions:
     path_mode: PathMode = PathMode.RELATIVE
     # The folder the URDF will be written to; relative mesh paths are computed against it.
     out_dir: str | None = None
+    # Written for a revolute/prismatic joint's <limit> that lacks them (None: leave them out).
+    default_effort: float | None = field(
+        default=DEFAULT_EFFORT,
+        metadata=flag("effort (N·m or N) written for a revolute/prismatic joint that gives none", type=float),
+    )
+    default_velocity: float | None = field(
+        default=DEFAULT_VELOCITY,
+        metadata=flag("velocity (rad/s or m/s) written for a revolute/prismatic joint that gives none", type=float),
+    )
+    # For the URDF written for ROS: "split" a capsule into a cylinder and two spheres, or "keep" it.
+    capsules: str = field(
+        default="split",
+        metadata=flag(
+            "a capsule in the URDF written for ROS: a cylinder and two spheres (split), or <capsule> (keep: "
+            "pybullet, MuJoCo and Isaac Sim read it, urdfdom does not)",
+            choices=CAPSULES,
+        ),
+    )
 
 
 class UrdfEmitter:
@@ -44,6 +85,8 @@ class UrdfEmitter:
 
     def __init__(self, options: UrdfOptions | None = None) -> None:
         self.options = options or UrdfOptions()
+        # Joints whose <limit> got a default effort/velocity: name -> what was added.
+        self.defaulted: dict[str, list[str]] = {}
 
     # ---- document ------------------------------------------------------------------------
     def emit(self, robot: Robot) -> str:
@@ -123,7 +166,11 @@ class UrdfEmitter:
         self.origin(el, inertial.origin)
         if inertial.mass is not None:
             E(el, "mass", value=fmt(inertial.mass))
-        if inertial.inertia is not None:
+        if inertial.inertia is None and inertial.mass == 0:
+            # A massless link (a composition's mass: 0) has zero inertia; urdfdom and MuJoCo refuse an
+            # <inertial> without <inertia>, so say it.
+            E(el, "inertia", ixx="0", ixy="0", ixz="0", iyy="0", iyz="0", izz="0")
+        elif inertial.inertia is not None:
             i = inertial.inertia
             E(
                 el,
@@ -179,12 +226,16 @@ class UrdfEmitter:
         E(el, "child", link=joint.child)
         if joint.axis is not None:
             E(el, "axis", xyz=fmt_vec(joint.axis))
-        if joint.limit is not None:
+        if joint.limit is not None or joint.type.needs_limit:
             lim = E(el, "limit")
             for attr in ("lower", "upper", "effort", "velocity"):
-                value = getattr(joint.limit, attr)
-                if value is not None:
-                    lim.set(attr, fmt(value))
+                number: float | None = getattr(joint.limit, attr) if joint.limit is not None else None
+                if number is None and joint.type.needs_limit and attr in ("effort", "velocity"):
+                    number = self.options.default_effort if attr == "effort" else self.options.default_velocity
+                    if number is not None:
+                        self.defaulted.setdefault(joint.name, []).append(attr)
+                if number is not None:
+                    lim.set(attr, fmt(number))
         if joint.dynamics is not None or joint.armature is not None:
             dyn = E(el, "dynamics")
             if joint.dynamics is not None:
@@ -195,6 +246,8 @@ class UrdfEmitter:
             # URDF has no armature; robodesc keeps it here (standard parsers ignore the attribute).
             if joint.armature is not None:
                 dyn.set("armature", fmt(joint.armature))
+            if dyn.get("damping") is None and dyn.get("friction") is None:
+                dyn.set("damping", "0")  # urdfdom refuses a <dynamics> with neither; 0 is everyone's default
         # A <mimic> on a fixed (or multi-DOF) joint has no effect (the verifier's 'ignored-mimic'
         # warning) and Newton's URDF importer refuses the file: it is left out.
         if joint.mimic is not None and joint.type.dof == 1:
@@ -328,5 +381,27 @@ def _append(parent: etree._Element, exts: list[Extension]) -> None:
         parent.append(_fragment(ext))
 
 
-def emit_urdf(robot: Robot, options: UrdfOptions | None = None) -> str:
-    return UrdfEmitter(options).emit(robot)
+def emit_urdf(robot: Robot, options: UrdfOptions | None = None, findings: Findings | None = None) -> str:
+    """The URDF text; ``findings`` (when given) gets the ``urdf-limit-defaults`` warning."""
+    emitter = UrdfEmitter(options)
+    text = emitter.emit(robot)
+    if findings is not None:
+        warn_limit_defaults(robot, emitter, findings)
+    return text
+
+
+def warn_limit_defaults(robot: Robot, emitter: UrdfEmitter, findings: Findings) -> None:
+    if not emitter.defaulted:
+        return
+    names = list(emitter.defaulted)
+    shown = ", ".join(repr(n) for n in names[:5]) + (f" and {len(names) - 5} more" if len(names) > 5 else "")
+    opts = emitter.options
+    findings.warn(
+        "urdf-limit-defaults",
+        f"{len(names)} revolute/prismatic joint(s) without effort or velocity ({shown}) written with "
+        f"effort {fmt(opts.default_effort) if opts.default_effort is not None else '-'} and velocity "
+        f"{fmt(opts.default_velocity) if opts.default_velocity is not None else '-'} "
+        "(urdfdom, the parser of ROS, refuses a <limit> without them; UrdfOptions.default_effort/default_velocity)",
+        element=f"robot {robot.name!r}",
+        stage="emit:urdf",
+    )

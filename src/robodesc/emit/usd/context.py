@@ -53,6 +53,7 @@ class UsdContext:
     # Role -> layer; single-file output maps every role to the same layer.
     layers: dict[str, Layer] = field(default_factory=dict)
     _meshes: MeshCache | None = None
+    _mesh_roots: list[str] | None = None
     robot_path: str = ""
     link_paths: dict[str, str] = field(default_factory=dict)
     joint_paths: dict[str, str] = field(default_factory=dict)
@@ -67,6 +68,15 @@ class UsdContext:
 
             self._meshes = MeshCache()
         return self._meshes
+
+    @property
+    def mesh_roots(self) -> list[str]:
+        """The folders mesh files may be read from (``meshes/roots.py``, the rule of --copy-meshes)."""
+        if self._mesh_roots is None:
+            from robodesc.meshes.roots import allowed_roots
+
+            self._mesh_roots = allowed_roots(self.robot)
+        return self._mesh_roots
 
     def define(self, role: str, path: str, type_name: str = "") -> Prim:
         """``def`` the prim at ``path`` in the role's layer (with this type when one is given)."""

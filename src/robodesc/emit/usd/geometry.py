@@ -95,6 +95,19 @@ def _mesh_data(ctx: UsdContext, mesh: Mesh, label: str) -> MeshData | None:
     if mesh.path is None:
         ctx.warn("usd-missing-mesh", f"mesh {mesh.uri!r} was not found; this geometry is left out", label, mesh.src)
         return None
+    from robodesc.meshes.roots import outside_roots
+
+    outside = outside_roots(mesh.path, ctx.mesh_roots)
+    if outside is not None:
+        # The rule of --copy-meshes: embedding the geometry is copying the file's content.
+        ctx.warn(
+            "usd-mesh-not-read",
+            f"mesh {outside}; its geometry is not embedded and this shape is left out "
+            "(--copy-meshes refuses the same file)",
+            label,
+            mesh.src,
+        )
+        return None
     try:
         data = ctx.meshes.get(mesh.path, mesh.scale)
     except MeshReadError as exc:
