@@ -36,6 +36,9 @@ class UsdOptions:
     contact_offset: float | None = None  # m, PhysxCollisionAPI on every collider
     rest_offset: float | None = None
     physics_scene: bool = False  # a /PhysicsScene sibling of the robot (outside the default prim)
+    # Initial joint positions (rad or m) by joint name: the joint state and the position target.
+    # None or a missing joint: 0, clamped into the limits. The Isaac folder gives its default pose.
+    initial_positions: Mapping[str, float] | None = None
 
     def check(self) -> None:
         _one_of("drive_type", self.drive_type, DRIVE_TYPES)
