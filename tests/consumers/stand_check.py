@@ -31,7 +31,7 @@ from typing import Any
 DT = 1.0 / 200.0
 
 
-def run(folder: str, seconds: float, stand_pose: bool) -> dict[str, Any]:
+def run(folder: str, seconds: float, spawn_z: float | None = None) -> dict[str, Any]:
     import newton
     import numpy as np
     import warp as wp
@@ -41,6 +41,8 @@ def run(folder: str, seconds: float, stand_pose: bool) -> dict[str, Any]:
     usd = next(os.path.join(folder, n) for n in os.listdir(folder) if n.endswith(".usda"))
     floating = not data["fix_base"]
     pos = tuple(float(v) for v in data["init_state"]["pos"])
+    if spawn_z is not None:  # the old modules spawned at the origin: the caller drops them from a height
+        pos = (pos[0], pos[1], spawn_z)
     builder = newton.ModelBuilder()
     builder.add_ground_plane()
     with warnings.catch_warnings(record=True) as caught:
@@ -67,14 +69,14 @@ def run(folder: str, seconds: float, stand_pose: bool) -> dict[str, Any]:
     # attributes to the caller): they are the USD's initial pose and must be the module's.
     q = model.joint_q.numpy().copy()
     usd_targets = model.joint_target_q.numpy()
-    pose = data["init_state"]["joint_pos"] if stand_pose else {}
+    pose = data["init_state"]["joint_pos"]
     state_error = 0.0
     for name, value in pose.items():
         if name in one_dof:
             state_error = max(state_error, abs(float(usd_targets[one_dof[name][0]]) - value))
     checks["usd_pose_error"] = state_error
     for name, (qi, _) in one_dof.items():
-        q[qi] = float(pose.get(name, 0.0)) if stand_pose else 0.0
+        q[qi] = float(pose.get(name, 0.0))
     # Targets are indexed by coordinate, like joint_q.
     target_q = usd_targets.copy()
     for name, (qi, _) in one_dof.items():
@@ -131,24 +133,34 @@ def run(folder: str, seconds: float, stand_pose: bool) -> dict[str, Any]:
     bad = {k: v for k, v in worst.items() if v > 1e-4}
     if bad:
         problems.append(f"gains read back differ: {bad}")
-    if stand_pose and state_error > 1e-4:
+    if state_error > 1e-4:
         problems.append(f"the USD's initial targets differ from the module's pose by {state_error:.3g}")
     return {"status": "pass" if not problems else "fail: " + "; ".join(problems), "checks": checks}
 
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--folder", required=True, help="robodesc's --isaac-sim folder")
+    ap.add_argument("--folder", help="robodesc's --isaac-sim folder")
+    ap.add_argument("--cases", help='a JSON list of {"name", "folder", "spawn_z"?}: one process, many robots')
     ap.add_argument("--seconds", type=float, default=1.0)
-    ap.add_argument("--zero-pose", action="store_true", help="start at zeros (the behaviour before the default pose)")
+    ap.add_argument("--spawn-z", type=float, default=None, help="root height instead of the module's")
     ap.add_argument("--out", required=True)
     args = ap.parse_args(argv)
-    try:
-        result = run(os.path.abspath(args.folder), args.seconds, not args.zero_pose)
-    except Exception as exc:  # the failure is the result
-        result = {"status": f"fail: {type(exc).__name__}: {str(exc)[:300]}", "traceback": traceback.format_exc()[-3000:]}
-    with open(args.out, "w", encoding="utf-8") as f:
-        f.write(json.dumps(result, default=str) + "\n")
+    cases = [{"name": "robot", "folder": args.folder, "spawn_z": args.spawn_z}]
+    if args.cases:
+        with open(args.cases, encoding="utf-8") as f:
+            cases = json.load(f)
+    results: dict[str, Any] = {}
+    for case in cases:
+        try:
+            results[case["name"]] = run(os.path.abspath(case["folder"]), args.seconds, case.get("spawn_z"))
+        except Exception as exc:  # the failure is the result
+            why = f"fail: {type(exc).__name__}: {str(exc)[:300]}"
+            results[case["name"]] = {"status": why, "traceback": traceback.format_exc()[-3000:]}
+        print(case["name"], results[case["name"]]["status"], flush=True)
+        with open(args.out, "w", encoding="utf-8") as f:
+            json.dump(results if args.cases else results["robot"], f, default=str)
+            f.write("\n")
     return 0
 
 
