@@ -79,7 +79,7 @@ def run(folder: str, seconds: float, spawn_z: float | None = None) -> dict[str, 
         q[qi] = float(pose.get(name, 0.0))
     # Targets are indexed by coordinate, like joint_q.
     target_q = usd_targets.copy()
-    for name, (qi, _) in one_dof.items():
+    for qi, _ in one_dof.values():
         target_q[qi] = q[qi]
     # Gains read back, SI on both sides.
     ke, kd = model.joint_target_ke.numpy(), model.joint_target_kd.numpy()
@@ -92,7 +92,9 @@ def run(folder: str, seconds: float, spawn_z: float | None = None) -> dict[str, 
             di = one_dof[name][1]
             for key, values in (("stiffness", ke), ("damping", kd)):
                 want = group.get(key) or 0.0
-                worst[key] = max(worst[key], abs(float(values[di]) - want) / max(1e-9, abs(want)) if want else abs(float(values[di])))
+                worst[key] = max(
+                    worst[key], abs(float(values[di]) - want) / max(1e-9, abs(want)) if want else abs(float(values[di]))
+                )
     checks["gain_errors"] = worst
     state, after = model.state(), model.state()
     control = model.control()
@@ -103,7 +105,7 @@ def run(folder: str, seconds: float, spawn_z: float | None = None) -> dict[str, 
     root = int(model.joint_child.numpy()[0])
     lowest_up, lowest_z, drift = 1.0, math.inf, 0.0
     q0 = q.copy()
-    steps = int(round(seconds / DT))
+    steps = round(seconds / DT)
     finite = True
     for _ in range(steps):
         state.clear_forces()
@@ -118,7 +120,7 @@ def run(folder: str, seconds: float, spawn_z: float | None = None) -> dict[str, 
         lowest_z = min(lowest_z, float(body_q[root][2]))
         if not floating:
             qn = state.joint_q.numpy()
-            for name, (qi, _) in one_dof.items():
+            for qi, _ in one_dof.values():
                 drift = max(drift, abs(float(qn[qi]) - float(q0[qi])))
     checks.update(lowest_up_z=lowest_up, lowest_root_z=lowest_z, start_z=pos[2], joint_drift=drift, finite=finite)
     problems = []

@@ -32,11 +32,25 @@ def compile_one(robot: object, src: str, work: str) -> dict[str, object]:
     folder = os.path.join(work, re.sub(r"[^A-Za-z0-9_.-]+", "_", name))
     floating = bool(FLOATING.search(name))
     flags = _compile_flags(robot) + (["--no-fix-base"] if floating else [])  # type: ignore[arg-type]
-    cmd = [sys.executable, "-m", "robodesc", "compile", str(robot.path), "--isaac-sim", "-o", folder, "-q", "--no-validate", *flags]  # type: ignore[attr-defined]
+    cmd = [
+        sys.executable,
+        "-m",
+        "robodesc",
+        "compile",
+        str(robot.path),
+        "--isaac-sim",
+        "-o",
+        folder,
+        "-q",
+        "--no-validate",
+        *flags,
+    ]  # type: ignore[attr-defined]
     env = {**os.environ, "PYTHONPATH": src}
     proc = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=600, check=False)
     if proc.returncode != 0 and "--invalid-inertia repair" in proc.stderr + proc.stdout:
-        proc = subprocess.run([*cmd, "--invalid-inertia", "repair"], capture_output=True, text=True, env=env, timeout=600, check=False)
+        proc = subprocess.run(
+            [*cmd, "--invalid-inertia", "repair"], capture_output=True, text=True, env=env, timeout=600, check=False
+        )
     return {"name": name, "folder": folder, "floating": floating, "rc": proc.returncode, "error": proc.stderr[-300:]}
 
 
@@ -69,7 +83,14 @@ def main(argv: list[str] | None = None) -> int:
         json.dump(cases, f, indent=1)
     out = os.path.join(work, "stand.json")
     subprocess.run(
-        [os.path.join(args.envs, "newton", "bin", "python"), os.path.join(HERE, "stand_check.py"), "--cases", cases_path, "--out", out],
+        [
+            os.path.join(args.envs, "newton", "bin", "python"),
+            os.path.join(HERE, "stand_check.py"),
+            "--cases",
+            cases_path,
+            "--out",
+            out,
+        ],
         check=False,
     )
     with open(out, encoding="utf-8") as f:

@@ -51,7 +51,7 @@ def test_heuristic_puts_each_foot_under_its_hip_within_limits(source: Path) -> N
             lo, hi = limits(joints[name])
             assert lo - 1e-9 <= q[name] <= hi + 1e-9
         hip = joints[bent[0]]
-        hip_x = (frames[hip.parent].translation[0] + (hip.origin.xyz[0] if hip.origin else 0.0))
+        hip_x = frames[hip.parent].translation[0] + (hip.origin.xyz[0] if hip.origin else 0.0)
         foot = frames[leg.foot].translation
         assert abs(foot[0] - hip_x) < 0.02, (leg.foot, foot[0], hip_x)
         assert foot[2] < -0.15  # well below the body: a crouch, not a fold
@@ -80,7 +80,9 @@ def test_ros2_control_initial_value_survives_strip_tags() -> None:
 
     name = robot.actuated_joints()[0].name
     robot.ros2_controls = [
-        Ros2Control("hw", joints=[ControlJoint(name, state_interfaces=[ControlInterface("position", {"initial_value": "0.3"})])])
+        Ros2Control(
+            "hw", joints=[ControlJoint(name, state_interfaces=[ControlInterface("position", {"initial_value": "0.3"})])]
+        )
     ]
     run_passes(robot, preset="isaac_sim")
     assert robot.ros2_controls == []
@@ -115,7 +117,9 @@ def test_spirit_folder_stands_by_default(tmp_path: Path) -> None:
         assert state == pytest.approx(math.degrees(pose[name]), abs=1e-4)
         assert target == pytest.approx(state)
         kp = prim.GetAttribute("drive:angular:physics:stiffness").Get()
-        group = next(g for g in data["actuators"].values() if any(e.replace("\\", "") == name for e in g["joint_names_expr"]))
+        group = next(
+            g for g in data["actuators"].values() if any(e.replace("\\", "") == name for e in g["joint_names_expr"])
+        )
         assert kp == pytest.approx(group["stiffness"] * math.pi / 180, rel=1e-6)
         seen += 1
     assert seen == 12
@@ -137,8 +141,13 @@ def test_derived_gains_follow_the_formula() -> None:
 
 def test_explicit_gains_and_pose_win(tmp_path: Path) -> None:
     robodesc.compile_for_isaac_sim(
-        str(SPIRIT_XACRO), tmp_path / "s", fix_base=False, stiffness=30.0, damping=2.0,
-        init_joint_pos={".*": 0.1}, init_pos=(0.0, 0.0, 0.5),
+        str(SPIRIT_XACRO),
+        tmp_path / "s",
+        fix_base=False,
+        stiffness=30.0,
+        damping=2.0,
+        init_joint_pos={".*": 0.1},
+        init_pos=(0.0, 0.0, 0.5),
     )
     data = _module(tmp_path / "s")
     assert {(g["stiffness"], g["damping"]) for g in data["actuators"].values()} == {(30.0, 2.0)}
@@ -150,7 +159,11 @@ def test_usd_target_keeps_todays_defaults(tmp_path: Path) -> None:
     out = tmp_path / "arm.usda"
     robodesc.compile_to_usd(str(EXAMPLES / "urdf" / "gripper_arm.urdf"), out)
     stage = Usd.Stage.Open(str(out))
-    ks = [p.GetAttribute("drive:angular:physics:stiffness").Get() for p in stage.Traverse() if p.IsA(UsdPhysics.RevoluteJoint)]
+    ks = [
+        p.GetAttribute("drive:angular:physics:stiffness").Get()
+        for p in stage.Traverse()
+        if p.IsA(UsdPhysics.RevoluteJoint)
+    ]
     assert ks and all(k == pytest.approx(100 * math.pi / 180) for k in ks)
 
 

@@ -137,7 +137,7 @@ def engine_floor(inertia: Inertia) -> float:
 
 def below_engine_floor(inertia: Inertia) -> str | None:
     """Why Newton would change a physical tensor, or ``None``."""
-    a, b, c = principal_moments(tensor_rows(inertia))
+    a, _, c = principal_moments(tensor_rows(inertia))
     floor = max(ENGINE_REL_FLOOR * c, ENGINE_ABS_FLOOR)
     if a < floor:
         return (

@@ -4,9 +4,12 @@ One constant (the old 100 N·m/rad, 1 N·m·s/rad) is too stiff for a finger and
 underdamped for a quadruped's knee carrying a quarter of the body. Each joint instead gets a PD
 loop with natural frequency ``f`` and damping ratio ``zeta`` on the inertia it carries:
 
-    I_eff = armature + sum over the links it moves of (a·I_c·a + m·d^2)      (at the default pose)
+    I_eff = armature + sum over the links it moves of (max principal moment + m·d^2)
           + (M / legs)·r^2           for a leg joint of a floating robot: the body's share, which
-                                     the leg lifts, at the distance r of the foot from the axis
+                                     the leg lifts, r the foot's distance from the joint
+
+(d: the link's centre of mass from the joint, at the default pose; the largest moment and the
+distance rather than the axis make it the most the joint can meet as the joints beyond it move)
     kp    = I_eff·(2 pi f)^2, then at most effort / E_SAT (an error of E_SAT rad saturates it)
     kd    = 2·zeta·sqrt(kp·I_eff)
 
@@ -23,7 +26,8 @@ from dataclasses import dataclass
 
 from robodesc.emit.common.stance import Stance
 from robodesc.ir.model import Joint, Link, Robot
-from robodesc.ir.rigid import Frame, apply, link_frames, matmul, pose_frame, transpose, unit
+from robodesc.ir.principal import principal_moments, tensor_rows
+from robodesc.ir.rigid import Frame, apply, link_frames, pose_frame
 
 NATURAL_FREQUENCY = 4.0  # Hz
 DAMPING_RATIO = 1.0
@@ -54,14 +58,13 @@ def derived_gains(
         if joint.type.dof != 1:
             continue
         jf = frames[joint.parent] @ pose_frame(joint.origin)
-        axis = unit(apply(jf.rotation, joint.effective_axis))
-        inertia = _moved_inertia(joint, axis, jf.translation, frames, children, links)
+        inertia = _moved_inertia(joint, jf.translation, frames, children, links)
         leg = leg_of.get(joint.name)
         if leg is not None and stance.legs:
             foot = frames[leg.foot]
             point = _add(foot.translation, apply(foot.rotation, leg.foot_point))
             share = total / len(stance.legs)
-            inertia += share * (_distance_sq(point, jf.translation, axis) if joint.type.is_angular else 1.0)
+            inertia += share * (_distance_sq(point, jf.translation) if joint.type.is_angular else 1.0)
         inertia += joint.armature or 0.0
         if stiffness is not None and joint.name in stiffness:
             kp, capped = stiffness[joint.name], False
@@ -78,14 +81,15 @@ def derived_gains(
 
 def _moved_inertia(
     joint: Joint,
-    axis: tuple[float, float, float],
     origin: tuple[float, float, float],
     frames: Mapping[str, Frame],
     children: Mapping[str, list[Joint]],
     links: Mapping[str, Link],
 ) -> float:
-    """The moment of inertia about the joint axis of everything the joint moves (mass, for a
-    prismatic joint)."""
+    """The largest moment of inertia the joint can meet as the joints beyond it move: each link's
+    largest principal moment plus m·d², d its centre of mass's distance from the joint (not from the
+    axis), so an arm's yaw joint is not left soft because the arm happens to point up at the start.
+    Mass, for a prismatic joint."""
     total = 0.0
     stack = [joint.child]
     while stack:
@@ -98,26 +102,16 @@ def _moved_inertia(
         if not joint.type.is_angular:
             total += mass
             continue
-        com = frames[name] @ pose_frame(link.inertial.origin)
-        total += mass * _distance_sq(com.translation, origin, axis)
-        tensor = link.inertial.inertia
-        if tensor is not None:
-            local = (
-                (tensor.ixx, tensor.ixy, tensor.ixz),
-                (tensor.ixy, tensor.iyy, tensor.iyz),
-                (tensor.ixz, tensor.iyz, tensor.izz),
-            )
-            world = matmul(matmul(com.rotation, local), transpose(com.rotation))
-            v = apply(world, axis)
-            total += axis[0] * v[0] + axis[1] * v[1] + axis[2] * v[2]
+        com = (frames[name] @ pose_frame(link.inertial.origin)).translation
+        total += mass * _distance_sq(com, origin)
+        if link.inertial.inertia is not None:
+            total += max(principal_moments(tensor_rows(link.inertial.inertia)))
     return total
 
 
-def _distance_sq(point: tuple[float, float, float], origin: tuple[float, float, float], axis: tuple[float, float, float]) -> float:
-    """Squared distance of ``point`` from the line through ``origin`` along unit ``axis``."""
+def _distance_sq(point: tuple[float, float, float], origin: tuple[float, float, float]) -> float:
     d = (point[0] - origin[0], point[1] - origin[1], point[2] - origin[2])
-    along = d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2]
-    return max(0.0, d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - along * along)
+    return d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
 
 
 def _add(a: tuple[float, float, float], b: tuple[float, float, float]) -> tuple[float, float, float]:

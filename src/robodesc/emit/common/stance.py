@@ -110,9 +110,7 @@ def find_legs(robot: Robot, q: Mapping[str, float], meshes: MeshCache | None = N
 
     def has_collider_below(name: str) -> bool:
         if name not in below:
-            below[name] = any(
-                j.child in colliding or has_collider_below(j.child) for j in children.get(name, [])
-            )
+            below[name] = any(j.child in colliding or has_collider_below(j.child) for j in children.get(name, []))
         return below[name]
 
     lows: dict[str, float] = {}
@@ -226,7 +224,8 @@ def _solve_leg(
         return None
     target = reach * max(c[0] for c in candidates)
     best = min(candidates, key=lambda c: (round(abs(c[0] - target), 3), c[1]))
-    return {j.name: best[2][j.name] for j in pitch[:3]}
+    # Microradians: mirror-image legs read the same in every file, whatever the last bits of FK.
+    return {j.name: round(best[2][j.name], 6) for j in pitch[:3]}
 
 
 def _path(robot: Robot, link: str) -> list[Joint]:

@@ -23,7 +23,9 @@ from robodesc.ir.rules import lookup
 STAGE = "emit:isaac_defaults"
 
 
-def apply_defaults(robot: Robot, settings: IsaacSettings, given: Collection[str], findings: Findings) -> dict[str, float]:
+def apply_defaults(
+    robot: Robot, settings: IsaacSettings, given: Collection[str], findings: Findings
+) -> dict[str, float]:
     """Fill the pose, spawn height and gains the user did not give; return the initial position of
     every 1-DOF joint (rad or m), which the USD's joint state and drive targets start from."""
     wanted = {
@@ -81,9 +83,7 @@ def _derive_gains(
 ) -> None:
     user_kp = None
     if "stiffness" in given:
-        user_kp = {
-            j.name: lookup(settings.stiffness, j.name, "stiffness") or 0.0 for j in robot.actuated_joints()
-        }
+        user_kp = {j.name: lookup(settings.stiffness, j.name, "stiffness") or 0.0 for j in robot.actuated_joints()}
     gains = derived_gains(robot, stance, floating, user_kp)
     if not gains:
         return
