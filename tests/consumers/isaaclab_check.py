@@ -65,15 +65,14 @@ def run(folder: str, steps: int, module_spawn: bool = False) -> dict[str, object
         robot = Articulation(cfg)
         replicate(sim.get_clone_plan())
         sim.reset()
-        if module_spawn:
-            # A robot with no controller holds its default pose: Isaac Lab's position targets start
-            # at 0 whatever init_state says (an environment's actions set them), so the check sets
-            # them to the default joint positions, as a "hold" action does.
-            default = robot.data.default_joint_pos
-            default = default.torch if hasattr(default, "torch") else default
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", DeprecationWarning)
-                robot.set_joint_position_target_index(target=default)
+        # A robot with no controller holds its default pose: Isaac Lab's position targets start
+        # at 0 whatever init_state says (an environment's actions set them), so the check sets
+        # them to the default joint positions, as a "hold" action does.
+        default = robot.data.default_joint_pos
+        default = default.torch if hasattr(default, "torch") else default
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DeprecationWarning)
+            robot.set_joint_position_target_index(target=default)
         start_quat = robot.data.root_quat_w.clone() if hasattr(robot.data, "root_quat_w") else None
         lowest_up = 1.0
         for _ in range(steps):
