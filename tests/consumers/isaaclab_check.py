@@ -133,7 +133,9 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--folder", required=True, help="robodesc's --isaac-sim folder")
     ap.add_argument("--steps", type=int, default=100)
-    ap.add_argument("--module-spawn", action="store_true", help="spawn at the module's init_state.pos (the default spawn)")
+    ap.add_argument(
+        "--module-spawn", action="store_true", help="spawn at the module's init_state.pos (the default spawn)"
+    )
     ap.add_argument("--out", required=True)
     args = ap.parse_args(argv)
     try:
