@@ -8,8 +8,9 @@ no initial joint positions, the pose is chosen in this order:
    ros2_control ``initial_value``);
 2. the legged heuristic (:func:`legged_pose`): legs are found as chains from the root to the lowest
    links; in each, the first two joints that pitch about the robot's lateral axis (hip, knee) are
-   bent so that the foot sits straight under the hip at 75 % of the leg's reach (95 % for a biped),
-   a third pitch joint (ankle) keeps the sole as it was at zero, every other joint stays at zero;
+   bent so that the foot sits straight under the hip at 75 % of the leg's reach, a third pitch joint
+   (ankle) keeps the sole as it was at zero, every other joint stays at zero. Robots with three legs
+   or more only: a biped's balance depends on where its centre of mass is, which this does not model;
 3. zeros, with a warning.
 
 Positions are clamped into the limits. The spawn height puts the lowest collision point of the
@@ -30,9 +31,8 @@ from robodesc.meshes.buffers import MeshReadError
 from robodesc.meshes.data import MeshCache
 
 # Leg reach at the stance, as a fraction of the straight leg: a quadruped crouches (Isaac Lab's own
-# Go1/A1 configs stand at ~73 %), a biped stands nearly straight with its knees unlocked.
+# Go1/A1 configs stand at ~73 %).
 REACH_QUADRUPED = 0.75
-REACH_BIPED = 0.95
 CLEARANCE = 0.005  # m between the lowest collision point and the ground at spawn
 # A joint pitches when its axis lies within this angle of the robot's lateral (y) axis.
 _PITCH_COS = math.cos(math.radians(30.0))
@@ -175,9 +175,12 @@ def legged_pose(robot: Robot, meshes: MeshCache | None = None) -> tuple[dict[str
     robot has no legs, or a leg cannot reach such a pose within its limits."""
     q = complete(robot, {})
     legs = find_legs(robot, q, meshes)
-    if not legs:
+    # A biped balances its centre of mass over two feet, which this heuristic does not model:
+    # bent knees tipped every iCub over in Newton, where the straight zero pose stands. Bipeds
+    # keep their named pose (talos' half_sitting) or zeros, with the warning.
+    if len(legs) < 3:
         return None
-    reach = REACH_QUADRUPED if len(legs) >= 3 else REACH_BIPED
+    reach = REACH_QUADRUPED
     joints = robot.joint_map()
     for leg in legs:
         solved = _solve_leg(robot, leg, q, reach, joints)
