@@ -30,6 +30,11 @@ ADVICE: dict[str, Advice] = {
     ),
     "bad-inertia": _INERTIA,
     "bad-mass": _INERTIA,
+    "tiny-inertia": Advice(
+        "Newton (Isaac Lab 3's kit-less backend) raises the moment, adding about 1e-6 kg·m² to the body; "
+        "MuJoCo and PhysX take it as given",
+        "--invalid-inertia repair (raises it to the floor)",
+    ),
     "massless-link": Advice(
         "MuJoCo refuses a moving body without mass; PhysX gives it a default mass; ROS tools do not mind",
         "--merge-fixed (when it hangs on a fixed joint) or --repair-inertia geometry",

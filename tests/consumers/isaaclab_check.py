@@ -14,10 +14,11 @@ import json
 import os
 import runpy
 import traceback
+import warnings
 from typing import Any
 
 
-def run(folder: str, steps: int) -> dict[str, object]:
+def run(folder: str, steps: int, module_spawn: bool = False) -> dict[str, object]:
     from isaaclab.sim import SimulationCfg
     from isaaclab.test.utils import launch_test_simulation
     from isaaclab_newton.physics import MJWarpSolverCfg, NewtonCfg
@@ -44,10 +45,11 @@ def run(folder: str, steps: int) -> dict[str, object]:
     if cfg is None:
         return {"status": "fail: the module did not build an ArticulationCfg", "checks": {}}
     floating = not data["fix_base"]
-    # Spawn high enough that a floating robot falls onto the box rather than into it.
-    pos = (0.0, 0.0, 0.6 if floating else 0.0)
     cfg = replace(cfg, prim_path="/World/Env_[^/]*/Robot")
-    cfg.init_state.pos = pos
+    if not module_spawn:
+        # Spawn high enough that a floating robot falls onto the box rather than into it (modules
+        # before the default pose spawned at the origin).
+        cfg.init_state.pos = (0.0, 0.0, 0.6 if floating else 0.0)
     checks: dict[str, object] = {}
     with build_simulation_context(sim_cfg=sim_cfg, device="cpu", add_ground_plane=False) as sim:
         # The ground is a static box declared like any asset, so the clone plan puts it in the model.
@@ -63,16 +65,27 @@ def run(folder: str, steps: int) -> dict[str, object]:
         robot = Articulation(cfg)
         replicate(sim.get_clone_plan())
         sim.reset()
+        # A robot with no controller holds its default pose: Isaac Lab's position targets start
+        # at 0 whatever init_state says (an environment's actions set them), so the check sets
+        # them to the default joint positions, as a "hold" action does.
+        default = robot.data.default_joint_pos
+        default = default.torch if hasattr(default, "torch") else default
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DeprecationWarning)
+            robot.set_joint_position_target_index(target=default)
         start_quat = robot.data.root_quat_w.clone() if hasattr(robot.data, "root_quat_w") else None
+        lowest_up = 1.0
         for _ in range(steps):
             robot.write_data_to_sim()
             sim.step()
             robot.update(sim.get_physics_dt())
-        quat = _torch(robot.data.root_quat_w)[0]  # (x, y, z, w) in 3.0
-        # The body's up axis in the world: z of R(q) e_z; upright = close to +1.
-        x, y = float(quat[0]), float(quat[1])
-        up = 1.0 - 2.0 * (x * x + y * y)
+            quat = _torch(robot.data.root_quat_w)[0]  # (x, y, z, w) in 3.0
+            # The body's up axis in the world: z of R(q) e_z; upright = close to +1.
+            x, y = float(quat[0]), float(quat[1])
+            up = 1.0 - 2.0 * (x * x + y * y)
+            lowest_up = min(lowest_up, up)
         checks["root_up_z"] = up
+        checks["lowest_up_z"] = lowest_up
         checks["root_pos"] = [float(v) for v in _torch(robot.data.root_pos_w)[0]]
         checks["finite"] = bool(torch.isfinite(_torch(robot.data.joint_pos)).all())
         names = list(robot.joint_names)
@@ -96,8 +109,8 @@ def run(folder: str, steps: int) -> dict[str, object]:
     problems = []
     if not checks["finite"]:
         problems.append("joint state not finite")
-    if up < 0.9:
-        problems.append(f"root not upright (up·z = {up:.3f})")
+    if lowest_up < 0.9:
+        problems.append(f"root not upright (lowest up·z = {lowest_up:.3f}, at the end {up:.3f})")
     if floating and checks["root_pos"][2] < 0.0:
         problems.append(f"fell through the ground (root z = {checks['root_pos'][2]:.3f} m)")
     bad = {k: v for k, v in worst.items() if v > 1e-4}
@@ -120,10 +133,13 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--folder", required=True, help="robodesc's --isaac-sim folder")
     ap.add_argument("--steps", type=int, default=100)
+    ap.add_argument(
+        "--module-spawn", action="store_true", help="spawn at the module's init_state.pos (the default spawn)"
+    )
     ap.add_argument("--out", required=True)
     args = ap.parse_args(argv)
     try:
-        result = run(os.path.abspath(args.folder), args.steps)
+        result = run(os.path.abspath(args.folder), args.steps, args.module_spawn)
     except Exception as exc:  # the failure is the result
         result = {
             "status": f"fail: {type(exc).__name__}: {str(exc)[:300]}",

@@ -339,6 +339,10 @@ class Robot:
     # Whether the input fixed the root link to the world (True), declared it free (False), or did
     # not say (None). URDF cannot say this either; importers have a "fix base" option.
     fixed_base: bool | None = None
+    # Joint positions (rad or m) the input names as the robot's start: ros2_control's
+    # ``initial_value``. Kept here when strip_tags drops the ``<ros2_control>`` block, so that the
+    # Isaac target can still start the robot where its authors said (emit/common/named_pose.py).
+    initial_positions: dict[str, float] = field(default_factory=dict)
 
     # ---- look-ups -------------------------------------------------------------------------
     def link(self, name: str) -> Link:

@@ -119,3 +119,29 @@ def inertia_problem(inertia: Inertia, *, rel_tol: float = 1e-6) -> str | None:
     if c > (a + b) * (1 + rel_tol) + rel_tol * scale:
         return f"principal moments break the triangle inequality ({c:.6g} > {a:.6g} + {b:.6g})"
     return None
+
+
+# Newton 1.8 (newton/_src/geometry/inertia.py, verify_and_correct_inertia) "corrects" a tensor whose
+# smallest principal moment is below max(1e-6 x the largest, 1e-10 kg·m²), by adding that threshold
+# plus 1e-6 kg·m² to the diagonal: for a light body (go1's 1e-6 kg "base") a change of orders of
+# magnitude, made silently in the USD it loads ("Inertia validation corrected 1 bodies").
+ENGINE_REL_FLOOR = 1e-6
+ENGINE_ABS_FLOOR = 1e-10  # kg·m²
+
+
+def engine_floor(inertia: Inertia) -> float:
+    """The smallest principal moment Newton leaves alone for this tensor (kg·m²)."""
+    c = max(principal_moments(tensor_rows(inertia)))
+    return max(ENGINE_REL_FLOOR * c, ENGINE_ABS_FLOOR)
+
+
+def below_engine_floor(inertia: Inertia) -> str | None:
+    """Why Newton would change a physical tensor, or ``None``."""
+    a, _, c = principal_moments(tensor_rows(inertia))
+    floor = max(ENGINE_REL_FLOOR * c, ENGINE_ABS_FLOOR)
+    if a < floor:
+        return (
+            f"smallest principal moment {a:.3g} kg·m² is below {floor:.3g} (Newton raises it, adding "
+            "about 1e-6 kg·m² to every moment)"
+        )
+    return None

@@ -17,7 +17,7 @@ from collections.abc import Mapping
 from robodesc.ir.diagnostics import Findings, Severity, SourceLoc, VerificationError
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Inertial, Mesh, Pose, Sphere
 from robodesc.ir.model import Joint, JointType, Robot
-from robodesc.ir.principal import inertia_problem
+from robodesc.ir.principal import below_engine_floor, inertia_problem
 
 STAGE = "verify"
 
@@ -307,6 +307,8 @@ def _inertial(inertial: Inertial, label: str, src: SourceLoc | None, out: Findin
         problem = inertia_problem(inertial.inertia)
         if problem is not None:
             _err(out, "bad-inertia", problem, label, inertial.inertia.src or loc)
+        elif (tiny := below_engine_floor(inertial.inertia)) is not None:
+            _warn(out, "tiny-inertia", tiny, label, inertial.inertia.src or loc)
 
 
 def _geometry(geom: Geometry, label: str, src: SourceLoc | None, out: Findings) -> None:

@@ -20,7 +20,7 @@ import math
 
 from robodesc.ir.geometry import Inertia, Inertial, Pose
 from robodesc.ir.model import Link, Robot
-from robodesc.ir.principal import inertia_problem
+from robodesc.ir.principal import below_engine_floor, engine_floor, inertia_problem, principal_moments, tensor_rows
 from robodesc.passes.context import PassContext
 from robodesc.passes.options import RepairPolicy
 from robodesc.passes.shape_inertia import inertial_from_props, link_props
@@ -58,7 +58,31 @@ def repair_inertia(robot: Robot, ctx: PassContext) -> Robot:
             _quad_sdk(link, ctx)
         else:
             _geometry(link, ctx)
+            _lift(link, ctx)
     return robot
+
+
+def _lift(link: Link, ctx: PassContext) -> None:
+    """Raise a physical tensor whose smallest moment is below the floor Newton enforces
+    (:func:`robodesc.ir.principal.below_engine_floor`): adding ``delta`` to the diagonal keeps the
+    axes and the triangle inequality, and ``delta`` is the least that clears the floor (with a
+    float32 margin), so the body changes far less than Newton's own +1e-6 kg·m² would change it."""
+    inertial = link.inertial
+    if inertial is None or inertial.inertia is None or _tensor_problem(inertial) is not None:
+        return
+    problem = below_engine_floor(inertial.inertia)
+    if problem is None:
+        return
+    i = inertial.inertia
+    smallest = min(principal_moments(tensor_rows(i)))
+    delta = 2.0 * engine_floor(i) - smallest
+    i.ixx, i.iyy, i.izz = i.ixx + delta, i.iyy + delta, i.izz + delta
+    ctx.warn(
+        "inertia-repaired",
+        f"{problem}: {delta:.3g} kg·m² added to each principal moment",
+        element=f"link {link.name!r}",
+        loc=i.src or inertial.src or link.src,
+    )
 
 
 def _missing(link: Link, policy: RepairPolicy, ctx: PassContext) -> None:

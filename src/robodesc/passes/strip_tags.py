@@ -8,6 +8,8 @@ stripped, with the count.
 
 from __future__ import annotations
 
+import math
+
 from robodesc.ir.geometry import Extension
 from robodesc.ir.model import Robot
 from robodesc.passes.context import PassContext
@@ -34,6 +36,24 @@ def _all_extension_lists(robot: Robot) -> list[list[Extension]]:
     return out
 
 
+def _initial_values(robot: Robot) -> dict[str, float]:
+    """ros2_control's ``initial_value`` of each joint's position state interface."""
+    out: dict[str, float] = {}
+    for control in robot.ros2_controls:
+        for joint in control.joints:
+            for state in joint.state_interfaces:
+                text = state.params.get("initial_value")
+                if state.name != "position" or text is None:
+                    continue
+                try:
+                    value = float(text)
+                except ValueError:
+                    continue
+                if math.isfinite(value):
+                    out[joint.name] = value
+    return out
+
+
 def strip_tags(robot: Robot, ctx: PassContext) -> Robot:
     ctx.stage = NAME
     kinds = ctx.options.strip
@@ -46,6 +66,8 @@ def strip_tags(robot: Robot, ctx: PassContext) -> Robot:
         counts["transmission"] += _drop(robot.extensions, "transmission")
     if "ros2_control" in kinds:
         counts["ros2_control"] = len(robot.ros2_controls)
+        # The start pose is the robot's data, not ROS plumbing: it outlives the block.
+        robot.initial_positions.update(_initial_values(robot))
         robot.ros2_controls = []
     if "dont_collapse" in kinds:
         for joint in robot.joints:

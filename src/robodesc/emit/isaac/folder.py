@@ -15,6 +15,7 @@ One :class:`IsaacSettings` feeds all of them, so they cannot disagree.
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
 
 from robodesc._files import staged_folder, write_files
 from robodesc._version import __version__
@@ -29,8 +30,9 @@ from robodesc.ir.diagnostics import Finding, Findings, SourceLoc
 from robodesc.ir.model import Robot
 
 
-def usd_options(settings: IsaacSettings) -> UsdOptions:
+def usd_options(settings: IsaacSettings, initial: Mapping[str, float] | None = None) -> UsdOptions:
     return UsdOptions(
+        initial_positions=initial,
         fix_base=settings.fix_base,
         drive_type=settings.drive_type,
         target_type=settings.target_type,
@@ -64,11 +66,13 @@ def write_isaac_folder(
     settings: IsaacSettings,
     findings: Findings,
     path_mode: PathMode,
+    initial: Mapping[str, float] | None = None,
 ) -> dict[str, str]:
-    """Write the folder atomically (staged beside ``out_dir``, then moved in place)."""
+    """Write the folder atomically (staged beside ``out_dir``, then moved in place). ``initial``: the
+    joints' initial positions (the default pose), which the USD's joint state starts from."""
     names = isaac_file_names(robot)
     with staged_folder(out_dir) as staging:
-        findings.extend(emit_usd(robot, os.path.join(staging, names["usd"]), usd_options(settings)))
+        findings.extend(emit_usd(robot, os.path.join(staging, names["usd"]), usd_options(settings, initial)))
         # Relative mesh paths are computed against the final folder (a sibling of the staging one).
         # The URDF loads in urdfdom too: capsules and spherical joints lowered (emit/urdf/ros.py).
         urdf = emit_urdf(

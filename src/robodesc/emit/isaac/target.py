@@ -6,6 +6,7 @@ import os
 
 from robodesc._files import write_atomic
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
+from robodesc.emit.isaac.defaults import apply_defaults
 from robodesc.emit.isaac.folder import findings_markdown, write_isaac_folder
 from robodesc.emit.isaac.settings import IsaacSettings
 from robodesc.emit.urdf.check import check_urdf
@@ -20,7 +21,9 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     # Where the composition put the robot.
     request.default("init_pos", robot.placement.xyz if robot.placement is not None else None)
     settings: IsaacSettings = request.options
-    files = write_isaac_folder(robot, out, settings, findings, request.mesh_paths)
+    # The pose, spawn height and gains the user left out (emit/isaac/defaults.py).
+    initial = apply_defaults(robot, settings, request.given, findings)
+    files = write_isaac_folder(robot, out, settings, findings, request.mesh_paths, initial)
     return Emitted(files=files, extra={"settings": settings})
 
 

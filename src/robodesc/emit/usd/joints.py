@@ -84,10 +84,11 @@ def _one_dof(ctx: UsdContext, joint: Joint, prim: Prim, frame: AxisFrame) -> Non
         prim.attr("physics:upperLimit", "float", upper * unit)
     elif joint.type is not JointType.CONTINUOUS:
         ctx.warn("usd-no-limit", "joint has no lower/upper limit: written without limits", label, joint.src)
-    # Start at 0 when the range allows it, else at the nearer bound.
-    start = 0.0
+    # Start at the given position (0 by default) when the range allows it, else at the nearer bound.
+    initial = ctx.options.initial_positions
+    start = initial.get(joint.name, 0.0) if initial else 0.0
     if lower is not None and upper is not None:
-        start = min(max(0.0, lower), upper)
+        start = min(max(start, lower), upper)
     kind = "angular" if angular else "linear"
     prim.apply(f"PhysicsJointStateAPI:{kind}")
     prim.attr(f"state:{kind}:physics:position", "float", start * unit)

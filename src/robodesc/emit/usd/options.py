@@ -60,6 +60,9 @@ class UsdOptions:
     # How PhysX combines two colliders' friction (its default: average); None leaves it to PhysX.
     friction_combine: str | None = field(default=None, metadata=common.FRICTION_COMBINE)
     default_friction: float = field(default=0.5, metadata=common.DEFAULT_FRICTION)
+    # Initial joint positions (rad or m) by joint name: the joint state and the position target.
+    # None or a missing joint: 0, clamped into the limits. The Isaac folder gives its default pose.
+    initial_positions: Mapping[str, float] | None = None
 
     def check(self) -> None:
         _one_of("drive_type", self.drive_type, DRIVE_TYPES)

@@ -1,0 +1,118 @@
+"""Default drive gains derived per joint from the inertia it moves and its effort limit.
+
+One constant (the old 100 N·m/rad, 1 N·m·s/rad) is too stiff for a finger and too weak and
+underdamped for a quadruped's knee carrying a quarter of the body. Each joint instead gets a PD
+loop with natural frequency ``f`` and damping ratio ``zeta`` on the inertia it carries:
+
+    I_eff = armature + sum over the links it moves of (max principal moment + m·d^2)
+          + (M / legs)·r^2           for a leg joint of a floating robot: the body's share, which
+                                     the leg lifts, r the foot's distance from the joint
+
+(d: the link's centre of mass from the joint, at the default pose; the largest moment and the
+distance rather than the axis make it the most the joint can meet as the joints beyond it move)
+    kp    = I_eff·(2 pi f)^2, then at most effort / E_SAT (an error of E_SAT rad saturates it)
+    kd    = 2·zeta·sqrt(kp·I_eff)
+
+with ``f`` = 4 Hz, ``zeta`` = 1 (critically damped: the robot settles without rocking) and
+``E_SAT`` = 0.2 rad. Prismatic joints use the moved mass and N/m. docs/isaac.md shows the numbers for
+Spirit and Go2.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from robodesc.emit.common.stance import Stance
+from robodesc.ir.model import Joint, Link, Robot
+from robodesc.ir.principal import principal_moments, tensor_rows
+from robodesc.ir.rigid import Frame, apply, link_frames, pose_frame
+
+NATURAL_FREQUENCY = 4.0  # Hz
+DAMPING_RATIO = 1.0
+E_SAT = 0.2  # rad (or m): the error at which the default stiffness reaches the effort limit
+
+
+@dataclass(slots=True, frozen=True)
+class JointGains:
+    stiffness: float  # SI
+    damping: float
+    inertia: float  # I_eff, kg·m² (kg for a prismatic joint)
+    capped: bool  # the effort limit bounded the stiffness
+
+
+def derived_gains(
+    robot: Robot, stance: Stance, floating: bool, stiffness: Mapping[str, float] | None = None
+) -> dict[str, JointGains]:
+    """Gains for every actuated 1-DOF joint. ``stiffness`` (by joint name) are the user's: kd is then
+    derived from them."""
+    frames = link_frames(robot, stance.positions)
+    children = robot.child_joints()
+    links = robot.link_map()
+    total = robot.total_mass()
+    leg_of = {name: leg for leg in (stance.legs if floating else []) for name in leg.joints}
+    omega = 2.0 * math.pi * NATURAL_FREQUENCY
+    out: dict[str, JointGains] = {}
+    for joint in robot.actuated_joints():
+        if joint.type.dof != 1:
+            continue
+        jf = frames[joint.parent] @ pose_frame(joint.origin)
+        inertia = _moved_inertia(joint, jf.translation, frames, children, links)
+        leg = leg_of.get(joint.name)
+        if leg is not None and stance.legs:
+            foot = frames[leg.foot]
+            point = _add(foot.translation, apply(foot.rotation, leg.foot_point))
+            share = total / len(stance.legs)
+            inertia += share * (_distance_sq(point, jf.translation) if joint.type.is_angular else 1.0)
+        inertia += joint.armature or 0.0
+        if stiffness is not None and joint.name in stiffness:
+            kp, capped = stiffness[joint.name], False
+        else:
+            kp = inertia * omega * omega
+            effort = joint.limit.effort if joint.limit is not None else None
+            capped = effort is not None and effort > 0 and kp > effort / E_SAT
+            if capped:
+                kp = float(effort) / E_SAT  # type: ignore[arg-type]
+        kd = 2.0 * DAMPING_RATIO * math.sqrt(max(kp, 0.0) * inertia)
+        out[joint.name] = JointGains(kp, kd, inertia, capped)
+    return out
+
+
+def _moved_inertia(
+    joint: Joint,
+    origin: tuple[float, float, float],
+    frames: Mapping[str, Frame],
+    children: Mapping[str, list[Joint]],
+    links: Mapping[str, Link],
+) -> float:
+    """The largest moment of inertia the joint can meet as the joints beyond it move: each link's
+    largest principal moment plus m·d², d its centre of mass's distance from the joint (not from the
+    axis), so an arm's yaw joint is not left soft because the arm happens to point up at the start.
+    Mass, for a prismatic joint."""
+    total = 0.0
+    stack = [joint.child]
+    while stack:
+        name = stack.pop()
+        stack.extend(j.child for j in children.get(name, []))
+        link = links.get(name)
+        if link is None or link.inertial is None or not link.inertial.mass:
+            continue
+        mass = link.inertial.mass
+        if not joint.type.is_angular:
+            total += mass
+            continue
+        com = (frames[name] @ pose_frame(link.inertial.origin)).translation
+        total += mass * _distance_sq(com, origin)
+        if link.inertial.inertia is not None:
+            total += max(principal_moments(tensor_rows(link.inertial.inertia)))
+    return total
+
+
+def _distance_sq(point: tuple[float, float, float], origin: tuple[float, float, float]) -> float:
+    d = (point[0] - origin[0], point[1] - origin[1], point[2] - origin[2])
+    return d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+
+
+def _add(a: tuple[float, float, float], b: tuple[float, float, float]) -> tuple[float, float, float]:
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
