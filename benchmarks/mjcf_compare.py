@@ -94,7 +94,7 @@ def robodesc_env() -> dict[str, str]:
 
 def robodesc_has_mjcf() -> bool:
     sys.path.insert(0, SRC)
-    from robodesc.pipeline import TARGETS
+    from robodesc.targets import TARGETS
 
     return "mjcf" in TARGETS
 
