@@ -67,8 +67,8 @@ def add_target_flags(parser: argparse.ArgumentParser) -> None:
                 kwargs["choices"] = list(choices)
             if decl.type is not None:
                 kwargs["type"] = decl.type
-            if decl.metavar:
-                kwargs["metavar"] = decl.metavar
+            if decl.metavar or not choices:
+                kwargs["metavar"] = decl.metavar or field.name.upper()
         group.add_argument(key, **kwargs)
 
 
