@@ -429,7 +429,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--out", default=None, help="default: docs/corpus-report.md (all) or docs/corpus-report-small.md"
     )
-    parser.add_argument("--targets", default="urdf,sdf,usd")
+    parser.add_argument("--targets", default="urdf,sdf,usd,mjcf")
     parser.add_argument("--check", action="store_true", help="do not write; exit 1 if the file would change")
     parser.add_argument("--jobs", type=int, help="parallel workers (default: the number of cores)")
     parser.add_argument("--timeout", type=float, default=900.0, help="seconds one robot and target may take")

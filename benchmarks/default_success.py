@@ -31,7 +31,9 @@ TARGETS = {
     "urdf": ["-t", "urdf", "-o", "{out}/robot.urdf"],
     "sdf": ["-t", "sdf", "-o", "{out}/robot.sdf"],
     "usd": ["-t", "usd", "-o", "{out}/robot.usda"],
-    "isaac": ["--isaac-sim", "-o", "{out}/isaac"],
+    # --no-preview: the folder's picture is not part of the conversion this measures (docs/view.md).
+    "isaac": ["--isaac-sim", "-o", "{out}/isaac", "--no-preview"],
+    "mjcf": ["-t", "mjcf", "-o", "{out}/robot.xml"],
 }
 # Procedurally generated objects (1000 random meshes in pybullet_data): not robots anyone wrote.
 SKIP_DIRS = ("random_urdfs",)
