@@ -7,8 +7,7 @@ from dataclasses import replace
 
 import mujoco
 
-from robodesc.emit.urdf.ros import ros_equivalent
-from robodesc.ir.model import JointType, Robot
+from robodesc.ir.model import Robot
 from robodesc.validation.compare import compare_fk, compare_inertials, compare_joints, compare_structure
 from robodesc.validation.mujoco_load import load_urdf_in_mujoco
 from robodesc.validation.options import ValidateOptions
@@ -39,20 +38,6 @@ def without_dangling_mimics(robot: Robot, report: ValidationReport) -> Robot:
     return replace(robot, joints=joints)
 
 
-def as_written_for_ros(robot: Robot, urdf_text: str, report: ValidationReport) -> Robot:
-    """The robot the URDF stands for when it was written for ROS: a spherical joint of the IR that
-    the text writes as three revolute joints (``emit/urdf/ros.py``) is compared as those three."""
-    if not any(j.type is JointType.SPHERICAL for j in robot.joints) or 'type="spherical"' in urdf_text:
-        return robot
-    report.add(
-        "joint-type",
-        Status.SKIP,
-        "spherical joints",
-        "written for ROS as three revolute joints each; compared as such (emit/urdf/ros.py)",
-    )
-    return ros_equivalent(robot)
-
-
 def validate_urdf_text(
     robot: Robot, urdf_text: str, base_dir: str | None = None, options: ValidateOptions | None = None
 ) -> ValidationReport:
@@ -64,7 +49,6 @@ def validate_urdf_text(
     opts = options or ValidateOptions()
     report = ValidationReport(robot=robot.name, target="urdf", consumer="mujoco")
     robot = without_dangling_mimics(robot, report)
-    robot = as_written_for_ros(robot, urdf_text, report)
     report.info["mujoco"] = mujoco.__version__
     started = time.perf_counter()
     loaded = load_urdf_in_mujoco(robot, urdf_text, base_dir, opts, report)
