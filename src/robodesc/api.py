@@ -113,7 +113,7 @@ def compile_to_urdf(
     Pass options (``preset``, ``rename``, ``armature``, ``strip``, ``repair_inertia``, ``merge_fixed``,
     ``sanitize_names``, ``unique_materials``, ``copy_meshes`` ...) are accepted by every compile
     function; see docs/passes.md."""
-    return _compile("urdf", source, out, progress, options)
+    return compile_to(source, "urdf", out, progress=progress, **options)
 
 
 def compile_to_sdf(
