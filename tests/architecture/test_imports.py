@@ -277,3 +277,18 @@ def _named_targets(module: str) -> list[str]:
 def test_no_driver_module_names_a_target(module: str) -> None:
     named = _named_targets(module)
     assert not named, f"{module} names targets ({', '.join(named)}); a target's name belongs in robodesc.targets only"
+
+
+def test_targets_use_each_other_through_their_public_names() -> None:
+    """A target builds on another target through that package's ``__init__`` (ROS 2 writes SDF's
+    world through ``robodesc.emit.sdf``), never through its internal modules."""
+    wrong = []
+    for module, targets in sorted(GRAPH.items()):
+        parts = module.split(".")
+        if len(parts) < 3 or parts[1] != "emit" or parts[2] == "common":
+            continue
+        for target in targets:
+            tparts = target.split(".")
+            if len(tparts) > 3 and tparts[1] == "emit" and tparts[2] not in (parts[2], "common"):
+                wrong.append(f"{module} -> {target}")
+    assert not wrong, "import another target's public names (robodesc.emit.<target>): " + "; ".join(wrong)

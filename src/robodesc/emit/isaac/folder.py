@@ -22,10 +22,8 @@ from robodesc._version import __version__
 from robodesc.emit.common.paths import PathMode
 from robodesc.emit.isaac.lab import isaac_lab_module
 from robodesc.emit.isaac.settings import IsaacSettings, importer_settings_json
-from robodesc.emit.urdf.ros import ros_equivalent
-from robodesc.emit.urdf.writer import UrdfOptions, emit_urdf
-from robodesc.emit.usd.emitter import emit_usd
-from robodesc.emit.usd.options import UsdOptions
+from robodesc.emit.urdf import UrdfOptions, emit_urdf, ros_equivalent
+from robodesc.emit.usd import UsdOptions, emit_usd
 from robodesc.ir.diagnostics import Finding, Findings, SourceLoc
 from robodesc.ir.model import Robot
 

@@ -16,10 +16,10 @@ import math
 import re
 from dataclasses import asdict, dataclass, field
 
+import robodesc.emit.usd as usd
 from robodesc.emit.common import flags as common
 from robodesc.emit.common.approximation import Approximation, global_mode
 from robodesc.emit.common.flags import flag
-from robodesc.emit.usd import options as usd
 from robodesc.ir.model import Joint, Robot
 from robodesc.ir.rules import lookup
 

@@ -9,7 +9,7 @@ from robodesc.emit.common.target import EmitRequest, Emitted, Target
 from robodesc.emit.isaac.defaults import apply_defaults
 from robodesc.emit.isaac.folder import findings_markdown, write_isaac_folder
 from robodesc.emit.isaac.settings import IsaacSettings
-from robodesc.emit.urdf.check import check_urdf
+from robodesc.emit.urdf import check_urdf
 from robodesc.ir.diagnostics import Finding, Findings
 from robodesc.ir.model import Robot
 from robodesc.validation.report import ValidationReport

@@ -11,7 +11,7 @@ from robodesc.emit.common import approximation
 from robodesc.emit.common import flags as common
 from robodesc.emit.common.approximation import Approximation
 from robodesc.emit.common.flags import flag
-from robodesc.emit.usd.options import COLLISION_APPROXIMATION
+from robodesc.emit.usd import COLLISION_APPROXIMATION
 from robodesc.ir.diagnostics import ConfigError
 
 DRIVE_TYPES = ("force", "acceleration")

@@ -8,7 +8,6 @@ import os
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
 from robodesc.emit.mjcf.actuators import FROM_TARGET
 from robodesc.emit.mjcf.check import check_mjcf
-from robodesc.emit.mjcf.emitter import emit_mjcf
 from robodesc.emit.mjcf.options import MjcfOptions
 from robodesc.emit.mjcf.scene import scene_name
 from robodesc.ir.diagnostics import Findings
@@ -17,6 +16,8 @@ from robodesc.ir.rules import lookup
 
 
 def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
+    from robodesc.emit.mjcf.emitter import emit_mjcf  # numpy and the writer: only when writing
+
     out = request.output("MJCF is written to a file: give one with -o OUT/robot.xml")
     request.default("fix_base", robot.fixed_base)
     request.default("init_pos", robot.placement.xyz if robot.placement is not None else None)

@@ -13,9 +13,8 @@ import copy
 
 from lxml import etree
 
-from robodesc.emit.sdf.options import SdfFlavour
-from robodesc.emit.sdf.sensors import sensor_element
-from robodesc.emit.urdf.writer import UrdfOptions, emit_urdf
+from robodesc.emit.sdf import SdfFlavour, sensor_element
+from robodesc.emit.urdf import UrdfOptions, emit_urdf
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.geometry import Extension
 from robodesc.ir.model import ControlInterface, ControlJoint, Robot, Ros2Control, SensorType

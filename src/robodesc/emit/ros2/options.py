@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 from robodesc.emit.common.flags import flag
 from robodesc.emit.common.paths import PathMode
-from robodesc.emit.urdf.writer import DEFAULT_EFFORT, DEFAULT_VELOCITY
+from robodesc.emit.urdf import DEFAULT_EFFORT, DEFAULT_VELOCITY
 
 
 class CommandInterface(enum.Enum):

@@ -24,11 +24,8 @@ from lxml import etree
 from robodesc.emit.common.numbers import fmt
 from robodesc.emit.ros2.control import CONTROLLERS_PLACEHOLDER, emit_ros2_urdf
 from robodesc.emit.ros2.options import CommandInterface, ControllerKind, Ros2Options
-from robodesc.emit.sdf.options import SdfOptions
-from robodesc.emit.sdf.topics import CLOCK, Topic, sensor_topics
-from robodesc.emit.sdf.world import world_element
-from robodesc.emit.urdf.ros import ros_equivalent
-from robodesc.emit.urdf.writer import UrdfOptions
+from robodesc.emit.sdf import CLOCK, SdfOptions, Topic, sensor_topics, world_element
+from robodesc.emit.urdf import UrdfOptions, ros_equivalent
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
 

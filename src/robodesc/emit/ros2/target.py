@@ -7,7 +7,7 @@ import os
 from robodesc._files import write_folder
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
 from robodesc.emit.ros2.options import Ros2Options
-from robodesc.emit.urdf.check import check_urdf
+from robodesc.emit.urdf import check_urdf
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
 

@@ -13,14 +13,41 @@ from robodesc.emit.sdf.target import TARGET
 
 if TYPE_CHECKING:
     from robodesc.emit.sdf.emitter import SdfResult, build_sdf, emit_sdf
+    from robodesc.emit.sdf.sensors import sensor_element
+    from robodesc.emit.sdf.topics import CLOCK, Topic, sensor_topics
+    from robodesc.emit.sdf.world import world_element
 
-_LAZY = {"SdfResult", "build_sdf", "emit_sdf"}
+# Public names other targets use (ROS 2 writes SDF's world and sensors), by the module that has them.
+_LAZY = {
+    "SdfResult": "emitter",
+    "build_sdf": "emitter",
+    "emit_sdf": "emitter",
+    "sensor_element": "sensors",
+    "CLOCK": "topics",
+    "Topic": "topics",
+    "sensor_topics": "topics",
+    "world_element": "world",
+}
 
 
 def __getattr__(name: str) -> Any:
     if name in _LAZY:
-        return getattr(importlib.import_module("robodesc.emit.sdf.emitter"), name)
+        return getattr(importlib.import_module(f"robodesc.emit.sdf.{_LAZY[name]}"), name)
     raise AttributeError(f"module 'robodesc.emit.sdf' has no attribute {name!r}")
 
 
-__all__ = ["TARGET", "PoseFrames", "SdfFlavour", "SdfOptions", "SdfProp", "SdfResult", "build_sdf", "emit_sdf"]
+__all__ = [
+    "CLOCK",
+    "TARGET",
+    "PoseFrames",
+    "SdfFlavour",
+    "SdfOptions",
+    "SdfProp",
+    "SdfResult",
+    "Topic",
+    "build_sdf",
+    "emit_sdf",
+    "sensor_element",
+    "sensor_topics",
+    "world_element",
+]

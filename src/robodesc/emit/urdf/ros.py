@@ -28,12 +28,10 @@ from __future__ import annotations
 import copy
 from dataclasses import replace
 
-import numpy as np
-
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.geometry import Capsule, Cylinder, Inertia, Inertial, Pose, Sphere
 from robodesc.ir.model import Collision, Joint, JointType, Link, Robot, Visual
-from robodesc.ir.transforms import rpy_to_matrix
+from robodesc.ir.rigid import rpy_rotation
 
 STAGE = "emit:urdf"
 # The mass (kg) and principal moments (kg·m²) of the two links a spherical joint is split through.
@@ -96,7 +94,8 @@ def _unique(name: str, taken: set[str]) -> str:
 
 def _offset(pose: Pose | None, dz: float) -> Pose:
     base = pose or Pose()
-    shift = rpy_to_matrix(base.rpy) @ np.array([0.0, 0.0, dz])
+    # dz along the pose's own z axis: the rotation's third column (pure Python: no numpy at emit time).
+    shift = [row[2] * dz for row in rpy_rotation(base.rpy)]
     xyz = tuple(float(a + b) for a, b in zip(base.xyz, shift, strict=True))
     return Pose(xyz=xyz, rpy=base.rpy)  # type: ignore[arg-type]
 

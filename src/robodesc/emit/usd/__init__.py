@@ -4,7 +4,28 @@ Layers and prims are built with :mod:`robodesc.usdfile` (no usd-core at write ti
 """
 
 from robodesc.emit.usd.emitter import emit_usd
-from robodesc.emit.usd.options import UsdOptions
+from robodesc.emit.usd.options import (
+    COLLISION_APPROXIMATION,
+    CONTACT_OFFSET,
+    LAYERED,
+    PHYSICS_SCENE,
+    POSITION_ITERATIONS,
+    REST_OFFSET,
+    VELOCITY_ITERATIONS,
+    UsdOptions,
+)
 from robodesc.emit.usd.target import TARGET
 
-__all__ = ["TARGET", "UsdOptions", "emit_usd"]
+# The flags of the options the Isaac folder shares with USD (emit/isaac/settings.py).
+__all__ = [
+    "COLLISION_APPROXIMATION",
+    "CONTACT_OFFSET",
+    "LAYERED",
+    "PHYSICS_SCENE",
+    "POSITION_ITERATIONS",
+    "REST_OFFSET",
+    "TARGET",
+    "VELOCITY_ITERATIONS",
+    "UsdOptions",
+    "emit_usd",
+]
