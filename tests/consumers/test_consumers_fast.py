@@ -73,7 +73,10 @@ def test_newton_reads_the_usd_as_it_reads_the_urdf(source: Path, floating: bool,
 def test_newton_reads_the_isaac_folder(tmp_path: Path) -> None:
     out = tmp_path / "isaac"
     source = EXAMPLES / "urdf" / "gripper_arm.urdf"
-    assert main(["compile", str(source), "--isaac-sim", "-o", str(out), "-q", "--no-validate"]) == 0
+    # Uniform gains: the checker gives Newton's URDF import one stiffness and damping (the folder's own
+    # default gains are derived per joint: tests/isaac/test_default_stance.py).
+    argv = ["compile", str(source), "--isaac-sim", "-o", str(out), "-q", "--no-validate", "--no-preview"]
+    assert main([*argv, "--stiffness", "100", "--damping", "1"]) == 0
     case = {"name": "isaac", "urdf": str(out / "gripper_arm.urdf"), "usd": str(out / "gripper_arm.usda")}
     result = _newton([case], tmp_path)["isaac"]
     assert result["status"] == "pass", [c for c in result["checks"] if not c["ok"]]  # type: ignore[union-attr]

@@ -12,7 +12,9 @@ MESHES = Path(__file__).resolve().parents[2] / "examples" / "urdf" / "meshes"
 
 
 def _robot(tmp_path: Path) -> Path:
-    mesh = next(MESHES.glob("*.stl"))
+    # Beside the robot: a mesh outside the input's folder and its packages is not read (meshes/roots.py).
+    mesh = tmp_path / "part.stl"
+    mesh.write_bytes(next(MESHES.glob("*.stl")).read_bytes())
     links = "".join(
         f'<link name="{name}"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/>'
         f'</inertial><collision><geometry><mesh filename="{mesh}"/></geometry></collision></link>'
