@@ -7,7 +7,6 @@ import os
 from robodesc._files import write_atomic
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
 from robodesc.emit.isaac.defaults import apply_defaults
-from robodesc.emit.isaac.folder import findings_markdown, write_isaac_folder
 from robodesc.emit.isaac.settings import IsaacSettings
 from robodesc.emit.urdf import check_urdf
 from robodesc.ir.diagnostics import Finding, Findings
@@ -16,6 +15,8 @@ from robodesc.validation.report import ValidationReport
 
 
 def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
+    from robodesc.emit.isaac.folder import write_isaac_folder  # the writers load when they write
+
     out = request.output("the Isaac Sim target writes a folder: give it with -o OUT_DIR")
     request.default("fix_base", robot.fixed_base)
     # Where the composition put the robot.
@@ -29,6 +30,8 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
 
 def finish(robot: Robot, out: str, findings: list[Finding], validation: ValidationReport | None) -> dict[str, str]:
     """The findings and validation reports, written once validation has run."""
+    from robodesc.emit.isaac.folder import findings_markdown
+
     written = {"findings": os.path.join(out, "findings.md")}
     write_atomic(written["findings"], findings_markdown(robot, findings))
     if validation is not None:

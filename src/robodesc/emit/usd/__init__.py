@@ -1,9 +1,14 @@
 """USD target (UsdPhysics for Isaac Sim and Newton). Entry point: :func:`emit_usd`.
 
-Layers and prims are built with :mod:`robodesc.usdfile` (no usd-core at write time).
+Layers and prims are built with :mod:`robodesc.usdfile` (no usd-core at write time). Light to
+import: the writer loads on first use of :func:`emit_usd`.
 """
 
-from robodesc.emit.usd.emitter import emit_usd
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
 from robodesc.emit.usd.options import (
     COLLISION_APPROXIMATION,
     CONTACT_OFFSET,
@@ -15,6 +20,16 @@ from robodesc.emit.usd.options import (
     UsdOptions,
 )
 from robodesc.emit.usd.target import TARGET
+
+if TYPE_CHECKING:
+    from robodesc.emit.usd.emitter import emit_usd
+
+
+def __getattr__(name: str) -> Any:
+    if name == "emit_usd":
+        return importlib.import_module("robodesc.emit.usd.emitter").emit_usd
+    raise AttributeError(f"module 'robodesc.emit.usd' has no attribute {name!r}")
+
 
 # The flags of the options the Isaac folder shares with USD (emit/isaac/settings.py).
 __all__ = [

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
 from robodesc.emit.usd.check import check_usd
-from robodesc.emit.usd.emitter import emit_usd
 from robodesc.emit.usd.layers import PAYLOAD_DIR
 from robodesc.emit.usd.options import UsdOptions
 from robodesc.ir.diagnostics import Findings
@@ -14,6 +13,8 @@ from robodesc.ir.model import Robot
 def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
     out = request.output("USD is written to a file: give one with -o robot.usda|.usdc|.usd")
     request.default("fix_base", robot.fixed_base)
+    from robodesc.emit.usd.emitter import emit_usd  # the writer loads when it writes
+
     findings.extend(emit_usd(robot, out, request.options))
     return Emitted(files={"usd": out})
 
