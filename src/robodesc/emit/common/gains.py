@@ -14,7 +14,10 @@ distance rather than the axis make it the most the joint can meet as the joints 
     kd    = 2·zeta·sqrt(kp·I_eff)
 
 with ``f`` = 4 Hz, ``zeta`` = 1 (critically damped: the robot settles without rocking) and
-``E_SAT`` = 0.2 rad. Prismatic joints use the moved mass and N/m. docs/isaac.md shows the numbers for
+``E_SAT`` = 0.2 rad. A revolute joint's kp is also at least ``g·sum(m·d) / HOLD_ERROR``: the most
+gravity torque the moved links can put on it, held within ``HOLD_ERROR`` = 0.05 rad (a finger's
+inertia is tiny next to the lever arm of a hand held out; without this floor fixed hands and small
+arms sagged ~0.2 rad in Newton). The effort cap still wins: a motor cannot give more. Prismatic joints use the moved mass and N/m. docs/isaac.md shows the numbers for
 Spirit and Go2.
 """
 
@@ -32,6 +35,8 @@ from robodesc.ir.rigid import Frame, apply, link_frames, pose_frame
 NATURAL_FREQUENCY = 4.0  # Hz
 DAMPING_RATIO = 1.0
 E_SAT = 0.2  # rad (or m): the error at which the default stiffness reaches the effort limit
+HOLD_ERROR = 0.05  # rad: the most a revolute joint may sag under gravity at its default stiffness
+GRAVITY = 9.81  # m/s²
 
 
 @dataclass(slots=True, frozen=True)
@@ -70,6 +75,9 @@ def derived_gains(
             kp, capped = stiffness[joint.name], False
         else:
             kp = inertia * omega * omega
+            if joint.type.is_angular:
+                lever = _moved_moment(joint, jf.translation, frames, children, links)
+                kp = max(kp, GRAVITY * lever / HOLD_ERROR)
             effort = joint.limit.effort if joint.limit is not None else None
             capped = effort is not None and effort > 0 and kp > effort / E_SAT
             if capped:
@@ -106,6 +114,28 @@ def _moved_inertia(
         total += mass * _distance_sq(com, origin)
         if link.inertial.inertia is not None:
             total += max(principal_moments(tensor_rows(link.inertial.inertia)))
+    return total
+
+
+def _moved_moment(
+    joint: Joint,
+    origin: tuple[float, float, float],
+    frames: Mapping[str, Frame],
+    children: Mapping[str, list[Joint]],
+    links: Mapping[str, Link],
+) -> float:
+    """sum(m·d) over the links the joint moves, d each centre of mass's distance from the joint: the
+    largest gravity torque (divided by g) they can put on it, whatever the joints beyond it do."""
+    total = 0.0
+    stack = [joint.child]
+    while stack:
+        name = stack.pop()
+        stack.extend(j.child for j in children.get(name, []))
+        link = links.get(name)
+        if link is None or link.inertial is None or not link.inertial.mass:
+            continue
+        com = (frames[name] @ pose_frame(link.inertial.origin)).translation
+        total += link.inertial.mass * math.sqrt(_distance_sq(com, origin))
     return total
 
 
