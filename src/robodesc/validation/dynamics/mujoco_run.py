@@ -152,7 +152,12 @@ def _drop(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
     # Equal friction on both sides: MuJoCo takes the larger, Drake a harmonic mean, Newton its own
     # rule; all of them give mu when the two are equal.
     s.worldbody.add_geom(
-        name="dyn_floor", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 1], contype=0, conaffinity=1, friction=[mu, 0.005, 0.0001]
+        name="dyn_floor",
+        type=mujoco.mjtGeom.mjGEOM_PLANE,
+        size=[0, 0, 1],
+        contype=0,
+        conaffinity=1,
+        friction=[mu, 0.005, 0.0001],
     )
     s.option.timestep = setup.timestep
     model = s.compile()

@@ -20,7 +20,15 @@ from robodesc.validation.report import Status
 SCENARIOS = ("hold-fixed", "drop", "slide")
 # File kind (a target's name, or the suffix of a file given directly) -> engine.
 READERS = {"urdf": "mujoco", "mjcf": "mujoco", "sdf": "drake", "usd": "newton"}
-_SUFFIXES = {".urdf": "urdf", ".xml": "mjcf", ".mjcf": "mjcf", ".sdf": "sdf", ".usd": "usd", ".usda": "usd", ".usdc": "usd"}
+_SUFFIXES = {
+    ".urdf": "urdf",
+    ".xml": "mjcf",
+    ".mjcf": "mjcf",
+    ".sdf": "sdf",
+    ".usd": "usd",
+    ".usda": "usd",
+    ".usdc": "usd",
+}
 
 
 def kind_of(path: str) -> str | None:

@@ -186,7 +186,7 @@ def _mesh_points(mesh: Mesh) -> NDArray[np.float64] | None:
         from robodesc.meshes.data import build_mesh
 
         data = build_mesh(mesh.path, mesh.scale)
-    except Exception:  # an unreadable mesh only makes the estimate coarser  # noqa: BLE001
+    except Exception:  # an unreadable mesh only makes the estimate coarser
         return None
     return np.frombuffer(data.points, dtype=np.float32).reshape(-1, 3).astype(np.float64)
 

@@ -69,7 +69,14 @@ def _hold(report: DynamicsReport, runs: list[Run], th: Thresholds) -> None:
         agree = diff <= th.hold_agree
         who = f"{a.engine}/{a.file} vs {b.engine}/{b.file}"
         if agree:
-            report.add("agree:hold-fixed", Status.PASS, who, f"final joints within {diff:.3g}", error=diff, tolerance=th.hold_agree)
+            report.add(
+                "agree:hold-fixed",
+                Status.PASS,
+                who,
+                f"final joints within {diff:.3g}",
+                error=diff,
+                tolerance=th.hold_agree,
+            )
             continue
         # One holds, the other does not: the same gains hold the pose elsewhere, so the failing
         # output's drives (units, gains, limits) are not the source's.
@@ -80,7 +87,14 @@ def _hold(report: DynamicsReport, runs: list[Run], th: Thresholds) -> None:
             if len(lost) == 1
             else "both drift; they settle apart (stiff drives and solvers differ)"
         )
-        report.add("agree:hold-fixed", status, who, f"final joints differ by {diff:.3g}: {why}", error=diff, tolerance=th.hold_agree)
+        report.add(
+            "agree:hold-fixed",
+            status,
+            who,
+            f"final joints differ by {diff:.3g}: {why}",
+            error=diff,
+            tolerance=th.hold_agree,
+        )
 
 
 def _drop(report: DynamicsReport, runs: list[Run], th: Thresholds) -> None:
