@@ -222,7 +222,7 @@ def check(source: Source, target: str = DEFAULT_TARGET, *, dynamics: Any = False
             from robodesc.check_dynamics import dynamics_options, run_for
 
             opts = dynamics_options(dynamics, options)
-            result.dynamics = run_for(source, result.robot, target, out, tmp, opts, options)
+            result.dynamics = run_for(source, result.robot, target, out, tmp, opts, options, compile_to)
         return result
 
 

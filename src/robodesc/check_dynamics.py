@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any
 
 from robodesc.ir.diagnostics import Findings, RobodescError
@@ -40,10 +40,16 @@ def dynamics_options(given: DynamicsOptions | bool | Mapping[str, Any], options:
 
 
 def run_for(
-    source: Any, robot: Robot, target: str, out: str, folder: str, opts: DynamicsOptions, options: Mapping[str, Any]
+    source: Any,
+    robot: Robot,
+    target: str,
+    out: str,
+    folder: str,
+    opts: DynamicsOptions,
+    options: Mapping[str, Any],
+    compile_to: Callable[..., Any],
 ) -> DynamicsReport:
-    from robodesc.api import compile_to
-
+    """``compile_to`` is the API's (passed in: the API imports this module, not the other way)."""
     engines = tuple(opts.engines) or tuple(dict.fromkeys((*DEFAULT_ENGINES, *_engine_of(target))))
     files: dict[str, str] = {}
     if target in READERS:

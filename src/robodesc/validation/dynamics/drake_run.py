@@ -11,6 +11,7 @@ from __future__ import annotations
 import logging
 import math
 import time
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -69,7 +70,7 @@ def _parse(plant: Any, path: str, options: Any) -> list[Any]:
     for name, root in dict(options.package_paths).items():
         if not parser.package_map().Contains(name):
             parser.package_map().Add(name, root)
-    return list(parser.AddModels(path))
+    return list(parser.AddModels(Path(path)))
 
 
 def _root_body(plant: Any, robot: Robot, models: list[Any]) -> Any:
@@ -139,7 +140,7 @@ def _robot_run(robot: Robot, path: str, options: Any, setup: Setup, run: Run, *,
         if joint is not None and joint.num_positions() == 1:
             _set_position(joint, context, setup.pose[name])
     if floor and _floating(root):
-        plant.SetFreeBodyPose(context, root, RigidTransform([0.0, 0.0, setup.stand_height + setup.drop_clearance]))
+        plant.SetFreeBodyPose(context, root, RigidTransform(_vec(0.0, 0.0, setup.stand_height + setup.drop_clearance)))
     _advance(plant, simulator, context, models, setup, run)
     if run.ok and floor:
         pose = plant.EvalBodyPoseInWorld(context, root)
@@ -163,10 +164,7 @@ def _set_position(joint: Any, context: Any, value: float) -> None:
 
 
 def _has_parent_joint(plant: Any, body: Any) -> bool:
-    for i in plant.GetJointIndices():
-        if plant.get_joint(i).child_body().index() == body.index():
-            return True
-    return False
+    return any(plant.get_joint(i).child_body().index() == body.index() for i in plant.GetJointIndices())
 
 
 def _joint(plant: Any, models: list[Any], name: str) -> Any:
@@ -232,15 +230,22 @@ def _block_travel(mu: float, angle: float, setup: Setup) -> float:
     builder, plant, _ = _plant(setup.timestep)
     tilt = RotationMatrix.MakeYRotation(angle)
     friction = CoulombFriction(mu, mu)
-    plant.RegisterCollisionGeometry(plant.world_body(), RigidTransform(tilt, [0, 0, 0]), HalfSpace(), "plane", friction)
-    inertia = SpatialInertia(1.0, np.zeros(3), UnitInertia.SolidBox(2 * _BOX, 2 * _BOX, 2 * _BOX))
+    plant.RegisterCollisionGeometry(
+        plant.world_body(), RigidTransform(tilt, _vec(0.0, 0.0, 0.0)), HalfSpace(), "plane", friction
+    )
+    inertia = SpatialInertia(1.0, _vec(0.0, 0.0, 0.0), UnitInertia.SolidBox(2 * _BOX, 2 * _BOX, 2 * _BOX))
     block = plant.AddRigidBody("block", inertia)
     plant.RegisterCollisionGeometry(block, RigidTransform(), Box(2 * _BOX, 2 * _BOX, 2 * _BOX), "block", friction)
     plant.Finalize()
     simulator = Simulator(builder.Build())
     context = plant.GetMyMutableContextFromRoot(simulator.get_mutable_context())
     normal = tilt.col(2)
-    start = np.asarray(normal) * (_BOX + 1e-4)
+    start = _vec(*(np.asarray(normal) * (_BOX + 1e-4)))
     plant.SetFreeBodyPose(context, block, RigidTransform(tilt, start))
     simulator.AdvanceTo(setup.duration)
     return float(np.linalg.norm(plant.EvalBodyPoseInWorld(context, block).translation() - start))
+
+
+def _vec(*values: float) -> Any:
+    """A float64 vector, typed loosely: pydrake's stubs want ndarray[float64] spelled their way."""
+    return np.array(values, dtype=np.float64)

@@ -10,7 +10,6 @@ USD's own units, converted by Newton), and the colliders' physics materials. The
 ``SolverMuJoCo`` on CPU (``use_mujoco_cpu``): Newton's production solver, deterministic on CPU.
 """
 # mypy: ignore-errors
-# ruff: noqa: ANN
 
 from __future__ import annotations
 
@@ -64,11 +63,9 @@ def _names(model, usd):
 
 
 def _robot_mu(model):
-    import numpy as np
-
-    mu = model.shape_material_mu.numpy()
-    values = [round(float(v), 6) for v in mu]
-    return max(set(values), key=values.count) if values else None if len(mu) else None, np
+    """The most common sliding friction Newton gave the robot's shapes (None: no shapes)."""
+    values = [round(float(v), 6) for v in model.shape_material_mu.numpy()]
+    return max(set(values), key=values.count) if values else None
 
 
 def _run_robot(req, scenario):
@@ -78,7 +75,7 @@ def _run_robot(req, scenario):
     setup = req["setup"]
     floor = scenario == "drop"
     probe = _load(req, floating=floor)
-    mu, _ = _robot_mu(probe)
+    mu = _robot_mu(probe)
     model = _load(req, floating=floor, floor_mu=mu if floor else None) if floor else probe
     names = _names(model, req["usd"])
     pose = {n: v for n, v in setup["pose"].items() if n in names and names[n][1] == 1}
@@ -152,7 +149,7 @@ def _block_travel(mu, angle, setup):
 
 def _slide(req):
     setup = req["setup"]
-    mu, _ = _robot_mu(_load(req, floating=False))
+    mu = _robot_mu(_load(req, floating=False))
     mu = 1.0 if mu is None else mu
     stick, slide = math.atan(0.7 * mu), math.atan(1.3 * mu)
     return {

@@ -107,9 +107,10 @@ def home_pose(robot: Robot, table: Mapping[str, float] | None = None) -> dict[st
         wanted = lookup(table, name, "pose") if table else None
         value = 0.0 if wanted is None else wanted
         lim = joints[name].limit
-        if joints[name].type is not JointType.CONTINUOUS and lim is not None:
-            if lim.lower is not None and lim.upper is not None and lim.lower <= lim.upper:
-                value = min(max(value, lim.lower), lim.upper)
+        bounded = lim is not None and lim.lower is not None and lim.upper is not None and lim.lower <= lim.upper
+        if joints[name].type is not JointType.CONTINUOUS and bounded and lim is not None:
+            assert lim.lower is not None and lim.upper is not None
+            value = min(max(value, lim.lower), lim.upper)
         q[name] = value
     return q
 

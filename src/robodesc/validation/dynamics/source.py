@@ -21,12 +21,11 @@ def write_source(robot: Robot, text: str, folder: str) -> str | None:
         return None
     if root.tag != "robot":
         return None
-    resolved = {
-        g.uri: g.path
-        for link in robot.links
-        for shape in (*link.collisions, *link.visuals)
-        if isinstance(g := shape.geometry, Mesh) and g.path is not None
-    }
+    resolved: dict[str, str] = {}
+    for link in robot.links:
+        for geom in [c.geometry for c in link.collisions] + [v.geometry for v in link.visuals]:
+            if isinstance(geom, Mesh) and geom.path is not None:
+                resolved[geom.uri] = geom.path
     for mesh in root.iter("mesh"):
         path = resolved.get(mesh.get("filename", ""))
         if path is not None:
