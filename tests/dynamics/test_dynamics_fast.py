@@ -49,7 +49,7 @@ def test_arm_holds_and_behaves_as_its_source_in_mujoco() -> None:
 def test_quadruped_drops_and_stands_in_mujoco() -> None:
     dyn = robodesc.check(QUAD, "urdf", dynamics=MUJOCO).dynamics
     assert dyn is not None and dyn.ok, dyn.to_text()
-    drop = next(r for r in dyn.runs if r.scenario == "drop")
+    drop = next(r for r in dyn.runs if r.scenario == "drop")  # it stands on four feet: the drop runs
     assert drop.ok and drop.tilt is not None and drop.tilt < math.radians(5)
     robot = robodesc.load(QUAD)
     # It settles near the height the scenario computed from the colliders (contact softness apart).
@@ -115,4 +115,5 @@ def test_cli_prints_the_table_and_json() -> None:
     assert "dynamics of 'gripper_arm'" in done.stdout and "hold-fixed" in done.stdout
     done = subprocess.run([*cmd, "--json"], capture_output=True, text=True, cwd=ROOT)
     doc = json.loads(done.stdout)
-    assert doc["dynamics"]["ok"] and {r["scenario"] for r in doc["dynamics"]["runs"]} >= {"hold-fixed", "drop", "slide"}
+    # An arm does not stand on three feet: no drop (a fall from any pose is chaotic).
+    assert doc["dynamics"]["ok"] and {r["scenario"] for r in doc["dynamics"]["runs"]} == {"hold-fixed", "slide"}

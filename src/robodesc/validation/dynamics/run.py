@@ -59,11 +59,14 @@ def run_dynamics(
     report.info["setup"] = setup.as_dict()
     started = time.perf_counter()
     wanted = set(opts.engines) or set(READERS.values())
+    scenarios = SCENARIOS if setup.floating else tuple(s for s in SCENARIOS if s != "drop")
+    if not setup.floating:
+        report.add("drop", Status.SKIP, "robot", "not run: fewer than three links touch the ground at the home pose")
     for kind, path in files.items():
         engine = READERS.get(kind)
         if engine is None or engine not in wanted:
             continue
-        report.runs.extend(_run_engine(engine, robot, path, kind, setup, opts, report))
+        report.runs.extend(_run_engine(engine, robot, path, kind, setup, opts, report, scenarios))
         if source_urdf is not None and kind in ("urdf", "mjcf", "sdf"):
             src_engine = "drake" if kind == "sdf" else "mujoco"
             if not any(r.engine == src_engine and r.file == SOURCE for r in report.runs):
@@ -86,6 +89,24 @@ def _run_engine(
     opts: DynamicsOptions,
     report: DynamicsReport,
     scenarios: tuple[str, ...] = SCENARIOS,
+) -> list[Run]:
+    started = time.perf_counter()
+    try:
+        return _run_engine_timed(engine, robot, path, kind, setup, opts, report, scenarios)
+    finally:
+        spent = report.info.setdefault("engine_seconds", {})
+        spent[engine] = round(spent.get(engine, 0.0) + time.perf_counter() - started, 3)
+
+
+def _run_engine_timed(
+    engine: str,
+    robot: Robot,
+    path: str,
+    kind: str,
+    setup: Setup,
+    opts: DynamicsOptions,
+    report: DynamicsReport,
+    scenarios: tuple[str, ...],
 ) -> list[Run]:
     try:
         runner = _runner(engine)

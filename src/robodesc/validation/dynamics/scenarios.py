@@ -73,10 +73,12 @@ class Setup:
 
     pose: dict[str, float]  # every actuated 1-DOF joint (mimics excluded)
     gains: dict[str, tuple[float, float]]  # joint -> (kp, kd), SI
-    floating: bool  # the robot has a root that can float (always true for drop)
+    floating: bool  # the robot stands on three or more links: the drop scenario applies (stands())
     stand_height: float  # m: root height at which the lowest collider touches z = 0 at the pose
     friction: float | None  # the source's collider friction (None: not given, engine default)
-    slide_angles: tuple[float, float] = (0.0, 0.0)  # rad: (sticks, slides) for the engine's own mu
+    # Mimic joints: follower -> leader. An output that cannot carry a mimic (SDF before 1.11) has
+    # already warned at compile time; a trajectory that differs there is that warning, not a new fault.
+    mimics: dict[str, str] = field(default_factory=dict)
     duration: float = 1.0
     timestep: float = 0.001
     drop_clearance: float = 0.05
@@ -145,21 +147,43 @@ def slide_angles(mu: float) -> tuple[float, float]:
     return math.atan(0.7 * mu), math.atan(1.3 * mu)
 
 
+def _link_lows(robot: Robot, pose: Mapping[str, float]) -> dict[str, float]:
+    """Each link's lowest collider point (z, root frame) at the pose."""
+    frames = link_frames(robot, pose)
+    lows: dict[str, float] = {}
+    for link in robot.links:
+        frame = frames.get(link.name)
+        for col in link.collisions if frame is not None else []:
+            assert frame is not None
+            low = _lowest(frame @ pose_frame(col.origin), col.geometry)
+            lows[link.name] = min(lows.get(link.name, math.inf), low)
+    return lows
+
+
 def stand_height(robot: Robot, pose: Mapping[str, float]) -> float:
     """Root height putting the lowest collider point at z = 0 (root upright, at the pose).
 
     Meshes count by their file's vertices when robodesc can read them, else by the link origin:
     an estimate for placing the robot, not a measurement (each engine reports where it settles).
     """
-    frames = link_frames(robot, pose)
-    lowest = math.inf
-    for link in robot.links:
-        frame = frames.get(link.name)
-        if frame is None:
-            continue
-        for col in link.collisions:
-            lowest = min(lowest, _lowest(frame @ pose_frame(col.origin), col.geometry))
+    lowest = min(_link_lows(robot, pose).values(), default=math.inf)
     return 0.0 if not math.isfinite(lowest) else -lowest
+
+
+# Links within this of the lowest point count as touching the ground at the home pose.
+FOOT_BAND = 0.01  # m
+
+
+def stands(robot: Robot, pose: Mapping[str, float]) -> bool:
+    """Whether the drop scenario applies: a free root (not welded to ``world``) and at least three
+    links touching the ground at the home pose (feet, wheels). An arm or a biped on one sole would
+    topple from any pose, and a fall is chaotic: no two engines are expected to agree on it."""
+    roots = robot.root_links()
+    if not roots or roots[0].name == "world":
+        return False
+    lows = _link_lows(robot, pose)
+    lowest = min(lows.values(), default=math.inf)
+    return math.isfinite(lowest) and sum(1 for z in lows.values() if z <= lowest + FOOT_BAND) >= 3
 
 
 def _lowest(frame: Frame, geom: object) -> float:
@@ -197,9 +221,10 @@ def make_setup(robot: Robot, options: DynamicsOptions) -> Setup:
     return Setup(
         pose=pose,
         gains=drive_gains(robot, options.stiffness, options.damping),
-        floating=True,
+        floating=stands(robot, pose),
         stand_height=stand_height(robot, pose),
         friction=source_friction(robot),
+        mimics={j.name: j.mimic.joint for j in robot.joints if j.mimic is not None},
         duration=options.duration,
         timestep=options.timestep,
         drop_clearance=options.drop_clearance,
