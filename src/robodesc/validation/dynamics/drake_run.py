@@ -63,22 +63,31 @@ def _plant(timestep: float) -> tuple[Any, Any, Any]:
     return builder, plant, scene_graph
 
 
-def _parse(plant: Any, path: str, options: Any) -> list[Any]:
+def _parse(plant: Any, robot: Robot, path: str, options: Any) -> list[Any]:
     from pydrake.multibody.parsing import Parser
+
+    from robodesc.validation.dynamics.drake_meshes import drake_readable
 
     parser = Parser(plant)
     for name, root in dict(options.package_paths).items():
         if not parser.package_map().Contains(name):
             parser.package_map().Add(name, root)
-    return list(parser.AddModels(Path(path)))
+    return list(parser.AddModels(Path(drake_readable(robot, path, options.package_paths))))
 
 
 def _root_body(plant: Any, robot: Robot, models: list[Any]) -> Any:
+    """The tree's root: the body no joint moves. Not looked up by name: SDF cannot name a link
+    ``world`` (robodesc writes ``world_link``), and a URDF's ``world`` is Drake's world body."""
+    children = {plant.get_joint(i).child_body().index() for i in plant.GetJointIndices()}
     roots = robot.root_links()
-    for model in models:
-        if roots and plant.HasBodyNamed(roots[0].name, model):
-            return plant.GetBodyByName(roots[0].name, model)
-    return plant.get_body(plant.GetBodyIndices(models[0])[0])
+    candidates = [
+        plant.get_body(i)
+        for model in models
+        for i in plant.GetBodyIndices(model)
+        if i not in children and i != plant.world_body().index()
+    ]
+    named = [b for b in candidates if roots and b.name() == roots[0].name]
+    return (named or candidates or [plant.get_body(plant.GetBodyIndices(models[0])[0])])[0]
 
 
 def _robot_mu(plant: Any, scene_graph: Any, models: list[Any]) -> tuple[float | None, list[Any]]:
@@ -105,7 +114,7 @@ def _robot_run(robot: Robot, path: str, options: Any, setup: Setup, run: Run, *,
     from pydrake.systems.primitives import ConstantVectorSource
 
     builder, plant, scene_graph = _plant(setup.timestep)
-    models = _parse(plant, path, options)
+    models = _parse(plant, robot, path, options)
     root = _root_body(plant, robot, models)
     if not floor and not _is_welded(plant, root):
         plant.WeldFrames(plant.world_frame(), root.body_frame())
@@ -205,7 +214,7 @@ def _advance(plant: Any, simulator: Any, context: Any, models: list[Any], setup:
 def _slide(robot: Robot, path: str, options: Any, setup: Setup, run: Run) -> None:
     """The robot's friction as Drake reads it from the file, on a block on two tilted planes."""
     _, plant, scene_graph = _plant(setup.timestep)
-    models = _parse(plant, path, options)
+    models = _parse(plant, robot, path, options)
     mu, _ = _robot_mu(plant, scene_graph, models)
     run.mu = mu if mu is not None else _default_mu()
     stick, slide = slide_angles(run.mu)
