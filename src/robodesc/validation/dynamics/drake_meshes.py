@@ -15,26 +15,34 @@ from lxml import etree
 
 from robodesc._files import write_atomic
 from robodesc.ir.model import Robot
-from robodesc.validation.meshes import MeshProblem, resolve_mesh_file
+from robodesc.validation.meshes import ir_meshes, resolve_mesh_file
 
 DRAKE_FORMATS = (".obj", ".vtk", ".gltf")
 
 
-def drake_readable(robot: Robot, path: str, package_paths: Mapping[str, str]) -> str:
-    """``path`` itself when every mesh it names is one Drake hulls, else a rewritten copy."""
+def drake_readable(robot: Robot, path: str, package_paths: Mapping[str, str], *, collisions: bool = True) -> str:
+    """A copy of ``path`` without visuals, with meshes Drake hulls; without colliders when
+    ``collisions`` is False (a run without contact: Drake then skips every convex hull)."""
     parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=True)
     tree = etree.parse(path, parser)
     base = os.path.dirname(os.path.abspath(path))
-    changed = False
+    # Visuals play no part in a simulation, and their package:// URIs would need Drake's package map.
+    visuals = list(tree.getroot().iter("visual")) + ([] if collisions else list(tree.getroot().iter("collision")))
+    for visual in visuals:
+        visual.getparent().remove(visual)
+    changed = bool(visuals)
+    resolved = {g.uri: g.path for g in ir_meshes(robot) if g.path is not None}
     for mesh in tree.getroot().iter("mesh"):
         uri_el = mesh.find("uri")
-        ref = uri_el.text if uri_el is not None else mesh.get("filename")
-        if not ref or ref.strip().lower().endswith(DRAKE_FORMATS):
+        ref = (uri_el.text if uri_el is not None else mesh.get("filename")) or ""
+        ref = ref.strip()
+        if not ref:
             continue
         try:
-            obj = _as_obj(resolve_mesh_file(ref.strip(), robot, base, package_paths))
-        except (MeshProblem, OSError, ValueError):
-            continue  # Drake reports the file it cannot read; nothing better to give it
+            found = resolved.get(ref) or resolve_mesh_file(ref, robot, base, package_paths)
+            obj = found if found.lower().endswith(DRAKE_FORMATS) else _as_obj(found)
+        except Exception:  # Drake reports the file it cannot read; nothing better to give it
+            continue
         if uri_el is not None:
             uri_el.text = "file://" + obj
         else:
@@ -42,7 +50,7 @@ def drake_readable(robot: Robot, path: str, package_paths: Mapping[str, str]) ->
         changed = True
     if not changed:
         return path
-    out = os.path.join(base, "drake-" + os.path.basename(path))
+    out = os.path.join(base, ("drake-" if collisions else "drake-nocontact-") + os.path.basename(path))
     write_atomic(out, etree.tostring(tree, xml_declaration=True, encoding="utf-8"))
     return out
 

@@ -40,7 +40,8 @@ def run_file(
         run = Run(ENGINE, kind, scenario)
         try:
             if scenario == "slide":
-                _slide(robot, path, options, setup, run)
+                known = [r.mu for r in out if r.mu is not None]
+                _slide(robot, path, options, setup, run, known[0] if known else None)
             else:
                 _robot_run(robot, path, options, setup, run, floor=scenario == "drop")
         except RuntimeError as exc:  # Drake raises RuntimeError for files and states it refuses
@@ -63,7 +64,7 @@ def _plant(timestep: float) -> tuple[Any, Any, Any]:
     return builder, plant, scene_graph
 
 
-def _parse(plant: Any, robot: Robot, path: str, options: Any) -> list[Any]:
+def _parse(plant: Any, robot: Robot, path: str, options: Any, *, collisions: bool = True) -> list[Any]:
     from pydrake.multibody.parsing import Parser
 
     from robodesc.validation.dynamics.drake_meshes import drake_readable
@@ -72,7 +73,8 @@ def _parse(plant: Any, robot: Robot, path: str, options: Any) -> list[Any]:
     for name, root in dict(options.package_paths).items():
         if not parser.package_map().Contains(name):
             parser.package_map().Add(name, root)
-    return list(parser.AddModels(Path(drake_readable(robot, path, options.package_paths))))
+    readable = drake_readable(robot, path, options.package_paths, collisions=collisions)
+    return list(parser.AddModels(Path(readable)))
 
 
 def _root_body(plant: Any, robot: Robot, models: list[Any]) -> Any:
@@ -114,12 +116,12 @@ def _robot_run(robot: Robot, path: str, options: Any, setup: Setup, run: Run, *,
     from pydrake.systems.primitives import ConstantVectorSource
 
     builder, plant, scene_graph = _plant(setup.timestep)
-    models = _parse(plant, robot, path, options)
+    models = _parse(plant, robot, path, options, collisions=floor)
     root = _root_body(plant, robot, models)
     if not floor and not _is_welded(plant, root):
         plant.WeldFrames(plant.world_frame(), root.body_frame())
     mu, robot_geoms = _robot_mu(plant, scene_graph, models)
-    run.mu = mu
+    run.mu = mu if floor else None
     if floor:
         friction = mu if mu is not None else 1.0
         plant.RegisterCollisionGeometry(
@@ -211,11 +213,13 @@ def _advance(plant: Any, simulator: Any, context: Any, models: list[Any], setup:
     run.drift, run.worst_joint = max(((abs(v - setup.pose[n]), n) for n, v in q.items()), default=(0.0, ""))
 
 
-def _slide(robot: Robot, path: str, options: Any, setup: Setup, run: Run) -> None:
-    """The robot's friction as Drake reads it from the file, on a block on two tilted planes."""
-    _, plant, scene_graph = _plant(setup.timestep)
-    models = _parse(plant, robot, path, options)
-    mu, _ = _robot_mu(plant, scene_graph, models)
+def _slide(robot: Robot, path: str, options: Any, setup: Setup, run: Run, mu: float | None) -> None:
+    """The robot's friction as Drake reads it from the file (``mu`` when the drop already read
+    it), on a block on two tilted planes."""
+    if mu is None:
+        _, plant, scene_graph = _plant(setup.timestep)
+        models = _parse(plant, robot, path, options)
+        mu, _ = _robot_mu(plant, scene_graph, models)
     run.mu = mu if mu is not None else _default_mu()
     stick, slide = slide_angles(run.mu)
     run.stick = _block_travel(run.mu, stick, setup)
