@@ -25,6 +25,10 @@ from robodesc.validation.report import ValidationReport
 ENGINE = "mujoco"
 _SAMPLE = 0.01  # s between trajectory samples
 _BOX = 0.05  # m: half size of the slide block
+# Implicit in the drives' velocity terms: MuJoCo's default Euler is explicit in an actuator's kv,
+# and kv = 1 N·m·s/rad on a 10 g fingertip is unstable at any usable time step (Drake's PD and
+# Newton's MuJoCo solver are implicit too). A URDF names no integrator; an MJCF's own is kept.
+_INTEGRATOR = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
 
 
 def load_spec(robot: Robot, path: str, kind: str, package_paths: dict[str, str]) -> tuple[Any, str]:
@@ -129,6 +133,8 @@ def _hold(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
                 s.delete(joint)
     _actuate(s, kind, setup)
     s.option.timestep = setup.timestep
+    if kind != "mjcf":
+        s.option.integrator = _INTEGRATOR
     s.option.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
     model = s.compile()
     data = mujoco.MjData(model)
@@ -160,6 +166,8 @@ def _drop(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
         friction=[mu, 0.005, 0.0001],
     )
     s.option.timestep = setup.timestep
+    if kind != "mjcf":
+        s.option.integrator = _INTEGRATOR
     model = s.compile()
     data = mujoco.MjData(model)
     addr = _start(model, data, setup)
@@ -194,6 +202,7 @@ def _block_travel(mu: float, angle: float, setup: Setup) -> float:
     """A 1 kg block, friction mu on both sides, on a plane tilted by ``angle``: distance moved."""
     s = mujoco.MjSpec()
     s.option.timestep = setup.timestep
+    s.option.integrator = _INTEGRATOR
     s.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC  # the Coulomb cone, as Drake's and Newton's
     c, sn = math.cos(angle / 2), math.sin(angle / 2)
     s.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 1], quat=[c, 0, sn, 0], friction=[mu, 0, 0])
