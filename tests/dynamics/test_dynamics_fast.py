@@ -88,6 +88,17 @@ def test_drives_that_do_not_hold_where_another_engine_holds_fail() -> None:
     assert _rows(report, "agree:hold-fixed") == [Status.WARN] and report.ok
 
 
+def test_a_sag_the_source_shows_in_the_same_engine_is_an_engine_difference() -> None:
+    source = Run("mujoco", "source", "hold-fixed", drift=0.4, worst_joint="a", final_q={"a": 0.4})
+    source.trajectory = [(0.5, {"a": 0.4})]
+    output = _hold("mujoco", 0.4)
+    output.trajectory = [(0.5, {"a": 0.4})]
+    report = DynamicsReport("r", runs=[output, source, _hold("drake", 0.001)])
+    judge(report, _setup(), Thresholds())
+    assert _rows(report, "source:hold-fixed") == [Status.PASS]
+    assert _rows(report, "agree:hold-fixed") == [Status.WARN] and report.ok
+
+
 def test_a_friction_not_the_sources_fails() -> None:
     slide = Run("mujoco", "mjcf", "slide", mu=1.0, stick=0.002, slide=1.2)
     report = DynamicsReport("r", runs=[slide])
