@@ -128,3 +128,32 @@ def test_cli_prints_the_table_and_json() -> None:
     doc = json.loads(done.stdout)
     # An arm does not stand on three feet: no drop (a fall from any pose is chaotic).
     assert doc["dynamics"]["ok"] and {r["scenario"] for r in doc["dynamics"]["runs"]} == {"hold-fixed", "slide"}
+
+
+def _mjcf_with_gains(urdf: Path, out: Path, kp: float) -> Path:
+    """An MJCF of the arm with its own position actuators, as an MJCF target would write it."""
+    import mujoco
+
+    from robodesc.validation.dynamics.mujoco_run import load_spec
+
+    robot = robodesc.load(ARM)
+    spec, why = load_spec(robot, str(urdf), "urdf", {})
+    assert spec is not None, why
+    for name in home_pose(robot):
+        act = spec.add_actuator(name=f"act_{name}", target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+        act.set_to_position(kp=kp, kv=1.0)
+    spec.compile()
+    out.write_text(spec.to_xml())
+    return out
+
+
+@pytest.mark.parametrize(("kp", "status"), [(100.0, Status.PASS), (30.0, Status.FAIL)])
+def test_an_mjcf_runs_with_its_own_actuators(tmp_path: Path, kp: float, status: Status) -> None:
+    """The MJCF target plugs in: its actuators are used as written and compared with the source
+    (gains 100/1): the compile's gains pass, other gains fail."""
+    urdf = tmp_path / "arm.urdf"
+    robodesc.compile_to(ARM, "urdf", str(urdf), mesh_paths="absolute")
+    mjcf = _mjcf_with_gains(urdf, tmp_path / "arm.xml", kp)
+    opts = DynamicsOptions(engines=("mujoco",), pose=ARM_POSE)
+    report = run_dynamics(robodesc.load(ARM), {"mjcf": str(mjcf)}, opts, source_urdf=ARM)
+    assert _rows(report, "source:hold-fixed") == [status], report.to_text()
