@@ -220,17 +220,13 @@ def _slide(robot: Robot, path: str, options: Any, setup: Setup, run: Run, mu: fl
         _, plant, scene_graph = _plant(setup.timestep)
         models = _parse(plant, robot, path, options)
         mu, _ = _robot_mu(plant, scene_graph, models)
-    run.mu = mu if mu is not None else _default_mu()
+    if mu is None:
+        run.ok, run.error = False, "Drake reads no collider from the file"
+        return
+    run.mu = mu
     stick, slide = slide_angles(run.mu)
     run.stick = _block_travel(run.mu, stick, setup)
     run.slide = _block_travel(run.mu, slide, setup)
-
-
-def _default_mu() -> float:
-    """What Drake gives a collider whose file names no friction (its default proximity friction)."""
-    from pydrake.multibody.plant import CoulombFriction
-
-    return float(CoulombFriction().dynamic_friction()) if hasattr(CoulombFriction(), "dynamic_friction") else 1.0
 
 
 def _block_travel(mu: float, angle: float, setup: Setup) -> float:

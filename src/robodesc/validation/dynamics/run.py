@@ -62,6 +62,9 @@ def run_dynamics(
     scenarios = SCENARIOS if setup.floating else tuple(s for s in SCENARIOS if s != "drop")
     if not setup.floating:
         report.add("drop", Status.SKIP, "robot", "not run: fewer than three links touch the ground at the home pose")
+    if not any(link.collisions for link in robot.links):
+        scenarios = tuple(s for s in scenarios if s != "slide")
+        report.add("slide", Status.SKIP, "robot", "not run: the robot has no collider, so no material to slide")
     for kind, path in files.items():
         engine = READERS.get(kind)
         if engine is None or engine not in wanted:
