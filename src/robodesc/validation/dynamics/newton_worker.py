@@ -34,16 +34,21 @@ def _builder(gravity=None):
     return newton.ModelBuilder(gravity=gravity) if gravity is not None else newton.ModelBuilder()
 
 
-def _load(req, floating, floor_mu=None):
+def _load(req, floating, floor=False):
+    """(model, mu): the USD as Newton builds it, with a ground plane of the robot's own friction
+    when ``floor`` (equal friction on both sides: every combine rule then gives it). One build per
+    scenario: add_usd is most of Newton's cost on mesh-heavy robots."""
     import newton
 
     builder = _builder()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         builder.add_usd(req["usd"], floating=floating, enable_self_collisions=False, load_visual_shapes=False)
-    if floor_mu is not None:
-        builder.add_ground_plane(cfg=newton.ModelBuilder.ShapeConfig(mu=floor_mu))
-    return builder.finalize(device="cpu")
+    values = [round(float(v), 6) for v in builder.shape_material_mu]
+    mu = max(set(values), key=values.count) if values else None
+    if floor:
+        builder.add_ground_plane(cfg=newton.ModelBuilder.ShapeConfig(mu=1.0 if mu is None else mu))
+    return builder.finalize(device="cpu"), mu
 
 
 def _names(model, usd):
@@ -62,21 +67,13 @@ def _names(model, usd):
     return out
 
 
-def _robot_mu(model):
-    """The most common sliding friction Newton gave the robot's shapes (None: no shapes)."""
-    values = [round(float(v), 6) for v in model.shape_material_mu.numpy()]
-    return max(set(values), key=values.count) if values else None
-
-
 def _run_robot(req, scenario):
     import newton
     import numpy as np
 
     setup = req["setup"]
     floor = scenario == "drop"
-    probe = _load(req, floating=floor)
-    mu = _robot_mu(probe)
-    model = _load(req, floating=floor, floor_mu=mu if floor else None) if floor else probe
+    model, mu = _load(req, floating=floor, floor=floor)
     names = _names(model, req["usd"])
     pose = {n: v for n, v in setup["pose"].items() if n in names and names[n][1] == 1}
     state0, state1, control = model.state(), model.state(), model.control()
@@ -147,10 +144,12 @@ def _block_travel(mu, angle, setup):
     return float(np.linalg.norm(s0.body_q.numpy()[0][:3] - start))
 
 
-def _slide(req):
+def _slide(req, mu):
     setup = req["setup"]
-    mu = _robot_mu(_load(req, floating=False))
-    mu = 1.0 if mu is None else mu
+    if mu is None:
+        _, mu = _load(req, floating=False)
+    if mu is None:
+        return {"scenario": "slide", "ok": False, "error": "Newton reads no collider from the USD"}
     stick, slide = math.atan(0.7 * mu), math.atan(1.3 * mu)
     return {
         "scenario": "slide",
@@ -173,7 +172,8 @@ def main():
     for scenario in req["scenarios"]:
         started = time.perf_counter()
         try:
-            run = _slide(req) if scenario == "slide" else _run_robot(req, scenario)
+            known = [r["mu"] for r in runs if r.get("mu") is not None]
+            run = _slide(req, known[0] if known else None) if scenario == "slide" else _run_robot(req, scenario)
         except Exception as exc:  # one scenario's failure is a row, not the end of the others
             detail = traceback.format_exception_only(type(exc), exc)[-1].strip()[:300]
             run = {"scenario": scenario, "ok": False, "error": detail}
