@@ -127,9 +127,10 @@ def _robot_run(robot: Robot, path: str, options: Any, setup: Setup, run: Run, *,
         plant.RegisterCollisionGeometry(
             plant.world_body(), RigidTransform(), HalfSpace(), "dyn_floor", CoulombFriction(friction, friction)
         )
+    table = _joint_table(plant, models, robot)
     actuated: list[str] = []
     for name, (kp, kd) in setup.gains.items():
-        joint = _joint(plant, models, name)
+        joint = table.get(name)
         if joint is None or joint.num_velocities() != 1:
             continue
         effort = _effort(robot, name)
@@ -147,12 +148,12 @@ def _robot_run(robot: Robot, path: str, options: Any, setup: Setup, run: Run, *,
     simulator = Simulator(diagram)
     context = plant.GetMyMutableContextFromRoot(simulator.get_mutable_context())
     for name in setup.pose:
-        joint = _joint(plant, models, name)
+        joint = table.get(name)
         if joint is not None and joint.num_positions() == 1:
             _set_position(joint, context, setup.pose[name])
     if floor and _floating(root):
         plant.SetFreeBodyPose(context, root, RigidTransform(_vec(0.0, 0.0, setup.stand_height + setup.drop_clearance)))
-    _advance(plant, simulator, context, models, setup, run)
+    _advance(simulator, context, table, setup, run)
     if run.ok and floor:
         pose = plant.EvalBodyPoseInWorld(context, root)
         run.height = float(pose.translation()[2])
@@ -178,11 +179,19 @@ def _has_parent_joint(plant: Any, body: Any) -> bool:
     return any(plant.get_joint(i).child_body().index() == body.index() for i in plant.GetJointIndices())
 
 
-def _joint(plant: Any, models: list[Any], name: str) -> Any:
-    for model in models:
-        if plant.HasJointNamed(name, model):
-            return plant.GetJointByName(name, model)
-    return None
+def _joint_table(plant: Any, models: list[Any], robot: Robot) -> dict[str, Any]:
+    """IR joint name -> Drake joint. By name, else by child link: robodesc's SDF keeps one
+    namespace per model, so a joint named like a link is written ``<name>_joint``."""
+    by_child = {
+        plant.get_joint(i).child_body().name(): plant.get_joint(i)
+        for i in plant.GetJointIndices()
+        if plant.get_joint(i).model_instance() in models
+    }
+    out: dict[str, Any] = {}
+    for joint in robot.joints:
+        found = next((plant.GetJointByName(joint.name, m) for m in models if plant.HasJointNamed(joint.name, m)), None)
+        out[joint.name] = found if found is not None else by_child.get(joint.child)
+    return {k: v for k, v in out.items() if v is not None}
 
 
 def _effort(robot: Robot, name: str) -> float:
@@ -198,8 +207,11 @@ def _desired_for(plant: Any, model: Any, setup: Setup) -> Any:
     return np.array(q + [0.0] * len(q))
 
 
-def _advance(plant: Any, simulator: Any, context: Any, models: list[Any], setup: Setup, run: Run) -> None:
-    joints = {n: j for n in setup.pose if (j := _joint(plant, models, n)) is not None and j.num_positions() == 1}
+def _advance(simulator: Any, context: Any, table: dict[str, Any], setup: Setup, run: Run) -> None:
+    joints = {n: j for n in setup.pose if (j := table.get(n)) is not None and j.num_positions() == 1}
+    if setup.pose and not joints:
+        run.ok, run.error = False, "none of the robot's driven joints is in the file"
+        return
     steps = max(1, round(setup.duration / _SAMPLE))
     q: dict[str, float] = {}
     for k in range(1, steps + 1):
