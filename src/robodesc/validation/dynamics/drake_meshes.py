@@ -20,9 +20,13 @@ from robodesc.validation.meshes import ir_meshes, resolve_mesh_file
 DRAKE_FORMATS = (".obj", ".vtk", ".gltf")
 
 
-def drake_readable(robot: Robot, path: str, package_paths: Mapping[str, str], *, collisions: bool = True) -> str:
+def drake_readable(
+    robot: Robot, path: str, package_paths: Mapping[str, str], *, collisions: bool = True, shapes: bool = True
+) -> str:
     """A copy of ``path`` without visuals, with meshes Drake hulls; without colliders when
-    ``collisions`` is False (a run without contact: Drake then skips every convex hull)."""
+    ``collisions`` is False (a run without contact: Drake then skips every convex hull); with each
+    collider's shape a 1 cm box when ``shapes`` is False (only its surface is read: the slide's
+    friction, without hulling every mesh of a 40-link robot)."""
     parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=True)
     tree = etree.parse(path, parser)
     base = os.path.dirname(os.path.abspath(path))
@@ -31,6 +35,16 @@ def drake_readable(robot: Robot, path: str, package_paths: Mapping[str, str], *,
     for visual in visuals:
         visual.getparent().remove(visual)
     changed = bool(visuals)
+    if collisions and not shapes:
+        for geometry in [g for c in tree.getroot().iter("collision") for g in c.findall("geometry")]:
+            for child in list(geometry):
+                geometry.remove(child)
+            box = etree.SubElement(geometry, "box")
+            if path.lower().endswith(".urdf"):
+                box.set("size", "0.01 0.01 0.01")
+            else:
+                etree.SubElement(box, "size").text = "0.01 0.01 0.01"
+            changed = True
     resolved = {g.uri: g.path for g in ir_meshes(robot) if g.path is not None}
     for mesh in tree.getroot().iter("mesh"):
         uri_el = mesh.find("uri")
@@ -50,7 +64,8 @@ def drake_readable(robot: Robot, path: str, package_paths: Mapping[str, str], *,
         changed = True
     if not changed:
         return path
-    out = os.path.join(base, ("drake-" if collisions else "drake-nocontact-") + os.path.basename(path))
+    prefix = "drake-" if collisions and shapes else "drake-boxes-" if collisions else "drake-nocontact-"
+    out = os.path.join(base, prefix + os.path.basename(path))
     write_atomic(out, etree.tostring(tree, xml_declaration=True, encoding="utf-8"))
     return out
 

@@ -64,7 +64,9 @@ def _plant(timestep: float) -> tuple[Any, Any, Any]:
     return builder, plant, scene_graph
 
 
-def _parse(plant: Any, robot: Robot, path: str, options: Any, *, collisions: bool = True) -> list[Any]:
+def _parse(
+    plant: Any, robot: Robot, path: str, options: Any, *, collisions: bool = True, shapes: bool = True
+) -> list[Any]:
     from pydrake.multibody.parsing import Parser
 
     from robodesc.validation.dynamics.drake_meshes import drake_readable
@@ -73,7 +75,7 @@ def _parse(plant: Any, robot: Robot, path: str, options: Any, *, collisions: boo
     for name, root in dict(options.package_paths).items():
         if not parser.package_map().Contains(name):
             parser.package_map().Add(name, root)
-    readable = drake_readable(robot, path, options.package_paths, collisions=collisions)
+    readable = drake_readable(robot, path, options.package_paths, collisions=collisions, shapes=shapes)
     return list(parser.AddModels(Path(readable)))
 
 
@@ -230,7 +232,7 @@ def _slide(robot: Robot, path: str, options: Any, setup: Setup, run: Run, mu: fl
     it), on a block on two tilted planes."""
     if mu is None:
         _, plant, scene_graph = _plant(setup.timestep)
-        models = _parse(plant, robot, path, options)
+        models = _parse(plant, robot, path, options, shapes=False)
         mu, _ = _robot_mu(plant, scene_graph, models)
     if mu is None:
         run.ok, run.error = False, "Drake reads no collider from the file"
