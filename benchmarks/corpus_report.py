@@ -10,7 +10,8 @@ as ``robodesc compile ROBOT -t TARGET`` with default flags, on every core
 (``--jobs``); this script only renders the jobs' results. With ``--workdir DIR`` the outputs are kept
 and a rerun redoes only the robots whose files changed. When ``benchmarks/results/consumers.json``
 exists (robot -> {"newton": ..., "newton_isaac": ..., "isaac_importer": ...}, written by the
-consumer benchmarks), its verdicts become extra columns.
+consumer benchmarks), its verdicts become extra columns; ``benchmarks/results/dynamics.json``
+(``benchmarks/dynamics_corpus.py``: ``validate --dynamics`` per robot) becomes the ``dynamics`` column.
 
 The file is deterministic: robots in corpus order, errors at machine precision printed as "≤1e-12",
 no timestamps; timings go to stdout only.
