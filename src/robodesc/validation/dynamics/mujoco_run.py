@@ -9,6 +9,7 @@ in the MJCF shows up as a hold the other engines do not share.
 from __future__ import annotations
 
 import math
+import os
 import time
 from typing import Any
 
@@ -38,8 +39,6 @@ def load_spec(robot: Robot, path: str, kind: str, package_paths: dict[str, str])
             return mujoco.MjSpec.from_file(path), ""
         except ValueError as exc:
             return None, str(exc).strip()
-    import os
-
     with open(path, encoding="utf-8") as fh:
         text = fh.read()
     scratch = ValidationReport(robot=robot.name, target=kind, consumer=ENGINE)
