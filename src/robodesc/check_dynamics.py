@@ -67,7 +67,24 @@ def run_for(
             continue  # the checked target's validation reports what is wrong with the robot
         files[name] = path
     opts = dataclasses.replace(opts, engines=engines)
+    robot = _source_robot(source, options) or robot
     return run_dynamics(robot, files, opts, source_urdf=_source_file(source, robot, folder, options))
+
+
+def _source_robot(source: Any, options: Mapping[str, Any]) -> Robot | None:
+    """The source's IR, before any target's passes: the checked target's robot may carry renamed
+    joints (USD sanitizes ``0`` to ``a0``) that neither the pose table nor the other files know.
+    Every file names its joints after the source (USD through ``displayName``)."""
+    from robodesc.frontends.load import load_source
+    from robodesc.frontends.options import LoadOptions
+    from robodesc.options import build_options
+
+    loading = {f.name for f in dataclasses.fields(LoadOptions)}
+    try:
+        opts = build_options({k: v for k, v in options.items() if k in loading})
+        return load_source(source, opts.load, Findings())
+    except RobodescError:
+        return None
 
 
 def _engine_of(target: str) -> tuple[str, ...]:

@@ -157,3 +157,17 @@ def test_an_mjcf_runs_with_its_own_actuators(tmp_path: Path, kp: float, status: 
     opts = DynamicsOptions(engines=("mujoco",), pose=ARM_POSE)
     report = run_dynamics(robodesc.load(ARM), {"mjcf": str(mjcf)}, opts, source_urdf=ARM)
     assert _rows(report, "source:hold-fixed") == [status], report.to_text()
+
+
+def test_names_the_checked_target_renamed_still_match() -> None:
+    """-t usd renames Spirit's joints (``0`` -> ``a0``): the scenarios use the source's names,
+    which the URDF MuJoCo reads keeps, and the stand pose applies."""
+    from ..conftest import SPIRIT_XACRO
+
+    if not SPIRIT_XACRO.is_file():
+        pytest.skip("Quad-SDK corpus not present")
+    stand = {"0|2|4|6": 0.76, "1|3|5|7": 1.52}
+    dyn = robodesc.check(str(SPIRIT_XACRO), "usd", dynamics={**MUJOCO, "pose": stand}).dynamics
+    assert dyn is not None and dyn.ok, dyn.to_text()
+    hold = next(r for r in dyn.runs if r.file == "urdf" and r.scenario == "hold-fixed")
+    assert len(hold.final_q) == 12 and hold.final_q["1"] == pytest.approx(1.52, abs=0.05)

@@ -102,6 +102,9 @@ def _start(model: Any, data: Any, setup: Setup) -> dict[str, int]:
 
 
 def _simulate(model: Any, data: Any, setup: Setup, run: Run, addr: dict[str, int]) -> bool:
+    if setup.pose and not addr:
+        run.ok, run.error = False, "none of the robot's driven joints is in the file"
+        return False
     steps = max(1, round(setup.duration / setup.timestep))
     every = max(1, round(_SAMPLE / setup.timestep))
     for step in range(steps):
