@@ -10,7 +10,8 @@ as ``robodesc compile ROBOT -t TARGET`` with default flags, on every core
 (``--jobs``); this script only renders the jobs' results. With ``--workdir DIR`` the outputs are kept
 and a rerun redoes only the robots whose files changed. When ``benchmarks/results/consumers.json``
 exists (robot -> {"newton": ..., "newton_isaac": ..., "isaac_importer": ...}, written by the
-consumer benchmarks), its verdicts become extra columns.
+consumer benchmarks), its verdicts become extra columns; ``benchmarks/results/dynamics.json``
+(``benchmarks/dynamics_corpus.py``: ``validate --dynamics`` per robot) becomes the ``dynamics`` column.
 
 The file is deterministic: robots in corpus order, errors at machine precision printed as "≤1e-12",
 no timestamps; timings go to stdout only.
@@ -38,7 +39,9 @@ from robodesc.validation.report import Check, Status, ValidationReport
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CONSUMERS = os.path.join(ROOT, "benchmarks", "results", "consumers.json")
-CONSUMER_COLUMNS = ("newton", "newton_isaac", "isaac_importer")
+CONSUMER_COLUMNS = ("newton", "newton_isaac", "isaac_importer", "dynamics")
+# benchmarks/dynamics_corpus.py: robot -> validate --dynamics verdicts, the "dynamics" column.
+DYNAMICS = os.path.join(ROOT, "benchmarks", "results", "dynamics.json")
 SMALL = (
     "spirit",
     "ur_description/urdf/ur5_robot",
@@ -181,6 +184,18 @@ def load_consumers(path: str = CONSUMERS) -> dict[str, dict[str, Any]]:
     with open(path, encoding="utf-8") as handle:
         data = json.load(handle)
     return {str(k): v for k, v in data.items() if isinstance(v, dict)} if isinstance(data, dict) else {}
+
+
+def load_dynamics(path: str = DYNAMICS) -> dict[str, dict[str, Any]]:
+    """robot -> {"dynamics": cell}: which scenarios the engines agree on, from dynamics.json."""
+    out: dict[str, dict[str, Any]] = {}
+    for robot, res in load_consumers(path).items():
+        agreement = res.get("agreement") or {}
+        cells = [f"{k.removesuffix('-fixed')} {v}" for k, v in agreement.items() if v != "n/a"]
+        verdict = "FAIL" if res.get("status") == "FAIL" else str(res.get("status", "–"))
+        text = f"{verdict}: {', '.join(cells)}" if cells else verdict
+        out[robot] = {"dynamics": text}
+    return out
 
 
 def consumer_cell(value: Any) -> str:
@@ -468,7 +483,13 @@ def main(argv: list[str] | None = None) -> int:
             )
         )
         print(f"{robot.corpus}/{robot.name}: {state} ({per})", flush=True)
-    text = render(results, targets, args.subset, load_consumers())
+    consumers = load_consumers()
+    for robot, cells in load_dynamics().items():
+        # The row looks up "corpus/name", then "name": join the entry the consumers already have.
+        name = robot.split("/", 1)[-1]
+        key = name if robot not in consumers and name in consumers else robot
+        consumers.setdefault(key, {}).update(cells)
+    text = render(results, targets, args.subset, consumers)
     elapsed = time.perf_counter() - started
     print(f"{len(results)} robots in {elapsed:.1f} s", flush=True)
     if args.check:

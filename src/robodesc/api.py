@@ -199,9 +199,13 @@ def inspect(source: Source, **options: Any) -> InspectReport:
     return describe(source, opts)
 
 
-def check(source: Source, target: str = DEFAULT_TARGET, **options: Any) -> CompileResult:
+def check(source: Source, target: str = DEFAULT_TARGET, *, dynamics: Any = False, **options: Any) -> CompileResult:
     """Compile ``source`` to ``target`` in a temporary folder and validate it; the result (its
-    ``validation`` report and findings) is returned whether or not validation passed."""
+    ``validation`` report and findings) is returned whether or not validation passed.
+
+    ``dynamics`` (True, a :class:`~robodesc.validation.dynamics.DynamicsOptions` or its fields as a
+    dict) also simulates hold, drop and slide in the engines that read the outputs
+    (docs/dynamics.md); the report is ``result.dynamics``."""
     import tempfile
 
     from robodesc.plugins import load_plugins
@@ -211,16 +215,32 @@ def check(source: Source, target: str = DEFAULT_TARGET, **options: Any) -> Compi
     with tempfile.TemporaryDirectory(prefix="robodesc-validate-") as tmp:
         out = spec.output_name(os.path.join(tmp, "robot"))
         try:
-            return compile_to(source, target, out, **{**options, "validate": True})
+            result = compile_to(source, target, out, **{**options, "validate": True})
         except ValidationFailedError as failed:  # nothing written; the report says why
-            return failed.result
+            result = failed.result
+        if dynamics is not False and dynamics is not None and os.path.exists(out):
+            from robodesc.check_dynamics import dynamics_options, run_for
+
+            opts = dynamics_options(dynamics, options)
+            result.dynamics = run_for(source, result.robot, target, out, tmp, opts, options, compile_to)
+        return result
 
 
-def validate(source: Source, target: str = DEFAULT_TARGET, **options: Any) -> ValidationReport | None:
+def validate(
+    source: Source, target: str = DEFAULT_TARGET, *, dynamics: Any = False, **options: Any
+) -> ValidationReport | None:
     """Compile ``source`` to ``target`` in a temporary folder and return the validation report
     (``report.ok``, ``report.to_text()``, ``to_json()``, ``to_markdown()``); None when the target
-    has no check."""
-    return check(source, target, **options).validation
+    has no check. With ``dynamics``, the simulation's verdicts are added to it as ``dynamics:*``
+    rows (``check(..., dynamics=True).dynamics`` has the whole table)."""
+    result = check(source, target, dynamics=dynamics, **options)
+    report = result.validation
+    if report is not None and result.dynamics is not None:
+        for row in result.dynamics.checks:
+            report.add(
+                f"dynamics:{row.name}", row.status, row.element, row.message, error=row.error, tolerance=row.tolerance
+            )
+    return report
 
 
 def validate_file(path: str, options: Any = None, load_options: Any = None) -> ValidationReport:

@@ -16,6 +16,7 @@ import dataclasses
 import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 from robodesc.emit.common.staging import Staging, check_output
 from robodesc.emit.common.target import CheckRequest, EmitRequest, Emitted, Target
@@ -57,6 +58,8 @@ class CompileResult:
     # Validation rows that failed because of a defect of the source, not of robodesc (the run
     # still succeeds; they are listed as warnings).
     source_failures: list[Check] = field(default_factory=list)
+    # validate --dynamics: a robodesc.validation.dynamics.DynamicsReport (None when not asked).
+    dynamics: Any = None
 
     @property
     def warnings(self) -> list[Finding]:

@@ -50,3 +50,17 @@ def test_consumer_verdicts_become_extra_columns(tmp_path: Path) -> None:
     # Without the file the table keeps its columns.
     assert script.load_consumers(str(tmp_path / "absent.json")) == {}
     assert "newton" not in script.render([result], ["urdf"], "small", {})
+
+
+def test_dynamics_verdicts_become_a_column(tmp_path: Path) -> None:
+    script = _script()
+    path = tmp_path / "dynamics.json"
+    path.write_text(
+        '{"quadsdk/spirit": {"status": "ok", "agreement": {"hold-fixed": "agree", "drop": "agree", "slide": "n/a"}}}'
+    )
+    cells = script.load_dynamics(str(path))
+    assert cells == {"quadsdk/spirit": {"dynamics": "ok: hold agree, drop agree"}}
+    robot = script.CorpusRobot("quadsdk", "spirit", "spirit.urdf.xacro")
+    result = script.RobotResult(robot, links=3, targets=[script.TargetResult("urdf", "yes")])
+    text = script.render([result], ["urdf"], "small", cells)
+    assert "| note | dynamics |" in text and "| ok: hold agree, drop agree |" in text

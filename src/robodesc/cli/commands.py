@@ -152,11 +152,11 @@ def cmd_validate(args: argparse.Namespace) -> int:
     if args.report:
         check_output(args.report, folder=False, source=args.input, what="--report")
     args.json_target = args.target
-    result = api.check(args.input, args.target, **_input_options(args))
+    result = api.check(args.input, args.target, dynamics=_dynamics_options(args), **_input_options(args))
     report = result.validation
     if report is None:
         raise ConfigError(f"target {args.target!r} has nothing to validate")
-    code = 0 if report.ok else 1
+    code = 0 if report.ok and (result.dynamics is None or result.dynamics.ok) else 1
     if args.report:
         from robodesc._files import write_atomic
 
@@ -164,11 +164,30 @@ def cmd_validate(args: argparse.Namespace) -> int:
     if args.json:
         doc = render.json_doc("validate", code, target=args.target, result=result)
         doc["files"] = {}
+        doc["dynamics"] = result.dynamics.as_dict() if result.dynamics is not None else None
         print(json.dumps(doc, indent=2))
     else:
         render.print_findings(result.findings, quiet=False)
         print(report.to_text())
+        if result.dynamics is not None:
+            print(result.dynamics.to_text())
     return code
+
+
+def _dynamics_options(args: argparse.Namespace) -> dict[str, Any] | bool:
+    """False without --dynamics; else the DynamicsOptions fields the flags set."""
+    if not getattr(args, "dynamics", False):
+        return False
+    pose: dict[str, float] = {}
+    for rule in args.pose:
+        pattern, sep, value = rule.rpartition("=")
+        try:
+            pose[pattern] = float(value)
+        except ValueError:
+            raise ConfigError(f"--pose {rule!r}: expected REGEX=VALUE with a number") from None
+        if not sep:
+            raise ConfigError(f"--pose {rule!r}: expected REGEX=VALUE")
+    return {"engines": args.engines, **({"pose": pose} if pose else {})}
 
 
 def _refuse_output_as_input(path: str) -> None:

@@ -293,6 +293,30 @@ def _validate_parser(sub: Any) -> argparse.ArgumentParser:
     add_input_options(valp)
     valp.add_argument("--report", metavar="FILE.md", help="write the report as Markdown")
     valp.add_argument("--json", action="store_true", help="print the report as JSON")
+    dyn = valp.add_argument_group("dynamics (docs/dynamics.md)")
+    dyn.add_argument(
+        "--dynamics",
+        action="store_true",
+        help="also simulate on CPU: drives hold the home pose under gravity (fixed base), the floating robot "
+        "dropped onto a plane, a block with the robot's friction on tilted planes; per engine, against the "
+        "other engines and against the source where an engine reads it. Exit 1 when an output behaves unlike "
+        "its source",
+    )
+    dyn.add_argument(
+        "--engines",
+        metavar="LIST",
+        type=lambda text: tuple(e.strip() for e in text.split(",") if e.strip()),
+        default=(),
+        help="comma-separated engines for --dynamics: mujoco, drake, newton (default: mujoco, drake and the "
+        "engine that reads the target; newton costs seconds to import and runs only when named or for its target)",
+    )
+    dyn.add_argument(
+        "--pose",
+        metavar="REGEX=VALUE",
+        action="append",
+        default=[],
+        help="home pose for --dynamics (rad or m, first match wins; repeatable); default 0 clamped into the limits",
+    )
 
     return valp
 

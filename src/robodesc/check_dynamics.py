@@ -1,0 +1,122 @@
+"""``validate --dynamics``: compile what the engines read, then simulate (validation/dynamics).
+
+Driver code: it knows targets only through the table. Each engine reads some target's output
+(``validation.dynamics.READERS``, keyed by target name); the engines asked for but not reading the
+checked target get their target compiled beside it in the same scratch folder, with the input and
+pass options and only the target options their class declares. Newton runs only when asked
+(``engines``) or when the checked target is the one it reads: its first import costs seconds.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from collections.abc import Callable, Mapping
+from typing import Any
+
+from robodesc.ir.diagnostics import Findings, RobodescError
+from robodesc.ir.model import Robot
+from robodesc.targets import TARGETS, target_spec
+from robodesc.validation.dynamics import READERS, DynamicsOptions, DynamicsReport, run_dynamics
+from robodesc.validation.dynamics.source import write_source
+
+# Engines run when none are named: cheap to import, and together they read two formats.
+DEFAULT_ENGINES = ("mujoco", "drake")
+
+
+def dynamics_options(given: DynamicsOptions | bool | Mapping[str, Any], options: Mapping[str, Any]) -> DynamicsOptions:
+    """The dynamics options, with the compile's gains, pose and packages where not set."""
+    if isinstance(given, DynamicsOptions):
+        opts = dataclasses.replace(given)
+    elif isinstance(given, Mapping):
+        opts = DynamicsOptions(**given)
+    else:
+        opts = DynamicsOptions()
+    opts.stiffness = opts.stiffness if opts.stiffness is not None else options.get("stiffness")
+    opts.damping = opts.damping if opts.damping is not None else options.get("damping")
+    opts.pose = opts.pose if opts.pose is not None else options.get("init_joint_pos")
+    opts.package_paths = opts.package_paths or dict(options.get("package_paths", {}))
+    return opts
+
+
+def run_for(
+    source: Any,
+    robot: Robot,
+    target: str,
+    out: str,
+    folder: str,
+    opts: DynamicsOptions,
+    options: Mapping[str, Any],
+    compile_to: Callable[..., Any],
+) -> DynamicsReport:
+    """``compile_to`` is the API's (passed in: the API imports this module, not the other way)."""
+    engines = tuple(opts.engines) or tuple(dict.fromkeys((*DEFAULT_ENGINES, *_engine_of(target))))
+    files: dict[str, str] = {}
+    if target in READERS:
+        files[target] = out
+    for engine in engines:
+        if any(READERS.get(kind) == engine for kind in files):
+            continue
+        name = next((t for t in TARGETS if READERS.get(t) == engine and not target_spec(t).folder), None)
+        if name is None:
+            continue
+        path = target_spec(name).output_name(os.path.join(folder, "dynamics-robot"))
+        try:
+            compile_to(source, name, path, **_options_for(target, name, options), validate=False)
+        except RobodescError:
+            continue  # the checked target's validation reports what is wrong with the robot
+        files[name] = path
+    opts = dataclasses.replace(opts, engines=engines)
+    robot = _source_robot(source, options) or robot
+    return run_dynamics(robot, files, opts, source_urdf=_source_file(source, robot, folder, options))
+
+
+def _source_robot(source: Any, options: Mapping[str, Any]) -> Robot | None:
+    """The source's IR, before any target's passes: the checked target's robot may carry renamed
+    joints (USD sanitizes ``0`` to ``a0``) that neither the pose table nor the other files know.
+    Every file names its joints after the source (USD through ``displayName``)."""
+    from robodesc.frontends.load import load_source
+    from robodesc.frontends.options import LoadOptions
+    from robodesc.options import build_options
+
+    loading = {f.name for f in dataclasses.fields(LoadOptions)}
+    try:
+        opts = build_options({k: v for k, v in options.items() if k in loading})
+        return load_source(source, opts.load, Findings())
+    except RobodescError:
+        return None
+
+
+def _engine_of(target: str) -> tuple[str, ...]:
+    return (READERS[target],) if target in READERS else ()
+
+
+def _options_for(main: str, other: str, options: Mapping[str, Any]) -> dict[str, Any]:
+    """The options ``other`` accepts: everything but the main target's own, unless ``other``
+    declares it too (``stiffness`` for two targets)."""
+    cls_main, cls_other = target_spec(main).options, target_spec(other).options
+    own = {f.name for f in dataclasses.fields(cls_main)} if cls_main else set()
+    theirs = {f.name for f in dataclasses.fields(cls_other)} if cls_other else set()
+    return {k: v for k, v in options.items() if k not in own or k in theirs}
+
+
+def _source_file(source: Any, robot: Robot, folder: str, options: Mapping[str, Any]) -> str | None:
+    """The input as a file MuJoCo and Drake read, when it is one (a URDF, or a xacro expanded with
+    the compile's arguments); None for compositions and in-memory robots."""
+    if not isinstance(source, str | os.PathLike) or not os.path.isfile(source):
+        return None
+    from robodesc.frontends.packages import PackageResolver
+    from robodesc.frontends.xacro_expand import expand_xacro
+
+    path = os.fspath(source)
+    try:
+        text = expand_xacro(
+            path,
+            dict(options.get("xacro_args", {})),
+            PackageResolver(explicit=dict(options.get("package_paths", {})), input_file=path),
+            Findings(),
+            allowed_env=tuple(options.get("allowed_env", ())),
+        )
+    except (RobodescError, OSError, UnicodeDecodeError):
+        return None  # not XML: a composition, whose only description is the IR
+    return write_source(robot, text, folder)

@@ -1,0 +1,231 @@
+"""The scenarios in MuJoCo, from a URDF (robodesc's output, or the source itself) or an MJCF file.
+
+A URDF carries no actuators: a position actuator per driven joint is added with ``MjSpec`` from the
+compile's gains (kp, kv in SI per rad or m), as a URDF consumer configures them. An MJCF file
+brings its own actuators: they are used as written, targets set to the home pose, so a wrong gain
+in the MJCF shows up as a hold the other engines do not share.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from typing import Any
+
+import mujoco
+import numpy as np
+
+from robodesc.ir.model import Robot
+from robodesc.validation.dynamics.result import Run
+from robodesc.validation.dynamics.scenarios import Setup, slide_angles
+from robodesc.validation.mujoco_load import add_floating_base, load_urdf_in_mujoco
+from robodesc.validation.options import ValidateOptions
+from robodesc.validation.report import ValidationReport
+
+ENGINE = "mujoco"
+_SAMPLE = 0.01  # s between trajectory samples
+_BOX = 0.05  # m: half size of the slide block
+# Implicit in the drives' velocity terms: MuJoCo's default Euler is explicit in an actuator's kv,
+# and kv = 1 N·m·s/rad on a 10 g fingertip is unstable at any usable time step (Drake's PD and
+# Newton's MuJoCo solver are implicit too). A URDF names no integrator; an MJCF's own is kept.
+_INTEGRATOR = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
+
+
+def load_spec(robot: Robot, path: str, kind: str, package_paths: dict[str, str]) -> tuple[Any, str]:
+    """(MjSpec, why not) for a URDF or MJCF file; the spec is None when MuJoCo refuses it."""
+    if kind == "mjcf":
+        try:
+            return mujoco.MjSpec.from_file(path), ""
+        except ValueError as exc:
+            return None, str(exc).strip()
+    with open(path, encoding="utf-8") as fh:
+        text = fh.read()
+    scratch = ValidationReport(robot=robot.name, target=kind, consumer=ENGINE)
+    loaded = load_urdf_in_mujoco(
+        robot, text, os.path.dirname(os.path.abspath(path)), ValidateOptions(package_paths=package_paths), scratch
+    )
+    if loaded is None:
+        failed = [c.message for c in scratch.checks if c.status.value == "fail"]
+        return None, (failed[0] if failed else "MuJoCo refused the file")
+    return loaded.spec, ""
+
+
+def run_all(robot: Robot, spec: Any, kind: str, setup: Setup, scenarios: tuple[str, ...]) -> list[Run]:
+    out: list[Run] = []
+    for scenario in scenarios:
+        started = time.perf_counter()
+        run = Run(ENGINE, kind, scenario)
+        try:
+            if scenario == "hold-fixed":
+                _hold(robot, spec, kind, setup, run)
+            elif scenario == "drop":
+                _drop(robot, spec, kind, setup, run)
+            elif scenario == "slide":
+                _slide(spec, setup, run)
+        except (ValueError, RuntimeError) as exc:  # MuJoCo raises ValueError for what it refuses
+            run.ok, run.error = False, str(exc).strip().splitlines()[0][:200]
+        run.seconds = time.perf_counter() - started
+        out.append(run)
+    return out
+
+
+def _actuate(spec: Any, kind: str, setup: Setup) -> None:
+    if kind == "mjcf" and len(spec.actuators):
+        return  # the file's own drives
+    for name, (kp, kd) in setup.gains.items():
+        if spec.joint(name) is None:
+            continue
+        act = spec.add_actuator(name=f"drive_{name}", target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+        act.set_to_position(kp=kp, kv=kd)
+
+
+def _joint_addresses(model: Any, setup: Setup) -> dict[str, int]:
+    out = {}
+    for name in setup.pose:
+        jid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
+        if jid >= 0:
+            out[name] = int(model.jnt_qposadr[jid])
+    return out
+
+
+def _start(model: Any, data: Any, setup: Setup) -> dict[str, int]:
+    addr = _joint_addresses(model, setup)
+    for name, a in addr.items():
+        data.qpos[a] = setup.pose[name]
+    for i in range(model.nu):
+        jid = int(model.actuator_trnid[i, 0])
+        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, jid)
+        if name in setup.pose:
+            data.ctrl[i] = setup.pose[name]
+    return addr
+
+
+def _simulate(model: Any, data: Any, setup: Setup, run: Run, addr: dict[str, int]) -> bool:
+    if setup.pose and not addr:
+        run.ok, run.error = False, "none of the robot's driven joints is in the file"
+        return False
+    steps = max(1, round(setup.duration / setup.timestep))
+    every = max(1, round(_SAMPLE / setup.timestep))
+    for step in range(steps):
+        mujoco.mj_step(model, data)
+        if not np.all(np.isfinite(data.qpos)):
+            run.ok, run.error = False, f"state not finite after {(step + 1) * setup.timestep:.3g} s"
+            return False
+        if (step + 1) % every == 0:
+            run.trajectory.append(((step + 1) * setup.timestep, {n: float(data.qpos[a]) for n, a in addr.items()}))
+    run.final_q = {n: float(data.qpos[a]) for n, a in addr.items()}
+    worst = max(((abs(q - setup.pose[n]), n) for n, q in run.final_q.items()), default=(0.0, ""))
+    run.drift, run.worst_joint = worst
+    return True
+
+
+def _no_self_contact(spec: Any) -> None:
+    """Robot geoms collide with the floor only: convex hulls of meshes overlap on most robots and
+    their pushes are not what these scenarios measure."""
+    for geom in spec.geoms:
+        geom.contype, geom.conaffinity = 1, 0
+
+
+def _hold(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
+    s = spec.copy()
+    for body in s.bodies:  # weld the root (an MJCF or a prior step may have freed it)
+        for joint in list(body.joints):
+            if joint.type == mujoco.mjtJoint.mjJNT_FREE:
+                s.delete(joint)
+    _actuate(s, kind, setup)
+    s.option.timestep = setup.timestep
+    if kind != "mjcf":
+        s.option.integrator = _INTEGRATOR
+    s.option.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
+    model = s.compile()
+    data = mujoco.MjData(model)
+    addr = _start(model, data, setup)
+    _simulate(model, data, setup, run, addr)
+
+
+def _robot_mu(spec: Any) -> float:
+    """The sliding friction MuJoCo gives the robot's colliders (the most common one)."""
+    values = [round(float(g.friction[0]), 9) for g in spec.geoms]
+    return max(set(values), key=values.count) if values else 1.0
+
+
+def _drop(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
+    s = spec.copy()
+    add_floating_base(s, robot)
+    _actuate(s, kind, setup)
+    _no_self_contact(s)
+    mu = _robot_mu(s)
+    run.mu = mu
+    # Equal friction on both sides: MuJoCo takes the larger, Drake a harmonic mean, Newton its own
+    # rule; all of them give mu when the two are equal.
+    s.worldbody.add_geom(
+        name="dyn_floor",
+        type=mujoco.mjtGeom.mjGEOM_PLANE,
+        size=[0, 0, 1],
+        contype=0,
+        conaffinity=1,
+        friction=[mu, 0.005, 0.0001],
+    )
+    s.option.timestep = setup.timestep
+    if kind != "mjcf":
+        s.option.integrator = _INTEGRATOR
+    model = s.compile()
+    data = mujoco.MjData(model)
+    addr = _start(model, data, setup)
+    root = _free_root(model)
+    if root is None:
+        run.ok, run.error = False, "no free root body"
+        return
+    qadr = int(model.jnt_qposadr[root])
+    data.qpos[qadr + 2] = setup.stand_height + setup.drop_clearance
+    if _simulate(model, data, setup, run, addr):
+        body = int(model.jnt_bodyid[root])
+        run.height = float(data.xpos[body][2])
+        run.tilt = math.acos(max(-1.0, min(1.0, float(data.xmat[body][8]))))
+
+
+def _free_root(model: Any) -> int | None:
+    for j in range(model.njnt):
+        if int(model.jnt_type[j]) == int(mujoco.mjtJoint.mjJNT_FREE):
+            return j
+    return None
+
+
+def _slide(spec: Any, setup: Setup, run: Run) -> None:
+    mu = _robot_mu(spec)
+    run.mu = mu
+    stick, slide = slide_angles(mu)
+    run.stick = _block_travel(mu, stick, setup)
+    run.slide = _block_travel(mu, slide, setup)
+
+
+def _block_travel(mu: float, angle: float, setup: Setup) -> float:
+    """A 1 kg block, friction mu on both sides, on a plane tilted by ``angle``: distance moved."""
+    s = mujoco.MjSpec()
+    s.option.timestep = setup.timestep
+    s.option.integrator = _INTEGRATOR
+    s.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC  # the Coulomb cone, as Drake's and Newton's
+    c, sn = math.cos(angle / 2), math.sin(angle / 2)
+    s.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 1], quat=[c, 0, sn, 0], friction=[mu, 0, 0])
+    normal = np.array([math.sin(angle), 0.0, math.cos(angle)])
+    body = s.worldbody.add_body(pos=list(normal * (_BOX + 1e-4)), quat=[c, 0, sn, 0])
+    body.add_freejoint()
+    body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[_BOX] * 3, mass=1.0, friction=[mu, 0, 0], condim=3)
+    model = s.compile()
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    start = data.qpos[:3].copy()
+    for _ in range(max(1, round(setup.duration / setup.timestep))):
+        mujoco.mj_step(model, data)
+    return float(np.linalg.norm(data.qpos[:3] - start))
+
+
+def run_file(
+    robot: Robot, path: str, kind: str, setup: Setup, options: Any, scenarios: tuple[str, ...]
+) -> list[Run] | str:
+    """The runner contract of :mod:`.run`: the runs, or why the file could not be loaded."""
+    spec, why = load_spec(robot, path, "mjcf" if kind == "mjcf" else "urdf", dict(options.package_paths))
+    if spec is None:
+        return f"MuJoCo cannot load it: {why}"
+    return run_all(robot, spec, kind, setup, scenarios)

@@ -1,0 +1,186 @@
+"""The scenarios in Newton, run by Newton's own interpreter (never imported by robodesc).
+
+Newton needs Python >= 3.10 with ``newton[importers,sim]`` (the consumer tier's venv); robodesc
+starts this file there and speaks JSON: one request on standard input
+``{"usd", "root", "scenarios", "setup"}`` (setup as :meth:`Setup.as_dict`), one answer on standard
+output ``{"newton": version, "runs": [Run fields]}`` or ``{"error": message}``.
+
+Newton reads the USD with ``add_usd``: bodies, joints and the drives robodesc wrote (gains in the
+USD's own units, converted by Newton), and the colliders' physics materials. The solver is
+``SolverMuJoCo`` on CPU (``use_mujoco_cpu``): Newton's production solver, deterministic on CPU.
+"""
+# mypy: ignore-errors
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+import time
+import traceback
+import warnings
+
+_SAMPLE = 0.01
+_BOX = 0.05
+
+
+def _short(label):
+    return label.rstrip("/").split("/")[-1]
+
+
+def _builder(gravity=None):
+    import newton
+
+    return newton.ModelBuilder(gravity=gravity) if gravity is not None else newton.ModelBuilder()
+
+
+def _load(req, floating, floor=False):
+    """(model, mu): the USD as Newton builds it, with a ground plane of the robot's own friction
+    when ``floor`` (equal friction on both sides: every combine rule then gives it). One build per
+    scenario: add_usd is most of Newton's cost on mesh-heavy robots."""
+    import newton
+
+    builder = _builder()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        builder.add_usd(req["usd"], floating=floating, enable_self_collisions=False, load_visual_shapes=False)
+    values = [round(float(v), 6) for v in builder.shape_material_mu]
+    mu = max(set(values), key=values.count) if values else None
+    if floor:
+        builder.add_ground_plane(cfg=newton.ModelBuilder.ShapeConfig(mu=1.0 if mu is None else mu))
+    return builder.finalize(device="cpu"), mu
+
+
+def _names(model, usd):
+    """Joint name -> (q index, dof count); USD prim names fall back to their displayName."""
+    from pxr import Usd
+
+    stage = Usd.Stage.Open(usd)
+    starts = model.joint_q_start.numpy()
+    out = {}
+    for j, label in enumerate(model.joint_label):
+        name = _short(label)
+        prim = stage.GetPrimAtPath(label) if label.startswith("/") else None
+        if prim is not None and prim.IsValid() and prim.GetMetadata("displayName"):
+            out[prim.GetMetadata("displayName")] = (int(starts[j]), int(starts[j + 1]) - int(starts[j]))
+        out[name] = (int(starts[j]), int(starts[j + 1]) - int(starts[j]))
+    return out
+
+
+def _run_robot(req, scenario):
+    import newton
+    import numpy as np
+
+    setup = req["setup"]
+    floor = scenario == "drop"
+    model, mu = _load(req, floating=floor, floor=floor)
+    names = _names(model, req["usd"])
+    pose = {n: v for n, v in setup["pose"].items() if n in names and names[n][1] == 1}
+    state0, state1, control = model.state(), model.state(), model.control()
+    q = model.joint_q.numpy().copy()
+    for n, v in pose.items():
+        q[names[n][0]] = v
+    root_body = 0
+    if floor:
+        # The free root's coordinates come first: px py pz qx qy qz qw.
+        q[2] = setup["stand_height"] + setup["drop_clearance"]
+        q[3:7] = [0.0, 0.0, 0.0, 1.0]
+    state0.joint_q.assign(q)
+    newton.eval_fk(model, state0.joint_q, state0.joint_qd, state0)
+    if control.joint_target_q is not None:
+        target = control.joint_target_q.numpy().copy()
+        for n, v in pose.items():
+            target[names[n][0]] = v
+        control.joint_target_q.assign(target)
+    solver = newton.solvers.SolverMuJoCo(model, use_mujoco_cpu=True, disable_contacts=not floor)
+    dt = setup["timestep"]
+    steps = max(1, round(setup["duration"] / dt))
+    every = max(1, round(_SAMPLE / dt))
+    run = {"scenario": scenario, "ok": True, "error": "", "mu": mu, "trajectory": []}
+    contacts = None
+    for step in range(steps):
+        state0.clear_forces()
+        solver.step(state0, state1, control, contacts, dt)
+        state0, state1 = state1, state0
+        if (step + 1) % every == 0:
+            jq = state0.joint_q.numpy()
+            if not np.all(np.isfinite(jq)):
+                return {**run, "ok": False, "error": f"state not finite after {(step + 1) * dt:.3g} s"}
+            run["trajectory"].append([(step + 1) * dt, {n: float(jq[names[n][0]]) for n in pose}])
+    jq = state0.joint_q.numpy()
+    final = {n: float(jq[names[n][0]]) for n in pose}
+    worst = max(((abs(v - pose[n]), n) for n, v in final.items()), default=(0.0, ""))
+    run.update(final_q=final, drift=worst[0], worst_joint=worst[1])
+    if floor:
+        bq = state0.body_q.numpy()[root_body]
+        qx, qy = float(bq[3]), float(bq[4])
+        run.update(height=float(bq[2]), tilt=math.acos(max(-1.0, min(1.0, 1.0 - 2.0 * (qx * qx + qy * qy)))))
+    return run
+
+
+def _block_travel(mu, angle, setup):
+    """A horizontal plane with gravity tilted by ``angle``: the same as a tilted plane."""
+    import newton
+    import numpy as np
+    import warp as wp
+
+    g = 9.81
+    builder = _builder(gravity=(g * math.sin(angle), 0.0, -g * math.cos(angle)))
+    cfg = newton.ModelBuilder.ShapeConfig(mu=mu)
+    builder.add_ground_plane(cfg=cfg)
+    body = builder.add_body(xform=wp.transform((0.0, 0.0, _BOX + 1e-4), wp.quat_identity()))
+    box_cfg = newton.ModelBuilder.ShapeConfig(mu=mu, density=1.0 / (2 * _BOX) ** 3)
+    builder.add_shape_box(body, hx=_BOX, hy=_BOX, hz=_BOX, cfg=box_cfg)
+    model = builder.finalize(device="cpu")
+    s0, s1, control = model.state(), model.state(), model.control()
+    newton.eval_fk(model, s0.joint_q, s0.joint_qd, s0)
+    start = s0.body_q.numpy()[0][:3].copy()
+    solver = newton.solvers.SolverMuJoCo(model, use_mujoco_cpu=True, cone="elliptic")
+    dt = setup["timestep"]
+    for _ in range(max(1, round(setup["duration"] / dt))):
+        s0.clear_forces()
+        solver.step(s0, s1, control, None, dt)
+        s0, s1 = s1, s0
+    return float(np.linalg.norm(s0.body_q.numpy()[0][:3] - start))
+
+
+def _slide(req, mu):
+    setup = req["setup"]
+    if mu is None:
+        _, mu = _load(req, floating=False)
+    if mu is None:
+        return {"scenario": "slide", "ok": False, "error": "Newton reads no collider from the USD"}
+    stick, slide = math.atan(0.7 * mu), math.atan(1.3 * mu)
+    return {
+        "scenario": "slide",
+        "ok": True,
+        "error": "",
+        "mu": mu,
+        "stick": _block_travel(mu, stick, setup),
+        "slide": _block_travel(mu, slide, setup),
+    }
+
+
+def main():
+    req = json.loads(sys.stdin.read())
+    try:
+        import newton
+    except ImportError as exc:
+        print(json.dumps({"error": f"not available: {exc}"}))
+        return
+    runs = []
+    for scenario in req["scenarios"]:
+        started = time.perf_counter()
+        try:
+            known = [r["mu"] for r in runs if r.get("mu") is not None]
+            run = _slide(req, known[0] if known else None) if scenario == "slide" else _run_robot(req, scenario)
+        except Exception as exc:  # one scenario's failure is a row, not the end of the others
+            detail = traceback.format_exception_only(type(exc), exc)[-1].strip()[:300]
+            run = {"scenario": scenario, "ok": False, "error": detail}
+        run["seconds"] = time.perf_counter() - started
+        runs.append(run)
+    print(json.dumps({"newton": newton.__version__, "runs": runs}))
+
+
+if __name__ == "__main__":
+    main()

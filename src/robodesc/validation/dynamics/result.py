@@ -1,0 +1,99 @@
+"""What the dynamics check measured: one :class:`Run` per engine, file and scenario, and the
+verdicts drawn from them (:class:`~robodesc.validation.report.Check` rows, as every validation)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from robodesc.validation.report import Check, Status
+
+
+@dataclass(slots=True)
+class Run:
+    """One scenario in one engine. Quantities are None when the scenario does not measure them."""
+
+    engine: str  # "mujoco", "drake", "newton"
+    file: str  # what the engine read: "urdf", "sdf", "usd", "mjcf", or "source" (the input itself)
+    scenario: str  # "hold-fixed", "drop", "slide"
+    ok: bool = True  # the run finished with a finite state
+    error: str = ""
+    drift: float | None = None  # max |q - q_home| at the end, rad or m
+    worst_joint: str = ""
+    height: float | None = None  # root height at the end, m
+    tilt: float | None = None  # angle between the root's z and the world's, rad
+    mu: float | None = None  # friction the engine gave the robot's colliders
+    stick: float | None = None  # slide: distance moved on the "sticks" plane, m
+    slide: float | None = None  # slide: distance moved on the "slides" plane, m
+    seconds: float = 0.0
+    final_q: dict[str, float] = field(default_factory=dict)
+    # (time, {joint: q}) samples, for comparing an output with its source in one engine.
+    trajectory: list[tuple[float, dict[str, float]]] = field(default_factory=list)
+
+    def as_dict(self) -> dict[str, Any]:
+        keys = ("engine", "file", "scenario", "ok", "error", "drift", "worst_joint", "height", "tilt", "mu")
+        out: dict[str, Any] = {k: getattr(self, k) for k in keys}
+        out.update(stick=self.stick, slide=self.slide, seconds=round(self.seconds, 3))
+        return out
+
+
+@dataclass(slots=True)
+class DynamicsReport:
+    robot: str
+    runs: list[Run] = field(default_factory=list)
+    checks: list[Check] = field(default_factory=list)
+    info: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def ok(self) -> bool:
+        return not any(c.status is Status.FAIL for c in self.checks)
+
+    def add(self, name: str, status: Status, element: str, message: str, **kw: float | None) -> None:
+        self.checks.append(Check(name, status, element, message, kw.get("error"), kw.get("tolerance")))
+
+    def agreement(self) -> dict[str, str]:
+        """Per scenario: "agree", "differ" or "n/a" (fewer than two engines ran it), for the corpus
+        report's column."""
+        out: dict[str, str] = {}
+        for scenario in ("hold-fixed", "drop", "slide"):
+            names = [c for c in self.checks if c.name == f"agree:{scenario}"]
+            if not names:
+                out[scenario] = "n/a"
+            else:
+                out[scenario] = "differ" if any(c.status is not Status.PASS for c in names) else "agree"
+        return out
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "robot": self.robot,
+            "ok": self.ok,
+            "runs": [r.as_dict() for r in self.runs],
+            "checks": [c.as_dict() for c in self.checks],
+            "agreement": self.agreement(),
+            "info": self.info,
+        }
+
+    def to_text(self) -> str:
+        lines = [f"dynamics of {self.robot!r} ({self.info.get('pose_note', 'home pose')}):"]
+        head = f"  {'engine':<8} {'file':<7} {'scenario':<11} {'drift':>9} {'height':>8} {'tilt':>7} {'mu':>6} {'moved stick/slide':>18} {'s':>6}"
+        lines.append(head)
+        for r in self.runs:
+            if not r.ok:
+                lines.append(f"  {r.engine:<8} {r.file:<7} {r.scenario:<11} failed: {r.error}")
+                continue
+            moved = "" if r.stick is None else f"{_num(r.stick, 3)}/{_num(r.slide, 3)}"
+            tilt = None if r.tilt is None else math.degrees(r.tilt)
+            lines.append(
+                f"  {r.engine:<8} {r.file:<7} {r.scenario:<11} {_num(r.drift, 4):>9} {_num(r.height, 3):>8} "
+                f"{_num(tilt, 1):>7} {_num(r.mu, 3):>6} {moved:>18} {r.seconds:>6.2f}"
+            )
+        for c in sorted(self.checks, key=lambda c: c.status is Status.PASS):
+            lines.append(f"  {c.status.value.upper():<4} {c.name} {c.element}: {c.message}")
+        verdict = "passed" if self.ok else "FAILED (an output behaves unlike its source)"
+        lines.append(f"dynamics {verdict}")
+        return "\n".join(lines)
+
+
+def _num(value: float | None, digits: int) -> str:
+    return "-" if value is None else f"{value:.{digits}f}"

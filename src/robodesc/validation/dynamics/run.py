@@ -1,0 +1,141 @@
+"""Run the scenarios on every file given, in the engine that reads it, and judge the runs.
+
+Which engine reads what: MuJoCo reads URDF and MJCF, Drake reads SDF (and the source URDF, for the
+source comparison), Newton reads USD (in its own interpreter, :mod:`.newton_run`). An engine that
+is not installed is a SKIP row, never a failure.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable, Mapping
+
+from robodesc.ir.model import Robot
+from robodesc.validation.dynamics.result import DynamicsReport, Run
+from robodesc.validation.dynamics.scenarios import DynamicsOptions, Setup, make_setup
+from robodesc.validation.dynamics.verdict import SOURCE, judge
+from robodesc.validation.report import Status
+
+SCENARIOS = ("hold-fixed", "drop", "slide")
+# File kind (a target's name, or the suffix of a file given directly) -> engine.
+READERS = {"urdf": "mujoco", "mjcf": "mujoco", "sdf": "drake", "usd": "newton"}
+_SUFFIXES = {
+    ".urdf": "urdf",
+    ".xml": "mjcf",
+    ".mjcf": "mjcf",
+    ".sdf": "sdf",
+    ".usd": "usd",
+    ".usda": "usd",
+    ".usdc": "usd",
+}
+
+
+def kind_of(path: str) -> str | None:
+    """The file kind for a path (by suffix), or None when no engine here reads it."""
+    return _SUFFIXES.get(os.path.splitext(path)[1].lower())
+
+
+def engine_for(path: str) -> str | None:
+    kind = kind_of(path)
+    return None if kind is None else READERS[kind]
+
+
+def run_dynamics(
+    robot: Robot,
+    files: Mapping[str, str],
+    options: DynamicsOptions | None = None,
+    source_urdf: str | None = None,
+) -> DynamicsReport:
+    """Simulate ``files`` (kind -> path, kinds as in :data:`READERS`) compiled from ``robot``.
+
+    ``source_urdf`` is the input as URDF text's file (plain or xacro-expanded), when there is one:
+    MuJoCo and Drake then run it too, and each output is compared with it in the same engine.
+    """
+    opts = options or DynamicsOptions()
+    setup = make_setup(robot, opts)
+    report = DynamicsReport(robot=robot.name)
+    report.info["pose_note"] = "pose from the given table, else 0 clamped into limits"
+    report.info["setup"] = setup.as_dict()
+    started = time.perf_counter()
+    wanted = set(opts.engines) or set(READERS.values())
+    scenarios = SCENARIOS if setup.floating else tuple(s for s in SCENARIOS if s != "drop")
+    if not setup.floating:
+        report.add("drop", Status.SKIP, "robot", "not run: fewer than three links touch the ground at the home pose")
+    if not any(link.collisions for link in robot.links):
+        scenarios = tuple(s for s in scenarios if s != "slide")
+        report.add("slide", Status.SKIP, "robot", "not run: the robot has no collider, so no material to slide")
+    for kind, path in files.items():
+        engine = READERS.get(kind)
+        if engine is None or engine not in wanted:
+            continue
+        report.runs.extend(_run_engine(engine, robot, path, kind, setup, opts, report, scenarios))
+        if source_urdf is not None and kind in ("urdf", "mjcf", "sdf"):
+            src_engine = "drake" if kind == "sdf" else "mujoco"
+            if not any(r.engine == src_engine and r.file == SOURCE for r in report.runs):
+                runs = _run_engine(src_engine, robot, source_urdf, SOURCE, setup, opts, report, ("hold-fixed",))
+                report.runs.extend(runs)
+    judge(report, setup, opts.thresholds)
+    report.info["seconds"] = round(time.perf_counter() - started, 3)
+    return report
+
+
+Runner = Callable[[Robot, str, str, Setup, DynamicsOptions, tuple[str, ...]], "list[Run] | str"]
+
+
+def _run_engine(
+    engine: str,
+    robot: Robot,
+    path: str,
+    kind: str,
+    setup: Setup,
+    opts: DynamicsOptions,
+    report: DynamicsReport,
+    scenarios: tuple[str, ...] = SCENARIOS,
+) -> list[Run]:
+    started = time.perf_counter()
+    try:
+        return _run_engine_timed(engine, robot, path, kind, setup, opts, report, scenarios)
+    finally:
+        spent = report.info.setdefault("engine_seconds", {})
+        spent[engine] = round(spent.get(engine, 0.0) + time.perf_counter() - started, 3)
+
+
+def _run_engine_timed(
+    engine: str,
+    robot: Robot,
+    path: str,
+    kind: str,
+    setup: Setup,
+    opts: DynamicsOptions,
+    report: DynamicsReport,
+    scenarios: tuple[str, ...],
+) -> list[Run]:
+    try:
+        runner = _runner(engine)
+    except ImportError as exc:
+        report.add("engine", Status.SKIP, engine, f"not installed ({exc})")
+        return []
+    result = runner(robot, path, kind, setup, opts, scenarios)
+    if isinstance(result, str):  # the engine refused the file, or is not available
+        status = Status.SKIP if result.startswith("not available") else Status.FAIL
+        if kind == SOURCE:
+            status = Status.WARN  # the source's own trouble: nothing to compare with
+        report.add("load", status, f"{engine}/{kind}", result)
+        return []
+    return result
+
+
+def _runner(engine: str) -> Runner:
+    # Imported when asked: Drake's import alone takes a second, Newton's a subprocess.
+    if engine == "mujoco":
+        from robodesc.validation.dynamics.mujoco_run import run_file
+
+        return run_file
+    if engine == "drake":
+        from robodesc.validation.dynamics.drake_run import run_file as drake_file
+
+        return drake_file
+    from robodesc.validation.dynamics.newton_run import run_file as newton_file
+
+    return newton_file

@@ -1,0 +1,231 @@
+"""The scenarios, engine-neutral: what to set up, how long to run, and the documented thresholds.
+
+Every engine runner receives one :class:`Setup` (home pose, gains, spawn height, friction) computed
+here from the IR, so the engines differ only in what they read from the output and how they solve
+it. Thresholds are loose where engines legitimately differ (contact models, solvers) and tight where
+they read the same numbers from the same kind of file (an output against its source in one engine).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from robodesc.ir.geometry import Box, Capsule, Cylinder, Mesh, Sphere
+from robodesc.ir.model import JointType, Robot
+from robodesc.ir.rigid import Frame, link_frames, pose_frame
+from robodesc.ir.rules import lookup
+
+# Gains when the compile was given none: the USD drives' defaults (emit/usd/options.py), so every
+# engine holds the pose with the drives a USD consumer would get. SI, per rad or per m.
+DEFAULT_STIFFNESS = 100.0
+DEFAULT_DAMPING = 1.0
+
+Gain = float | Mapping[str, float]
+
+
+@dataclass(frozen=True, slots=True)
+class Thresholds:
+    """Documented in docs/dynamics.md; a change here is a change there."""
+
+    # hold: a joint "holds" when it ends within this of its target (rad or m) after the run.
+    hold_drift: float = 0.05
+    # Engines agree on a hold when their final joint positions differ by less than this.
+    hold_agree: float = 0.02
+    # drop: engines agree when settled base heights and tilts differ by less than these.
+    drop_height_agree: float = 0.03  # m
+    drop_tilt_agree: float = math.radians(10.0)  # rad
+    upright_tilt: float = math.radians(30.0)  # rad: "stands" in the table
+    # slide: a block sticks when it moves less than this in the run, slides when more than slide_min.
+    stick_max: float = 0.01  # m
+    slide_min: float = 0.05  # m
+    # friction read back from an output against the source's (relative).
+    friction_rel: float = 1e-3
+    # output against its source in the same engine (joint trajectories during hold; rad or m).
+    source_traj: float = 1e-3
+
+
+@dataclass(slots=True)
+class DynamicsOptions:
+    """What ``validate --dynamics`` runs. ``pose`` plugs in a standing pose (issue 29's default
+    pose goes here); ``stiffness``/``damping`` are the compile's gains (SI, number or regex table)."""
+
+    duration: float = 1.0  # s, every scenario
+    timestep: float = 0.001  # s: MuJoCo and Drake; Newton uses the same
+    drop_clearance: float = 0.05  # m: the lowest collider starts this far above the plane
+    pose: Mapping[str, float] | None = None  # REGEX -> value, like --init-joint-pos
+    stiffness: Gain | None = None
+    damping: Gain | None = None
+    engines: tuple[str, ...] = ()  # empty: every engine that reads one of the given files
+    thresholds: Thresholds = field(default_factory=Thresholds)
+    package_paths: Mapping[str, str] = field(default_factory=dict)
+    newton_python: str | None = None  # the Newton venv's interpreter (default: the consumer tier's)
+
+
+@dataclass(slots=True)
+class Setup:
+    """What every engine is given: the same numbers, from the IR."""
+
+    pose: dict[str, float]  # every actuated 1-DOF joint (mimics excluded)
+    gains: dict[str, tuple[float, float]]  # joint -> (kp, kd), SI
+    floating: bool  # the robot stands on three or more links: the drop scenario applies (stands())
+    stand_height: float  # m: root height at which the lowest collider touches z = 0 at the pose
+    friction: float | None  # the source's collider friction (None: not given, engine default)
+    # Mimic joints: follower -> leader. An output that cannot carry a mimic (SDF before 1.11) has
+    # already warned at compile time; a trajectory that differs there is that warning, not a new fault.
+    mimics: dict[str, str] = field(default_factory=dict)
+    duration: float = 1.0
+    timestep: float = 0.001
+    drop_clearance: float = 0.05
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "pose": self.pose,
+            "gains": {k: list(v) for k, v in self.gains.items()},
+            "stand_height": self.stand_height,
+            "friction": self.friction,
+            "duration": self.duration,
+            "timestep": self.timestep,
+            "drop_clearance": self.drop_clearance,
+        }
+
+
+def actuated(robot: Robot) -> list[str]:
+    """1-DOF joints a drive moves: mimics follow their leader and get none."""
+    return [j.name for j in robot.joints if j.type.dof == 1 and j.mimic is None]
+
+
+def home_pose(robot: Robot, table: Mapping[str, float] | None = None) -> dict[str, float]:
+    """``table`` (first matching regex) where it names a joint, else 0; clamped into the limits,
+    since a drive cannot hold a target its limit refuses."""
+    q: dict[str, float] = {}
+    joints = robot.joint_map()
+    for name in actuated(robot):
+        wanted = lookup(table, name, "pose") if table else None
+        value = 0.0 if wanted is None else wanted
+        lim = joints[name].limit
+        bounded = lim is not None and lim.lower is not None and lim.upper is not None and lim.lower <= lim.upper
+        if joints[name].type is not JointType.CONTINUOUS and bounded and lim is not None:
+            assert lim.lower is not None and lim.upper is not None
+            value = min(max(value, lim.lower), lim.upper)
+        q[name] = value
+    return q
+
+
+def drive_gains(robot: Robot, stiffness: Gain | None, damping: Gain | None) -> dict[str, tuple[float, float]]:
+    out: dict[str, tuple[float, float]] = {}
+    for name in actuated(robot):
+        k = lookup(stiffness, name, "stiffness") if stiffness is not None else None
+        d = lookup(damping, name, "damping") if damping is not None else None
+        out[name] = (DEFAULT_STIFFNESS if k is None else k, DEFAULT_DAMPING if d is None else d)
+    return out
+
+
+def source_friction(robot: Robot) -> float | None:
+    """The sliding friction the source gives its colliders, if any. The IR's contact model (issue
+    25) is read by duck typing so this module works before and after it lands: a collision's
+    ``contact`` (or ``surface``) with ``mu`` (or ``friction``)."""
+    for link in robot.links:
+        for col in link.collisions:
+            for holder in ("contact", "surface"):
+                contact = getattr(col, holder, None)
+                for attr in ("mu", "mu1", "friction"):
+                    value = getattr(contact, attr, None) if contact is not None else None
+                    if isinstance(value, int | float):
+                        return float(value)
+    return None
+
+
+def slide_angles(mu: float) -> tuple[float, float]:
+    """A plane tilted where the block must stick (tan = 0.7 mu) and where it must slide (1.3 mu);
+    30 % either side keeps the outcome clear of each engine's friction-cone approximation."""
+    return math.atan(0.7 * mu), math.atan(1.3 * mu)
+
+
+def _link_lows(robot: Robot, pose: Mapping[str, float]) -> dict[str, float]:
+    """Each link's lowest collider point (z, root frame) at the pose."""
+    frames = link_frames(robot, pose)
+    lows: dict[str, float] = {}
+    for link in robot.links:
+        frame = frames.get(link.name)
+        for col in link.collisions if frame is not None else []:
+            assert frame is not None
+            low = _lowest(frame @ pose_frame(col.origin), col.geometry)
+            lows[link.name] = min(lows.get(link.name, math.inf), low)
+    return lows
+
+
+def stand_height(robot: Robot, pose: Mapping[str, float]) -> float:
+    """Root height putting the lowest collider point at z = 0 (root upright, at the pose).
+
+    Meshes count by their file's vertices when robodesc can read them, else by the link origin:
+    an estimate for placing the robot, not a measurement (each engine reports where it settles).
+    """
+    lowest = min(_link_lows(robot, pose).values(), default=math.inf)
+    return 0.0 if not math.isfinite(lowest) else -lowest
+
+
+# Links within this of the lowest point count as touching the ground at the home pose.
+FOOT_BAND = 0.01  # m
+
+
+def stands(robot: Robot, pose: Mapping[str, float]) -> bool:
+    """Whether the drop scenario applies: a free root (not welded to ``world``) and at least three
+    links touching the ground at the home pose (feet, wheels). An arm or a biped on one sole would
+    topple from any pose, and a fall is chaotic: no two engines are expected to agree on it."""
+    roots = robot.root_links()
+    if not roots or roots[0].name == "world":
+        return False
+    lows = _link_lows(robot, pose)
+    lowest = min(lows.values(), default=math.inf)
+    return math.isfinite(lowest) and sum(1 for z in lows.values() if z <= lowest + FOOT_BAND) >= 3
+
+
+def _lowest(frame: Frame, geom: object) -> float:
+    z = frame.translation[2]
+    r = frame.rotation
+    if isinstance(geom, Sphere):
+        return z - geom.radius
+    if isinstance(geom, Box):
+        hx, hy, hz = (s / 2 for s in geom.size)
+        return z - (abs(r[2][0]) * hx + abs(r[2][1]) * hy + abs(r[2][2]) * hz)
+    if isinstance(geom, Cylinder | Capsule):
+        half = geom.length / 2
+        caps = geom.radius if isinstance(geom, Capsule) else geom.radius * math.hypot(r[2][0], r[2][1])
+        return z - abs(r[2][2]) * half - caps
+    if isinstance(geom, Mesh):
+        points = _mesh_points(geom)
+        return z if points is None or not len(points) else z + float(np.min(points @ np.asarray(r[2])))
+    return z
+
+
+def _mesh_points(mesh: Mesh) -> NDArray[np.float64] | None:
+    if mesh.path is None:
+        return None
+    try:
+        from robodesc.meshes.data import build_mesh
+
+        data = build_mesh(mesh.path, mesh.scale)
+    except Exception:  # an unreadable mesh only makes the estimate coarser
+        return None
+    return np.frombuffer(data.points, dtype=np.float32).reshape(-1, 3).astype(np.float64)
+
+
+def make_setup(robot: Robot, options: DynamicsOptions) -> Setup:
+    pose = home_pose(robot, options.pose)
+    return Setup(
+        pose=pose,
+        gains=drive_gains(robot, options.stiffness, options.damping),
+        floating=stands(robot, pose),
+        stand_height=stand_height(robot, pose),
+        friction=source_friction(robot),
+        mimics={j.name: j.mimic.joint for j in robot.joints if j.mimic is not None},
+        duration=options.duration,
+        timestep=options.timestep,
+        drop_clearance=options.drop_clearance,
+    )

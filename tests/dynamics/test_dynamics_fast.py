@@ -1,0 +1,173 @@
+"""The fast CI case of ``validate --dynamics`` (#28): MuJoCo only, one arm and one quadruped, and the
+verdict rules on hand-made runs. Numbers are compared with tolerances (they may move in the last
+digits with the CPU's BLAS kernel); nothing here is timed."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import robodesc
+from robodesc.validation.dynamics import DynamicsOptions, Run, home_pose, run_dynamics
+from robodesc.validation.dynamics.result import DynamicsReport
+from robodesc.validation.dynamics.scenarios import Setup, Thresholds, stand_height
+from robodesc.validation.dynamics.verdict import judge
+from robodesc.validation.report import Status
+
+from ..conftest import EXAMPLES, ROOT
+
+ARM = str(EXAMPLES / "urdf/gripper_arm.urdf")
+QUAD = str(EXAMPLES / "quadruped.yaml")
+MUJOCO = {"engines": ("mujoco",)}
+# A bent shoulder, so gravity loads the drives (the arm stands straight up at zero).
+ARM_POSE = {"shoulder_pitch": 0.8, "elbow": 0.5}
+
+
+def _rows(report: DynamicsReport, name: str) -> list[Status]:
+    return [c.status for c in report.checks if c.name == name]
+
+
+def test_arm_holds_and_behaves_as_its_source_in_mujoco() -> None:
+    result = robodesc.check(ARM, "urdf", dynamics={**MUJOCO, "pose": ARM_POSE})
+    dyn = result.dynamics
+    assert dyn is not None and dyn.ok, dyn.to_text()
+    hold = next(r for r in dyn.runs if r.file == "urdf" and r.scenario == "hold-fixed")
+    # kp 100 against the arm's gravity torque: a small, non-zero sag (steady state tau / kp).
+    assert 1e-3 < (hold.drift or 0.0) < 0.2  # 0.08 rad at the shoulder
+    assert _rows(dyn, "source:hold-fixed") == [Status.PASS]
+    slide = next(r for r in dyn.runs if r.scenario == "slide")
+    assert slide.mu == pytest.approx(1.0)  # no friction in the source: MuJoCo's default
+    assert (slide.stick or 1.0) < 0.01 < 0.05 < (slide.slide or 0.0)
+
+
+def test_quadruped_drops_and_stands_in_mujoco() -> None:
+    dyn = robodesc.check(QUAD, "urdf", dynamics=MUJOCO).dynamics
+    assert dyn is not None and dyn.ok, dyn.to_text()
+    drop = next(r for r in dyn.runs if r.scenario == "drop")  # it stands on four feet: the drop runs
+    assert drop.ok and drop.tilt is not None and drop.tilt < math.radians(5)
+    robot = robodesc.load(QUAD)
+    # It settles near the height the scenario computed from the colliders (contact softness apart).
+    assert drop.height == pytest.approx(stand_height(robot, home_pose(robot)), abs=0.02)
+
+
+def test_an_output_unlike_its_source_fails(tmp_path: Path) -> None:
+    """A heavier forearm in the output: the same engine, gains and pose, a different sag."""
+    robot = robodesc.load(ARM)
+    out = tmp_path / "arm.urdf"
+    robodesc.compile_to(ARM, "urdf", str(out), mesh_paths="absolute")
+    text = out.read_text()
+    # The forearm's mass: 0.8 kg in the source.
+    out.write_text(re.sub(r'(<link name="forearm">.*?<mass value=")([^"]+)', r"\g<1>2.4", text, count=1, flags=re.S))
+    opts = DynamicsOptions(engines=("mujoco",), pose=ARM_POSE)
+    report = run_dynamics(robot, {"urdf": str(out)}, opts, source_urdf=ARM)
+    assert _rows(report, "source:hold-fixed") == [Status.FAIL]
+    assert not report.ok
+
+
+def _setup(friction: float | None = None) -> Setup:
+    return Setup(pose={"a": 0.0}, gains={"a": (100.0, 1.0)}, floating=True, stand_height=0.3, friction=friction)
+
+
+def _hold(engine: str, q: float) -> Run:
+    return Run(engine, engine, "hold-fixed", drift=abs(q), worst_joint="a", final_q={"a": q})
+
+
+def test_drives_that_do_not_hold_where_another_engine_holds_fail() -> None:
+    report = DynamicsReport("r", runs=[_hold("mujoco", 0.001), _hold("newton", 0.4)])
+    judge(report, _setup(), Thresholds())
+    assert _rows(report, "agree:hold-fixed") == [Status.FAIL]
+    # Both sag, apart: engines differ, not the file.
+    report = DynamicsReport("r", runs=[_hold("mujoco", 0.2), _hold("newton", 0.4)])
+    judge(report, _setup(), Thresholds())
+    assert _rows(report, "agree:hold-fixed") == [Status.WARN] and report.ok
+
+
+def test_a_sag_the_source_shows_in_the_same_engine_is_an_engine_difference() -> None:
+    source = Run("mujoco", "source", "hold-fixed", drift=0.4, worst_joint="a", final_q={"a": 0.4})
+    source.trajectory = [(0.5, {"a": 0.4})]
+    output = _hold("mujoco", 0.4)
+    output.trajectory = [(0.5, {"a": 0.4})]
+    report = DynamicsReport("r", runs=[output, source, _hold("drake", 0.001)])
+    judge(report, _setup(), Thresholds())
+    assert _rows(report, "source:hold-fixed") == [Status.PASS]
+    assert _rows(report, "agree:hold-fixed") == [Status.WARN] and report.ok
+
+
+def test_a_friction_not_the_sources_fails() -> None:
+    slide = Run("mujoco", "mjcf", "slide", mu=1.0, stick=0.002, slide=1.2)
+    report = DynamicsReport("r", runs=[slide])
+    judge(report, _setup(friction=0.5), Thresholds())
+    assert _rows(report, "friction") == [Status.FAIL] and not report.ok
+    # Without a friction in the source, the engine's default is no contradiction.
+    report = DynamicsReport("r", runs=[Run("mujoco", "mjcf", "slide", mu=1.0, stick=0.002, slide=1.2)])
+    judge(report, _setup(), Thresholds())
+    assert report.ok and _rows(report, "slide") == [Status.PASS]
+
+
+def test_home_pose_takes_the_table_and_clamps_into_limits() -> None:
+    robot = robodesc.load(ARM)
+    pose = home_pose(robot, {"shoulder_pitch": 99.0, "elbow": -0.3})
+    limit = robot.joint_map()["shoulder_pitch"].limit
+    assert limit is not None and pose["shoulder_pitch"] == limit.upper
+    assert pose["elbow"] == pytest.approx(-0.3)
+    assert "finger_right_joint" not in pose  # a mimic follows its leader: no drive of its own
+
+
+def test_cli_prints_the_table_and_json() -> None:
+    cmd = [sys.executable, "-m", "robodesc", "validate", ARM, "--dynamics", "--engines", "mujoco"]
+    done = subprocess.run([*cmd, "--pose", "shoulder_pitch=0.8"], capture_output=True, text=True, cwd=ROOT)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "dynamics of 'gripper_arm'" in done.stdout and "hold-fixed" in done.stdout
+    done = subprocess.run([*cmd, "--json"], capture_output=True, text=True, cwd=ROOT)
+    doc = json.loads(done.stdout)
+    # An arm does not stand on three feet: no drop (a fall from any pose is chaotic).
+    assert doc["dynamics"]["ok"] and {r["scenario"] for r in doc["dynamics"]["runs"]} == {"hold-fixed", "slide"}
+
+
+def _mjcf_with_gains(urdf: Path, out: Path, kp: float) -> Path:
+    """An MJCF of the arm with its own position actuators, as an MJCF target would write it."""
+    import mujoco
+
+    from robodesc.validation.dynamics.mujoco_run import load_spec
+
+    robot = robodesc.load(ARM)
+    spec, why = load_spec(robot, str(urdf), "urdf", {})
+    assert spec is not None, why
+    for name in home_pose(robot):
+        act = spec.add_actuator(name=f"act_{name}", target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+        act.set_to_position(kp=kp, kv=1.0)
+    spec.compile()
+    out.write_text(spec.to_xml())
+    return out
+
+
+@pytest.mark.parametrize(("kp", "status"), [(100.0, Status.PASS), (30.0, Status.FAIL)])
+def test_an_mjcf_runs_with_its_own_actuators(tmp_path: Path, kp: float, status: Status) -> None:
+    """The MJCF target plugs in: its actuators are used as written and compared with the source
+    (gains 100/1): the compile's gains pass, other gains fail."""
+    urdf = tmp_path / "arm.urdf"
+    robodesc.compile_to(ARM, "urdf", str(urdf), mesh_paths="absolute")
+    mjcf = _mjcf_with_gains(urdf, tmp_path / "arm.xml", kp)
+    opts = DynamicsOptions(engines=("mujoco",), pose=ARM_POSE)
+    report = run_dynamics(robodesc.load(ARM), {"mjcf": str(mjcf)}, opts, source_urdf=ARM)
+    assert _rows(report, "source:hold-fixed") == [status], report.to_text()
+
+
+def test_names_the_checked_target_renamed_still_match() -> None:
+    """-t usd renames Spirit's joints (``0`` -> ``a0``): the scenarios use the source's names,
+    which the URDF MuJoCo reads keeps, and the stand pose applies."""
+    from ..conftest import SPIRIT_XACRO
+
+    if not SPIRIT_XACRO.is_file():
+        pytest.skip("Quad-SDK corpus not present")
+    stand = {"0|2|4|6": 0.76, "1|3|5|7": 1.52}
+    dyn = robodesc.check(str(SPIRIT_XACRO), "usd", dynamics={**MUJOCO, "pose": stand}).dynamics
+    assert dyn is not None and dyn.ok, dyn.to_text()
+    hold = next(r for r in dyn.runs if r.file == "urdf" and r.scenario == "hold-fixed")
+    assert len(hold.final_q) == 12 and hold.final_q["1"] == pytest.approx(1.52, abs=0.05)
