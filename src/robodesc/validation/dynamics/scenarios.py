@@ -127,17 +127,13 @@ def drive_gains(robot: Robot, stiffness: Gain | None, damping: Gain | None) -> d
 
 
 def source_friction(robot: Robot) -> float | None:
-    """The sliding friction the source gives its colliders, if any. The IR's contact model (issue
-    25) is read by duck typing so this module works before and after it lands: a collision's
-    ``contact`` (or ``surface``) with ``mu`` (or ``friction``)."""
+    """The sliding friction the source gives its colliders, if any: the first collider with a
+    Coulomb coefficient (its own contact over its link's, docs/contact.md)."""
     for link in robot.links:
         for col in link.collisions:
-            for holder in ("contact", "surface"):
-                contact = getattr(col, holder, None)
-                for attr in ("mu", "mu1", "friction"):
-                    value = getattr(contact, attr, None) if contact is not None else None
-                    if isinstance(value, int | float):
-                        return float(value)
+            contact = link.collision_contact(col)
+            if contact is not None and contact.mu is not None:
+                return float(contact.mu)
     return None
 
 
