@@ -176,3 +176,20 @@ def test_compositions_carry_contact(tmp_path: Path, kind: str) -> None:
     robodesc.compile_to_usd(str(src), out, validate=False)
     (attrs,) = _usd_materials(out).values()
     assert attrs["physics:dynamicFriction"] == pytest.approx(0.7) and attrs["physics:restitution"] == pytest.approx(0.1)
+
+
+def test_spirit_toes_in_mjcf_read_by_mujoco(tmp_path: Path) -> None:
+    import mujoco
+
+    out = tmp_path / "robot.xml"
+    robodesc.compile_to_mjcf(str(SPIRIT_XACRO), out, fix_base=False)
+    model = mujoco.MjModel.from_xml_path(str(out))
+    for toe in TOES:
+        body = model.body(toe).id
+        (geom,) = [g for g in range(model.ngeom) if model.geom_bodyid[g] == body and model.geom_group[g] == 3]
+        assert model.geom_friction[geom][0] == pytest.approx(0.5)  # mu, MuJoCo's slide friction
+        timeconst, ratio = model.geom_solref[geom]
+        # kp 30000 N/m, kd 1000 N·s/m on a quarter of Spirit's mass (docs/contact.md).
+        mass = sum(model.body_mass) / 4
+        assert timeconst == pytest.approx(2 * 3.141592653589793 / (30000 / mass) ** 0.5, rel=1e-3)
+        assert ratio == pytest.approx(1000 / (2 * (30000 * mass) ** 0.5), rel=1e-3)

@@ -12,6 +12,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 
 from robodesc.emit.common.numbers import fmt_vec
+from robodesc.emit.mjcf.contact_params import apply_contact
 from robodesc.emit.mjcf.context import MjcfContext, num, set_pose
 from robodesc.emit.mjcf.meshes import MeshAssets
 from robodesc.ir.diagnostics import UnsupportedError
@@ -194,6 +195,7 @@ class BodyWriter:
             if el is not None:
                 el.set("class", "collision")
                 _place(el, collision.origin)
+                apply_contact(self.ctx, el, link, link.collision_contact(collision), f"{label} collision {i}")
                 body.append(el)
         for i, visual in enumerate(link.visuals):
             if isinstance(visual.geometry, Mesh):

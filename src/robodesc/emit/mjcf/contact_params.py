@@ -1,0 +1,77 @@
+"""Contact in MJCF: a collision geom's ``friction``, ``solref`` and ``solimp`` from the IR's
+contact (Gazebo's ODE vocabulary, SI; docs/contact.md).
+
+- ``friction="slide torsion roll"``: ``mu`` (MuJoCo has one isotropic coefficient: a different
+  ``mu2`` or an ``fdir1`` is a warning), ``torsional`` and ``rolling`` (m), MuJoCo's defaults
+  (0.005, 0.0001) where not given.
+- ``solref`` in MuJoCo's positive form (time constant, damping ratio), from ``kp`` and ``kd``:
+  MuJoCo's contact is a mass-spring-damper in the constraint's own units (acceleration), so N/m
+  and N·s/m become a natural frequency and a damping ratio through the mass a contact carries,
+  taken as the robot's mass shared by its links that carry contact parameters (a quadruped's toes:
+  a quarter each). ``timeconst = 2 pi / omega``, ``omega = sqrt(kp / m)``; ``dampratio = kd /
+  (2 sqrt(kp m))``. The positive form, rather than MuJoCo's direct (negative) stiffness and
+  damping, because it stays valid whatever the timestep: MuJoCo clamps a time constant below two
+  timesteps, and says so.
+- ``min_depth``, ``max_vel``: MuJoCo's soft contacts always penetrate a little and correct at the
+  rate solref sets; there is no allowed depth or correction speed to write (left out).
+- ``restitution``: MuJoCo has none for hard contacts; a bounce comes from an underdamped solref.
+  Restitution 0 (the common case) is a damping ratio of at least 1; anything else is a warning.
+"""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+
+from robodesc.emit.mjcf.context import MjcfContext, num
+from robodesc.ir.contact import Contact
+from robodesc.ir.model import Link
+
+TORSION = 0.005  # MuJoCo's default torsional friction (m)
+ROLL = 0.0001  # MuJoCo's default rolling friction (m)
+
+
+def contact_mass(ctx: MjcfContext) -> float:
+    """The mass one contact carries: the robot's, shared by its links that carry contact parameters."""
+    bearing = [
+        link
+        for link in ctx.robot.links
+        if link.contact is not None or any(c.contact is not None for c in link.collisions)
+    ]
+    return max(ctx.robot.total_mass(), 1e-6) / max(len(bearing), 1)
+
+
+def apply_contact(ctx: MjcfContext, el: ET.Element, link: Link, contact: Contact | None, label: str) -> None:
+    if contact is None:
+        return
+    c = contact
+    if c.mu is not None or c.torsional is not None or c.rolling is not None:
+        slide = c.mu if c.mu is not None else 1.0
+        el.set(
+            "friction",
+            f"{num(slide)} {num(c.torsional if c.torsional is not None else TORSION)} "
+            f"{num(c.rolling if c.rolling is not None else ROLL)}",
+        )
+    if c.mu2 is not None and c.mu is not None and c.mu2 != c.mu:
+        ctx.warn(
+            "contact-not-representable",
+            f"mu2 {c.mu2:g}: MuJoCo's friction is isotropic, mu {c.mu:g} is used",
+            label,
+            c.src,
+        )
+    if c.fdir1 is not None:
+        ctx.warn("contact-not-representable", "fdir1: MuJoCo has no friction direction; left out", label, c.src)
+    if c.kp is not None and c.kp > 0:
+        mass = contact_mass(ctx)
+        omega = math.sqrt(c.kp / mass)
+        ratio = (c.kd or 0.0) / (2.0 * math.sqrt(c.kp * mass))
+        if c.restitution == 0:
+            ratio = max(ratio, 1.0)  # no bounce: at least critically damped
+        el.set("solref", f"{num(2.0 * math.pi / omega)} {num(ratio)}")
+    if c.restitution:
+        ctx.warn(
+            "contact-not-representable",
+            f"restitution {c.restitution:g}: MuJoCo has no coefficient of restitution (an underdamped solref bounces)",
+            label,
+            c.src,
+        )
