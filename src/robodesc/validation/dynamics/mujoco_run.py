@@ -133,6 +133,8 @@ def _hold(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
         for joint in list(body.joints):
             if joint.type == mujoco.mjtJoint.mjJNT_FREE:
                 s.delete(joint)
+    for key in list(s.keys):  # a keyframe's qpos counts the free joint just removed
+        s.delete(key)
     _actuate(s, kind, setup)
     s.option.timestep = setup.timestep
     if kind != "mjcf":
