@@ -40,13 +40,19 @@ class MenagerieResult:
         return not self.warnings and self.nonfinite_at is None
 
 
+# A control range wider than this (rad, m or N·m) is read as no range.
+UNBOUNDED = 1e6
+
+
 def pseudorandom_ctrl(model: Any, data: Any, i: int, noise: float = NOISE_SCALE) -> None:
     """Menagerie's ``_pseudorandom_ctrlnoise``: step ``i``'s control, deterministic across runs."""
     for j in range(model.nu):
-        if model.actuator_ctrllimited[j]:
-            lo, hi = (float(x) for x in model.actuator_ctrlrange[j])
+        lo, hi = (float(x) for x in model.actuator_ctrlrange[j])
+        if model.actuator_ctrllimited[j] and hi - lo <= UNBOUNDED:
             center, radius = 0.5 * (hi + lo), 0.5 * (hi - lo)
         else:
+            # Unlimited, or a range no motor has (a URDF's ±1e16 for "no limit", iris' rotors): the
+            # noise of an unlimited control. Menagerie's models have no such ranges.
             center, radius = 0.0, 1.0
         data.ctrl[j] = center + radius * noise * (2 * mujoco.mju_Halton(i, j + 2) - 1)
 

@@ -24,13 +24,17 @@ Spirit and Go2.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+import re
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass
+from typing import Any, Protocol
 
 from robodesc.emit.common.stance import Stance
+from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Joint, Link, Robot
 from robodesc.ir.principal import principal_moments, tensor_rows
 from robodesc.ir.rigid import Frame, apply, link_frames, pose_frame
+from robodesc.ir.rules import lookup
 
 NATURAL_FREQUENCY = 4.0  # Hz
 DAMPING_RATIO = 1.0
@@ -85,6 +89,52 @@ def derived_gains(
         kd = 2.0 * DAMPING_RATIO * math.sqrt(max(kp, 0.0) * inertia)
         out[joint.name] = JointGains(kp, kd, inertia, capped)
     return out
+
+
+def fill_default_gains(
+    robot: Robot,
+    settings: HasGains,
+    given: Collection[str],
+    stance: Stance,
+    floating: bool,
+    findings: Findings,
+    stage: str,
+) -> None:
+    """Set ``settings.stiffness``/``damping`` (those the user did not give) to per-joint tables of
+    derived gains, with the old constants as the fallback for multi-DOF joints; say so in a finding."""
+    user_kp = None
+    if "stiffness" in given:
+        user_kp = {j.name: lookup(settings.stiffness, j.name, "stiffness") or 0.0 for j in robot.actuated_joints()}
+    gains = derived_gains(robot, stance, floating, user_kp)
+    if not gains:
+        return
+    # The tables name every joint; the old constants stay as the fallback for multi-DOF joints.
+    if "stiffness" not in given:
+        settings.stiffness = {**{re.escape(n): sig4(g.stiffness) for n, g in gains.items()}, ".*": 100.0}
+    if "damping" not in given:
+        settings.damping = {**{re.escape(n): sig4(g.damping) for n, g in gains.items()}, ".*": 1.0}
+    rows = ", ".join(
+        f"{n} {sig4(g.stiffness):g}/{sig4(g.damping):g} (I {g.inertia:.3g}{', effort-capped' if g.capped else ''})"
+        for n, g in gains.items()
+    )
+    findings.info(
+        "default-gains",
+        f"drive gains derived per joint (kp = I_eff·(2π·{NATURAL_FREQUENCY:g} Hz)², at most effort/{E_SAT:g}; "
+        f"kd = 2·{DAMPING_RATIO:g}·√(kp·I_eff)); kp/kd SI: {rows}",
+        element=f"robot {robot.name!r}",
+        stage=stage,
+    )
+
+
+def sig4(value: float) -> float:
+    """Four significant digits: the files stay readable, and mirror-image joints whose inertias
+    differ in the last bits share an actuator group."""
+    return float(f"{value:.4g}")
+
+
+class HasGains(Protocol):
+    stiffness: Any
+    damping: Any
 
 
 def _moved_inertia(

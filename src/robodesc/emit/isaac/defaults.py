@@ -13,7 +13,7 @@ from __future__ import annotations
 import re
 from collections.abc import Collection
 
-from robodesc.emit.common.gains import DAMPING_RATIO, E_SAT, NATURAL_FREQUENCY, derived_gains
+from robodesc.emit.common.gains import fill_default_gains, sig4
 from robodesc.emit.common.stance import CLEARANCE, Stance, choose_stance, complete
 from robodesc.emit.isaac.settings import IsaacSettings
 from robodesc.ir.diagnostics import Findings
@@ -43,11 +43,11 @@ def apply_defaults(
             settings.init_joint_pos = {re.escape(name): value for name, value in _actuated(robot, stance).items()}
         if "init_pos" not in given and robot.placement is None and stance.lowest_z is not None:
             x, y, _ = settings.init_pos
-            settings.init_pos = (x, y, _sig(CLEARANCE - stance.lowest_z))
+            settings.init_pos = (x, y, sig4(CLEARANCE - stance.lowest_z))
     else:
         stance = Stance(complete(robot, wanted), "init_joint_pos" if wanted else "zeros")
     if settings.target_type != "none" and not ("stiffness" in given and "damping" in given):
-        _derive_gains(robot, settings, given, stance, floating, findings)
+        fill_default_gains(robot, settings, given, stance, floating, findings, STAGE)
     return stance.positions
 
 
@@ -76,35 +76,3 @@ def _report_pose(robot: Robot, stance: Stance, findings: Findings) -> None:
         element=element,
         stage=STAGE,
     )
-
-
-def _derive_gains(
-    robot: Robot, settings: IsaacSettings, given: Collection[str], stance: Stance, floating: bool, findings: Findings
-) -> None:
-    user_kp = None
-    if "stiffness" in given:
-        user_kp = {j.name: lookup(settings.stiffness, j.name, "stiffness") or 0.0 for j in robot.actuated_joints()}
-    gains = derived_gains(robot, stance, floating, user_kp)
-    if not gains:
-        return
-    # The tables name every joint; the old constants stay as the fallback for multi-DOF joints.
-    if "stiffness" not in given:
-        settings.stiffness = {**{re.escape(n): _sig(g.stiffness) for n, g in gains.items()}, ".*": 100.0}
-    if "damping" not in given:
-        settings.damping = {**{re.escape(n): _sig(g.damping) for n, g in gains.items()}, ".*": 1.0}
-    rows = ", ".join(
-        f"{n} {_sig(g.stiffness):g}/{_sig(g.damping):g} (I {g.inertia:.3g}{', effort-capped' if g.capped else ''})"
-        for n, g in gains.items()
-    )
-    findings.info(
-        "default-gains",
-        f"drive gains derived per joint (kp = I_eff·(2π·{NATURAL_FREQUENCY:g} Hz)², at most effort/{E_SAT:g}; "
-        f"kd = 2·{DAMPING_RATIO:g}·√(kp·I_eff)); kp/kd SI: {rows}",
-        element=f"robot {robot.name!r}",
-        stage=STAGE,
-    )
-
-
-def _sig(value: float) -> float:
-    """Four significant digits: the files stay readable, and mirror-image joints whose inertias differ in the last bits share an actuator group."""
-    return float(f"{value:.4g}")

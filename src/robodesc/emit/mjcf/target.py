@@ -21,6 +21,7 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     out = request.output("MJCF is written to a file: give one with -o OUT/robot.xml")
     request.default("fix_base", robot.fixed_base)
     request.default("init_pos", robot.placement.xyz if robot.placement is not None else None)
+    _default_gains(robot, request, findings)
     files = emit_mjcf(
         robot,
         out,
@@ -31,6 +32,22 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
         final_name=os.path.basename(request.final or out),
     )
     return Emitted(files=files, extra={"mjcf_options": request.options, "drives": _asked_drives(robot, request)})
+
+
+def _default_gains(robot: Robot, request: EmitRequest, findings: Findings) -> None:
+    """Gains the user did not give are derived per joint, as the Isaac folder's are
+    (emit/common/gains.py): one constant kp is too stiff for a 10 g finger at MuJoCo's timestep
+    (mujoco_menagerie's test went to NaN on 18 corpus robots with kp 100) and too weak for a knee."""
+    options: MjcfOptions = request.options
+    if options.target_type == "none" or {"stiffness", "damping"} <= request.given:
+        return
+    from robodesc.emit.common.gains import fill_default_gains
+    from robodesc.emit.common.stance import Stance, choose_stance, complete
+
+    floating = not options.fix_base
+    # A floating robot's gains depend on the legs it stands on; a fixed one's on its zero pose.
+    stance = choose_stance(robot, None) if floating else Stance(complete(robot, {}), "zeros")
+    fill_default_gains(robot, options, request.given, stance, floating, findings, "emit:mjcf")
 
 
 def _asked_drives(robot: Robot, request: EmitRequest) -> dict[str, tuple[float, float]]:
