@@ -169,6 +169,31 @@ def _patch_sandbox(
     patch: Callable[[Any, str, Any], None],
     environ: Mapping[str, str],
 ) -> None:
+    """Replace every xacro entry point the sandbox guards; this is the whole list of patches. Each
+    replacement is built (capturing the original it wraps) before any is installed."""
+    load_yaml = _sandboxed_load_yaml(xacro, sandbox)
+    symbols = base_symbols(_xacro_members(xacro, sandbox, load_yaml))
+    safe_eval, namespace_getattr = _sandboxed_lookups(xacro, sandbox, symbols)
+    env, optenv = _sandboxed_environment(substitution_args, sandbox, environ)
+    eval_substitution = _sandboxed_substitution_eval(substitution_args, sandbox, symbols, env, optenv)
+    resolve_macro = _bounded_resolve_macro(xacro, sandbox)
+    resolve, grab_property, setitem = _property_hooks(xacro)
+
+    patch(xacro, "safe_eval", safe_eval)
+    patch(xacro, "load_yaml", load_yaml)
+    patch(xacro, "resolve_macro", resolve_macro)
+    patch(xacro, "grab_property", grab_property)
+    patch(xacro.Table, "_resolve_", resolve)
+    patch(xacro.Table, "_setitem", setitem)
+    patch(xacro.NameSpace, "__getattr__", namespace_getattr)
+    patch(substitution_args, "_eval_env", env)
+    patch(substitution_args, "_eval_optenv", optenv)
+    patch(substitution_args, "_eval", eval_substitution)
+
+
+def _sandboxed_load_yaml(xacro: Any, sandbox: _Sandbox) -> Callable[[Any], Any]:
+    """``xacro.load_yaml`` that reads only regular files inside the package roots, up to
+    :data:`MAX_YAML_BYTES`."""
     original_load_yaml = xacro.load_yaml
 
     def load_yaml(filename: Any) -> Any:
@@ -182,6 +207,12 @@ def _patch_sandbox(
             raise _Refused(f"xacro.load_yaml({filename!r}): file above {MAX_YAML_BYTES // 2**20} MiB; refused")
         return original_load_yaml(path)
 
+    return load_yaml
+
+
+def _xacro_members(xacro: Any, sandbox: _Sandbox, load_yaml: Callable[[Any], Any]) -> dict[str, Callable[..., Any]]:
+    """The ``xacro.*`` helpers expressions may call; messages become warnings, ``fatal`` an error."""
+
     def message(kind: str) -> Callable[..., str]:
         def say(*args: Any, **_kwargs: Any) -> str:
             text = " ".join(str(a) for a in args)
@@ -192,7 +223,7 @@ def _patch_sandbox(
 
         return say
 
-    xacro_members: dict[str, Callable[..., Any]] = {
+    return {
         "load_yaml": load_yaml,
         "abs_filename": lambda name: xacro.abs_filename_spec(str(name)),
         "dotify": xacro.YamlDictWrapper,
@@ -204,7 +235,14 @@ def _patch_sandbox(
         "print_location": lambda *a, **k: "",
         "fatal": message("fatal"),
     }
-    symbols = base_symbols(xacro_members)
+
+
+def _sandboxed_lookups(
+    xacro: Any, sandbox: _Sandbox, symbols: Mapping[str, Any]
+) -> tuple[Callable[..., Any], Callable[[Any, str], Any]]:
+    """``xacro.safe_eval`` through robodesc's evaluator, and attribute access into an include
+    namespace (``<xacro:include ns="arm">``, then ``${arm.length}``). Both see only properties, macro
+    parameters and ``symbols``."""
     table_type = xacro.Table
 
     def table_lookup(table: Any, name: str) -> Any:
@@ -233,12 +271,19 @@ def _patch_sandbox(
         sandbox.tick()
         return evaluate(expr, lookup_for(globals))
 
-    # Attribute access into an include namespace (<xacro:include ns="arm">, then ${arm.length}).
     def namespace_getattr(self: Any, item: str) -> Any:
         try:
             return table_lookup(self, item)
         except KeyError:
             raise NameError(f"name '{item}' is not defined") from None
+
+    return safe_eval, namespace_getattr
+
+
+def _sandboxed_environment(
+    substitution_args: Any, sandbox: _Sandbox, environ: Mapping[str, str]
+) -> tuple[Callable[[str], str], Callable[..., str]]:
+    """``$(env NAME)`` and ``$(optenv NAME default)`` that read only the variables the user named."""
 
     def env(name: str) -> str:
         if name not in sandbox.allowed_env:
@@ -257,6 +302,19 @@ def _patch_sandbox(
                 f"$(optenv {name}): the environment is not read unless named (--env {name}); used the default"
             )
         return default
+
+    return env, optenv
+
+
+def _sandboxed_substitution_eval(
+    substitution_args: Any,
+    sandbox: _Sandbox,
+    symbols: Mapping[str, Any],
+    env: Callable[[str], str],
+    optenv: Callable[..., str],
+) -> Callable[[str, dict[str, Any]], str]:
+    """``$(eval ...)`` through robodesc's evaluator: ``symbols``, the substitution functions (with
+    the sandboxed ``env``/``optenv``) and the arguments."""
 
     def eval_substitution(expression: str, context: dict[str, Any]) -> str:
         sandbox.tick()
@@ -285,6 +343,12 @@ def _patch_sandbox(
 
         return str(evaluate(expression, lookup))
 
+    return eval_substitution
+
+
+def _bounded_resolve_macro(xacro: Any, sandbox: _Sandbox) -> Callable[[str, Any, Any], Any]:
+    """``xacro.resolve_macro`` that counts macro calls and the XML nodes their bodies copy, and
+    refuses beyond :data:`MAX_MACRO_CALLS` / :data:`MAX_MACRO_NODES`."""
     original_resolve_macro = xacro.resolve_macro
 
     def resolve_macro(fullname: str, macros: Any, symbols_: Any) -> Any:
@@ -308,6 +372,15 @@ def _patch_sandbox(
             )
         return scoped
 
+    return resolve_macro
+
+
+def _property_hooks(
+    xacro: Any,
+) -> tuple[Callable[[Any, str], Any], Callable[[Any, Any], Any], Callable[[Any, str, Any, bool], None]]:
+    """``Table._resolve_`` and ``grab_property`` that name the property a failure belongs to (for
+    :func:`_sandbox_refusal`), and ``Table._setitem`` that refuses a property value beyond the
+    evaluator's bounds."""
     original_resolve = xacro.Table._resolve_
 
     def resolve(self: Any, key: str) -> Any:
@@ -336,16 +409,7 @@ def _patch_sandbox(
             raise xacro.XacroException(str(exc)) from None
         original_setitem(self, key, value, unevaluated)
 
-    patch(xacro, "safe_eval", safe_eval)
-    patch(xacro, "load_yaml", load_yaml)
-    patch(xacro, "resolve_macro", resolve_macro)
-    patch(xacro, "grab_property", grab_property)
-    patch(xacro.Table, "_resolve_", resolve)
-    patch(xacro.Table, "_setitem", setitem)
-    patch(xacro.NameSpace, "__getattr__", namespace_getattr)
-    patch(substitution_args, "_eval_env", env)
-    patch(substitution_args, "_eval_optenv", optenv)
-    patch(substitution_args, "_eval", eval_substitution)
+    return resolve, grab_property, setitem
 
 
 def _name_property(exc: Any, key: str) -> None:
@@ -370,55 +434,14 @@ def expand_xacro(
     environment variables ``$(env)``/``$(optenv)`` may read."""
     loc = SourceLoc(path)
     refuse_hostile(read_file(path), path)
-    sandbox: _Sandbox | None = None
-    if not trust:
-        allowed_roots = [own_root(path), *(os.path.abspath(r) for r in roots)]
-        allowed_roots += [os.path.abspath(d) for d in resolver.explicit.values()]
-        sandbox = _Sandbox(
-            resolver,
-            list(dict.fromkeys(allowed_roots)),
-            frozenset(allowed_env),
-            resolver.environ,
-            deadline=time.monotonic() + TIME_LIMIT,
-        )
+    sandbox = None if trust else _new_sandbox(path, resolver, allowed_env, roots)
     stderr = io.StringIO()
     with (
         _patched_xacro(resolver, sandbox, resolver.environ) as xacro,
         contextlib.redirect_stderr(stderr),
         contextlib.redirect_stdout(stderr),
     ):
-        try:
-            doc = xacro.process_file(path, mappings=dict(args))
-            raw = doc.toxml()
-        except ParseError:
-            raise
-        except _Refused as exc:
-            raise ParseError(f"xacro: {exc}", loc=_where(xacro, loc)) from None
-        except xacro.XacroException as exc:
-            refusal = _sandbox_refusal(exc, xacro.XacroException)
-            if refusal is not None:
-                raise ParseError(f"xacro: {refusal}", loc=_where(xacro, loc)) from None
-            message = str(exc)
-            if "<class '" in message:  # eval_extension's wrapping repeats the inner message with its class
-                inner: BaseException = exc
-                while isinstance(getattr(inner, "exc", None), BaseException):
-                    inner = inner.exc  # type: ignore[attr-defined]
-                message = str(inner)
-            raise ParseError(f"xacro: {_clean(message)}", loc=_where(xacro, loc)) from None
-        except xml.parsers.expat.ExpatError as exc:
-            raise ParseError(f"xacro: malformed XML: {exc}", loc=loc) from None
-        except RecursionError:
-            raise ParseError(
-                "xacro: recursion too deep (a macro or property that refers to itself, or nesting beyond "
-                "Python's limit)",
-                loc=_where(xacro, loc),
-            ) from None
-        except MemoryError:
-            raise ParseError("xacro: out of memory while expanding; refused", loc=loc) from None
-        except Exception as exc:  # xacro surfaces user errors as NameError, KeyError, ...
-            raise ParseError(f"xacro: {type(exc).__name__}: {_clean(str(exc))}", loc=_where(xacro, loc)) from None
-        finally:
-            xacro.init_stacks(None)
+        raw = _process_file(xacro, path, args, loc)
     if len(raw) > MAX_OUTPUT_BYTES:
         raise ParseError(f"xacro: the expanded URDF exceeds {MAX_OUTPUT_BYTES // 2**20} MiB; refused", loc=loc)
     for line in stderr.getvalue().splitlines():
@@ -434,6 +457,57 @@ def expand_xacro(
     etree.indent(root, space="  ")
     text: str = etree.tostring(root, encoding="unicode")
     return text
+
+
+def _new_sandbox(path: str, resolver: PackageResolver, allowed_env: Sequence[str], roots: Sequence[str]) -> _Sandbox:
+    """The sandbox of one expansion: reads from the input's own package root, ``roots`` and the
+    ``--package`` folders; the environment variables in ``allowed_env``; the clock starts now."""
+    allowed_roots = [own_root(path), *(os.path.abspath(r) for r in roots)]
+    allowed_roots += [os.path.abspath(d) for d in resolver.explicit.values()]
+    return _Sandbox(
+        resolver,
+        list(dict.fromkeys(allowed_roots)),
+        frozenset(allowed_env),
+        resolver.environ,
+        deadline=time.monotonic() + TIME_LIMIT,
+    )
+
+
+def _process_file(xacro: Any, path: str, args: Mapping[str, str], loc: SourceLoc) -> str:
+    """Run (the patched) xacro on ``path``; the XML text, or a :class:`ParseError` for any failure,
+    placed in the file xacro was reading."""
+    try:
+        doc = xacro.process_file(path, mappings=dict(args))
+        raw: str = doc.toxml()
+        return raw
+    except ParseError:
+        raise
+    except _Refused as exc:
+        raise ParseError(f"xacro: {exc}", loc=_where(xacro, loc)) from None
+    except xacro.XacroException as exc:
+        refusal = _sandbox_refusal(exc, xacro.XacroException)
+        if refusal is not None:
+            raise ParseError(f"xacro: {refusal}", loc=_where(xacro, loc)) from None
+        message = str(exc)
+        if "<class '" in message:  # eval_extension's wrapping repeats the inner message with its class
+            inner: BaseException = exc
+            while isinstance(getattr(inner, "exc", None), BaseException):
+                inner = inner.exc  # type: ignore[attr-defined]
+            message = str(inner)
+        raise ParseError(f"xacro: {_clean(message)}", loc=_where(xacro, loc)) from None
+    except xml.parsers.expat.ExpatError as exc:
+        raise ParseError(f"xacro: malformed XML: {exc}", loc=loc) from None
+    except RecursionError:
+        raise ParseError(
+            "xacro: recursion too deep (a macro or property that refers to itself, or nesting beyond Python's limit)",
+            loc=_where(xacro, loc),
+        ) from None
+    except MemoryError:
+        raise ParseError("xacro: out of memory while expanding; refused", loc=loc) from None
+    except Exception as exc:  # xacro surfaces user errors as NameError, KeyError, ...
+        raise ParseError(f"xacro: {type(exc).__name__}: {_clean(str(exc))}", loc=_where(xacro, loc)) from None
+    finally:
+        xacro.init_stacks(None)
 
 
 def _sandbox_refusal(exc: BaseException, xacro_exception: type) -> str | None:

@@ -16,7 +16,7 @@ from collections.abc import Mapping
 
 from robodesc.ir.diagnostics import Findings, Severity, SourceLoc, VerificationError
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Inertial, Mesh, Pose, Sphere
-from robodesc.ir.model import Joint, JointType, Robot
+from robodesc.ir.model import Joint, JointType, Mimic, Robot
 from robodesc.ir.principal import below_engine_floor, inertia_problem
 
 STAGE = "verify"
@@ -153,55 +153,66 @@ def _cycles(links: Mapping[str, object], parents: dict[str, Joint], out: Finding
 
 
 def _references(robot: Robot, out: Findings) -> None:
+    """Every name an element refers to names something of this robot."""
     links = {x.name for x in robot.links}
     joints = robot.joint_map()
-
-    def need_link(name: str, element: str, what: str, src: SourceLoc | None) -> None:
-        if name not in links:
-            _err(out, "dangling-link", f"{what} {name!r} is not a link of this robot", element, src)
-
     for joint in robot.joints:
         label = f"joint {joint.name!r}"
-        need_link(joint.parent, label, "parent link", joint.src)
-        need_link(joint.child, label, "child link", joint.src)
+        _need_link(links, joint.parent, label, "parent link", joint.src, out)
+        _need_link(links, joint.child, label, "child link", joint.src, out)
         if joint.parent == joint.child:
             _err(out, "self-joint", "parent and child are the same link", label, joint.src)
         if joint.mimic is not None:
-            leader = joints.get(joint.mimic.joint)
-            if leader is None:
-                _err(
-                    out,
-                    "dangling-mimic",
-                    f"mimics joint {joint.mimic.joint!r}, which does not exist",
-                    label,
-                    joint.mimic.src or joint.src,
-                )
-            elif leader.type.dof != 1:
-                _err(
-                    out,
-                    "bad-mimic",
-                    f"mimics {leader.name!r}, a {leader.type.value} joint; only one-DOF joints can lead",
-                    label,
-                    joint.mimic.src or joint.src,
-                )
-            elif joint.type.dof != 1:
-                _warn(
-                    out,
-                    "ignored-mimic",
-                    f"a {joint.type.value} joint cannot follow {leader.name!r}; its <mimic> has no effect "
-                    "and is left out of URDF output",
-                    label,
-                    joint.mimic.src or joint.src,
-                )
-            elif leader.name == joint.name:
-                _err(out, "bad-mimic", "a joint cannot mimic itself", label, joint.mimic.src or joint.src)
+            _mimic_leader(joint, joint.mimic, joints, out)
     _mimic_chains(robot, out)
+    _attachment_references(robot, links, joints, out)
+    _controlled_joints(robot, joints, out)
+    _material_references(robot, out)
+
+
+def _need_link(links: set[str], name: str, element: str, what: str, src: SourceLoc | None, out: Findings) -> None:
+    if name not in links:
+        _err(out, "dangling-link", f"{what} {name!r} is not a link of this robot", element, src)
+
+
+def _mimic_leader(joint: Joint, mimic: Mimic, joints: Mapping[str, Joint], out: Findings) -> None:
+    """The joint ``mimic`` follows exists, has one degree of freedom and is another joint; the
+    follower has one too (else the ``<mimic>`` has no effect)."""
+    label = f"joint {joint.name!r}"
+    src = mimic.src or joint.src
+    leader = joints.get(mimic.joint)
+    if leader is None:
+        _err(out, "dangling-mimic", f"mimics joint {mimic.joint!r}, which does not exist", label, src)
+    elif leader.type.dof != 1:
+        _err(
+            out,
+            "bad-mimic",
+            f"mimics {leader.name!r}, a {leader.type.value} joint; only one-DOF joints can lead",
+            label,
+            src,
+        )
+    elif joint.type.dof != 1:
+        _warn(
+            out,
+            "ignored-mimic",
+            f"a {joint.type.value} joint cannot follow {leader.name!r}; its <mimic> has no effect "
+            "and is left out of URDF output",
+            label,
+            src,
+        )
+    elif leader.name == joint.name:
+        _err(out, "bad-mimic", "a joint cannot mimic itself", label, src)
+
+
+def _attachment_references(robot: Robot, links: set[str], joints: Mapping[str, Joint], out: Findings) -> None:
+    """Loop joints, fixed frames and sensors hang on links of this robot; a fixed frame does not
+    take a link's name; a sensor's parent joint exists."""
     for loop in robot.loop_joints:
         label = f"loop_joint {loop.name!r}"
-        need_link(loop.link1.link, label, "link1", loop.link1.src or loop.src)
-        need_link(loop.link2.link, label, "link2", loop.link2.src or loop.src)
+        _need_link(links, loop.link1.link, label, "link1", loop.link1.src or loop.src, out)
+        _need_link(links, loop.link2.link, label, "link2", loop.link2.src or loop.src, out)
     for frame in robot.fixed_frames:
-        need_link(frame.parent, f"fixed_frame {frame.name!r}", "parent link", frame.src)
+        _need_link(links, frame.parent, f"fixed_frame {frame.name!r}", "parent link", frame.src, out)
         if frame.name in links:
             _err(
                 out,
@@ -211,7 +222,7 @@ def _references(robot: Robot, out: Findings) -> None:
                 frame.src,
             )
     for sensor in robot.sensors:
-        need_link(sensor.parent, f"sensor {sensor.name!r}", "parent link", sensor.src)
+        _need_link(links, sensor.parent, f"sensor {sensor.name!r}", "parent link", sensor.src, out)
         if sensor.parent_joint is not None and sensor.parent_joint not in joints:
             _err(
                 out,
@@ -220,6 +231,10 @@ def _references(robot: Robot, out: Findings) -> None:
                 f"sensor {sensor.name!r}",
                 sensor.src,
             )
+
+
+def _controlled_joints(robot: Robot, joints: Mapping[str, Joint], out: Findings) -> None:
+    """The joints transmissions and ``<ros2_control>`` blocks name exist."""
     for tr in robot.transmissions:
         for tj in tr.joints:
             if tj.name not in joints:
@@ -240,6 +255,10 @@ def _references(robot: Robot, out: Findings) -> None:
                     f"ros2_control {rc.name!r}",
                     cj.src or rc.src,
                 )
+
+
+def _material_references(robot: Robot, out: Findings) -> None:
+    """A visual's material reference names a robot-level material (a warning: it has no colour)."""
     material_names = {m.name for m in robot.materials}
     for link in robot.links:
         for visual in link.visuals:

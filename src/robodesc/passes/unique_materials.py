@@ -17,6 +17,7 @@ Naming:
 from __future__ import annotations
 
 import hashlib
+from dataclasses import dataclass, field
 
 from robodesc.ir.geometry import Material
 from robodesc.ir.model import Robot
@@ -49,18 +50,59 @@ def _definition(mat: Material, name: str) -> Material:
     )
 
 
+@dataclass(slots=True)
+class _Table:
+    """The robot-level definitions while the pass runs."""
+
+    defs: dict[str, Material] = field(default_factory=dict)  # name -> definition (or reference)
+    by_content: dict[Key, str] = field(default_factory=dict)  # colour/texture -> first name with it
+    kept: list[Material] = field(default_factory=list)  # robot.materials after the pass, then ...
+    created: list[Material] = field(default_factory=list)  # ... these, made from inline materials
+    named: int = 0  # definitions made for unnamed inline materials
+
+
 def unique_materials(robot: Robot, ctx: PassContext) -> Robot:
     ctx.stage = NAME
-    defs: dict[str, Material] = {}
-    by_content: dict[Key, str] = {}
-    kept: list[Material] = []
-    for mat in robot.materials:
+    table = _robot_level(robot.materials, ctx)
+    unnamed_visuals = 0
+    for link in robot.links:
+        for visual in link.visuals:
+            mat = visual.material
+            if mat is None:
+                continue
+            if mat.is_reference():
+                if not mat.name:
+                    visual.material = None
+                    ctx.info(
+                        "material-dropped",
+                        "empty material reference removed",
+                        element=f"link {link.name!r}",
+                        loc=mat.src,
+                    )
+                continue
+            unnamed_visuals += 0 if mat.name else 1
+            visual.material = _define_inline(mat, link.name, table, ctx)
+    robot.materials = table.kept + table.created
+    if unnamed_visuals:
+        ctx.warn(
+            "unnamed-materials",
+            f"{unnamed_visuals} unnamed inline material(s) -> {table.named} uniquely named robot-level definition(s)",
+            element=f"robot {robot.name!r}",
+        )
+    return robot
+
+
+def _robot_level(materials: list[Material], ctx: PassContext) -> _Table:
+    """The table of the robot-level materials: an identical definition given twice is kept once, a
+    different one under a name already taken is renamed ``<name>_<hash>``."""
+    table = _Table()
+    for mat in materials:
         if mat.is_reference():
-            kept.append(mat)
-            defs.setdefault(mat.name, mat)
+            table.kept.append(mat)
+            table.defs.setdefault(mat.name, mat)
             continue
-        if mat.name in defs:
-            if content_key(defs[mat.name]) == content_key(mat):
+        if mat.name in table.defs:
+            if content_key(table.defs[mat.name]) == content_key(mat):
                 ctx.info(
                     "material-duplicate",
                     "identical definition given twice; one kept",
@@ -76,70 +118,55 @@ def unique_materials(robot: Robot, ctx: PassContext) -> Robot:
                 loc=mat.src,
             )
             mat = _definition(mat, new)
-        kept.append(mat)
-        defs[mat.name] = mat
-        by_content.setdefault(content_key(mat), mat.name)
-    created: list[Material] = []
-    named = 0
-    unnamed_visuals = 0
-    for link in robot.links:
-        for visual in link.visuals:
-            inline = visual.material
-            if inline is None:
-                continue
-            mat = inline
-            if mat.is_reference():
-                if not mat.name:
-                    visual.material = None
-                    ctx.info(
-                        "material-dropped",
-                        "empty material reference removed",
-                        element=f"link {link.name!r}",
-                        loc=mat.src,
-                    )
-                continue
-            key = content_key(mat)
-            unnamed_visuals += 0 if mat.name else 1
-            if mat.name:
-                name = mat.name
-                if name in defs and content_key(defs[name]) != key:
-                    name = f"{mat.name}_{content_hash(mat)}"
-                    ctx.warn(
-                        "material-renamed",
-                        f"material {mat.name!r} is defined with another colour: this one is named {name!r}",
-                        element=f"link {link.name!r}",
-                        loc=mat.src,
-                    )
-            elif key in by_content:
-                name = by_content[key]
-            else:
-                base = f"material_{link.name}_{content_hash(mat)}"
-                name, i = base, 0
-                while name in defs:
-                    i += 1
-                    name = f"{base}_{i}"
-            if name not in defs:
-                definition = _definition(mat, name)
-                defs[name] = definition
-                created.append(definition)
-                by_content.setdefault(key, name)
-                if not mat.name:
-                    named += 1
-                    ctx.info(
-                        "material-named",
-                        f"unnamed material {_describe(mat)} named {name!r}",
-                        element=f"link {link.name!r}",
-                        loc=mat.src,
-                    )
-            visual.material = Material(name=name, display_name=mat.name or None, src=mat.src)
-    robot.materials = kept + created
-    if unnamed_visuals:
-        ctx.warn(
-            "unnamed-materials",
-            f"{unnamed_visuals} unnamed inline material(s) -> {named} uniquely named robot-level definition(s)",
-            element=f"robot {robot.name!r}",
-        )
-    return robot
+        table.kept.append(mat)
+        table.defs[mat.name] = mat
+        table.by_content.setdefault(content_key(mat), mat.name)
+    return table
+
+
+def _define_inline(mat: Material, link: str, table: _Table, ctx: PassContext) -> Material:
+    """The reference that replaces the inline material ``mat`` of a visual of ``link``; its
+    definition is added to ``table`` unless one of that name is there."""
+    key = content_key(mat)
+    name = _inline_name(mat, key, link, table, ctx)
+    if name not in table.defs:
+        definition = _definition(mat, name)
+        table.defs[name] = definition
+        table.created.append(definition)
+        table.by_content.setdefault(key, name)
+        if not mat.name:
+            table.named += 1
+            ctx.info(
+                "material-named",
+                f"unnamed material {_describe(mat)} named {name!r}",
+                element=f"link {link!r}",
+                loc=mat.src,
+            )
+    return Material(name=name, display_name=mat.name or None, src=mat.src)
+
+
+def _inline_name(mat: Material, key: Key, link: str, table: _Table, ctx: PassContext) -> str:
+    """A named material keeps its name unless another colour has it (then ``<name>_<hash>``); an
+    unnamed one takes the first name with its colour and texture, else ``material_<link>_<hash>``."""
+    if mat.name:
+        name = mat.name
+        if name in table.defs and content_key(table.defs[name]) != key:
+            name = f"{mat.name}_{content_hash(mat)}"
+            ctx.warn(
+                "material-renamed",
+                f"material {mat.name!r} is defined with another colour: this one is named {name!r}",
+                element=f"link {link!r}",
+                loc=mat.src,
+            )
+        return name
+    if key in table.by_content:
+        return table.by_content[key]
+    base = f"material_{link}_{content_hash(mat)}"
+    name, i = base, 0
+    while name in table.defs:
+        i += 1
+        name = f"{base}_{i}"
+    return name
 
 
 def _describe(mat: Material) -> str:

@@ -113,11 +113,6 @@ def tokenize(text: str, file: str) -> list[Token]:
                 col += 1
             i += 1
 
-    def add(kind: Kind, value: str, at_line: int, at_col: int) -> None:
-        nonlocal newline
-        out.append(Token(kind, value, at_line, at_col, newline))
-        newline = False
-
     while i < n:
         ch = text[i]
         if ch == "\n":
@@ -132,10 +127,9 @@ def tokenize(text: str, file: str) -> list[Token]:
             advance((n if end < 0 else end) - i)
             continue
         if text.startswith("/*", i):
-            start = (line, col)
             end = text.find("*/", i + 2)
             if end < 0:
-                raise ParseError("unterminated /* comment", loc=SourceLoc(file, *start))
+                raise ParseError("unterminated /* comment", loc=SourceLoc(file, line, col))
             if "\n" in text[i:end]:
                 newline = True  # a comment over several lines ends the line as a line break does
             advance(end + 2 - i)
@@ -146,86 +140,89 @@ def tokenize(text: str, file: str) -> list[Token]:
             end = text.find("\n", i)
             advance((n if end < 0 else end) - i)
             continue
-        start_line, start_col = line, col
-        if ch == "\\" and i + 1 < n and text[i + 1] == "`":
-            # An escaped back quote outside a string (JavaScript pasted into a block): HoloScript
-            # drops both characters.
-            add(Kind.OTHER, "\\`", start_line, start_col)
-            advance(2)
-            continue
-        if text.startswith(("'''", '"""'), i):
-            quote3 = text[i : i + 3]
-            end = text.find(quote3, i + 3)
-            if end < 0:
-                raise ParseError(
-                    f"unterminated string (opened with {quote3})", loc=SourceLoc(file, start_line, start_col)
-                )
-            add(Kind.STRING, text[i + 3 : end], start_line, start_col)
-            advance(end + 3 - i)
-            continue
-        if ch in "\"'`":
-            quote = ch
-            advance(1)
-            chars: list[str] = []
-            while True:
-                if i >= n:
-                    raise ParseError(
-                        f"unterminated string (opened with {quote})", loc=SourceLoc(file, start_line, start_col)
-                    )
-                c = text[i]
-                if c == quote:
-                    advance(1)
-                    break
-                if c == "\\" and i + 1 < n:
-                    chars.append(_ESCAPES.get(text[i + 1], text[i + 1]))
-                    advance(2)
-                    continue
-                chars.append(c)
-                advance(1)
-            add(Kind.STRING, "".join(chars), start_line, start_col)
-            continue
-        if ch.isdigit() or (ch == "." and i + 1 < n and text[i + 1].isdigit()):
-            j = i
-            if text.startswith(("0x", "0X"), i):
-                j = i + 2
-                while j < n and (text[j] in "0123456789abcdefABCDEF_"):
-                    j += 1
-            else:
-                while j < n and (text[j].isdigit() or text[j] == "_"):
-                    j += 1
-                if j < n and text[j] == "." and j + 1 < n and text[j + 1].isdigit():
-                    j += 1
-                    while j < n and (text[j].isdigit() or text[j] == "_"):
-                        j += 1
-                if j < n and text[j] in "eE":
-                    k = j + 1
-                    if k < n and text[k] in "+-":
-                        k += 1
-                    if k < n and text[k].isdigit():
-                        j = k
-                        while j < n and text[j].isdigit():
-                            j += 1
-            add(Kind.NUMBER, text[i:j], start_line, start_col)
-            advance(j - i)
-            continue
-        if ch.isalpha() or ch in "_$":
-            j = i
-            while j < n and (text[j].isalnum() or text[j] in "_$"):
-                j += 1
-            add(Kind.IDENT, text[i:j], start_line, start_col)
-            advance(j - i)
-            continue
-        if ch in PUNCT and not text.startswith("...", i):
-            add(Kind.PUNCT, ch, start_line, start_col)
-            advance(1)
-            continue
-        for op in OPERATORS:
-            if text.startswith(op, i):
-                add(Kind.OP, op, start_line, start_col)
-                advance(len(op))
-                break
-        else:
-            add(Kind.OTHER, ch, start_line, start_col)
-            advance(1)
+        kind, value, end = _token_at(text, i, file, line, col)
+        out.append(Token(kind, value, line, col, newline))
+        newline = False
+        advance(end - i)
     out.append(Token(Kind.EOF, "", line, col, True))
     return out
+
+
+def _token_at(text: str, i: int, file: str, line: int, col: int) -> tuple[Kind, str, int]:
+    """The token that starts at ``text[i]`` (at ``line``:``col``): its kind, text and end index."""
+    n = len(text)
+    ch = text[i]
+    if ch == "\\" and i + 1 < n and text[i + 1] == "`":
+        # An escaped back quote outside a string (JavaScript pasted into a block): HoloScript
+        # drops both characters.
+        return Kind.OTHER, "\\`", i + 2
+    if text.startswith(("'''", '"""'), i):
+        quote3 = text[i : i + 3]
+        end = text.find(quote3, i + 3)
+        if end < 0:
+            raise ParseError(f"unterminated string (opened with {quote3})", loc=SourceLoc(file, line, col))
+        return Kind.STRING, text[i + 3 : end], end + 3
+    if ch in "\"'`":
+        return _string(text, i, file, line, col)
+    if ch.isdigit() or (ch == "." and i + 1 < n and text[i + 1].isdigit()):
+        end = _number_end(text, i)
+        return Kind.NUMBER, text[i:end], end
+    if ch.isalpha() or ch in "_$":
+        j = i
+        while j < n and (text[j].isalnum() or text[j] in "_$"):
+            j += 1
+        return Kind.IDENT, text[i:j], j
+    if ch in PUNCT and not text.startswith("...", i):
+        return Kind.PUNCT, ch, i + 1
+    for op in OPERATORS:
+        if text.startswith(op, i):
+            return Kind.OP, op, i + len(op)
+    return Kind.OTHER, ch, i + 1
+
+
+def _string(text: str, i: int, file: str, line: int, col: int) -> tuple[Kind, str, int]:
+    """A string in ``"``, ``'`` or a back quote opened at ``text[i]``: its decoded value and the
+    index after its closing quote."""
+    n = len(text)
+    quote = text[i]
+    i += 1
+    chars: list[str] = []
+    while True:
+        if i >= n:
+            raise ParseError(f"unterminated string (opened with {quote})", loc=SourceLoc(file, line, col))
+        c = text[i]
+        if c == quote:
+            return Kind.STRING, "".join(chars), i + 1
+        if c == "\\" and i + 1 < n:
+            chars.append(_ESCAPES.get(text[i + 1], text[i + 1]))
+            i += 2
+            continue
+        chars.append(c)
+        i += 1
+
+
+def _number_end(text: str, i: int) -> int:
+    """The index after the number that starts at ``text[i]``: hex digits after ``0x``, else digits,
+    a fraction and an exponent (``_`` separators allowed in the digits)."""
+    n = len(text)
+    j = i
+    if text.startswith(("0x", "0X"), i):
+        j = i + 2
+        while j < n and (text[j] in "0123456789abcdefABCDEF_"):
+            j += 1
+    else:
+        while j < n and (text[j].isdigit() or text[j] == "_"):
+            j += 1
+        if j < n and text[j] == "." and j + 1 < n and text[j + 1].isdigit():
+            j += 1
+            while j < n and (text[j].isdigit() or text[j] == "_"):
+                j += 1
+        if j < n and text[j] in "eE":
+            k = j + 1
+            if k < n and text[k] in "+-":
+                k += 1
+            if k < n and text[k].isdigit():
+                j = k
+                while j < n and text[j].isdigit():
+                    j += 1
+    return j

@@ -145,6 +145,20 @@ _OPEN = {"{": "}", "(": ")", "[": "]"}
 _VALUE_STOP = frozenset({",", ";", "}", "]", ")", ":"})
 
 
+@dataclass(slots=True)
+class _Header:
+    """What a block's header says, before its ``{``: ``KIND [NAME] [words] ['using' STRING]
+    ['@' trait]* ['(' ... ')'] ['->' ...]``."""
+
+    name_tok: Token  # the name's token, else the keyword's (where the block's name is reported)
+    name: str | None = None
+    using: Token | None = None
+    words: list[str] = field(default_factory=list)
+    traits: list[Trait] = field(default_factory=list)
+    params: bool = False  # a '(' ... ')' list: a function, unless the kind is a declaration
+    code: bool = False  # a code kind, or an arrow in the header
+
+
 class _Parser:
     def __init__(self, tokens: list[Token], file: str) -> None:
         self.toks = tokens
@@ -267,14 +281,35 @@ class _Parser:
             parent.props[kind] = value
             parent.prop_locs[kind] = self.loc(kw)
             return
-        name: str | None = None
-        name_tok = kw
-        using: Token | None = None
-        words: list[str] = []
-        traits: list[Trait] = []
-        params = False
-        code = kind in CODE_KINDS
-        # The header: everything up to '{' on this statement.
+        head = self.block_header(kw)
+        if not self.is_punct("{"):
+            if head.name is None and not head.words and not head.traits and not head.params:
+                # A bare word: HoloScript reads `flag` as the property flag: true.
+                parent.props[kind] = Value(True, self.loc(kw), bare=True)
+                parent.prop_locs[kind] = self.loc(kw)
+                return
+            # A one-line statement (`import x from "y"`, `using "T"`, `let a = 1`): not a declaration.
+            self.skipped.append(Skipped(kind, self.loc(kw), "statement"))
+            return
+        if head.code or (head.params and kind not in ("object", "template", "orb", "scene", "composition")):
+            self.skip_balanced()
+            self.skipped.append(Skipped(kind, self.loc(kw)))
+            return
+        block = Block(kind, head.name, self.loc(kw), self.loc(head.name_tok), words=head.words)
+        if head.using is not None:
+            block.using, block.using_loc = head.using.text, self.loc(head.using)
+        for trait in head.traits:
+            block.traits.append(trait)
+        opener = self.take()
+        self.enter(opener)
+        self.items(block, opener=opener)
+        self.leave()
+        parent.children.append(block)
+
+    def block_header(self, kw: Token) -> _Header:
+        """The header of the statement ``kw`` opens: everything up to ``{``, the end of the line or
+        a ``}``, ``;`` or ``,``."""
+        head = _Header(kw, code=kw.text in CODE_KINDS)
         while True:
             t = self.tok
             if self.is_punct("{"):
@@ -286,21 +321,21 @@ class _Parser:
             if t.kind is Kind.STRING or t.kind is Kind.IDENT:
                 if t.kind is Kind.IDENT and t.text == "using" and self.peek().kind in (Kind.STRING, Kind.IDENT):
                     self.take()
-                    using = self.take()
+                    head.using = self.take()
                     continue
-                if name is None and not (t.kind is Kind.IDENT and t.text in ("extends", "from", "as")):
-                    name_tok = self.take()
-                    name = name_tok.text
+                if head.name is None and not (t.kind is Kind.IDENT and t.text in ("extends", "from", "as")):
+                    head.name_tok = self.take()
+                    head.name = head.name_tok.text
                 else:
-                    words.append(self.take().text)
+                    head.words.append(self.take().text)
                 continue
             if self.is_punct("@"):
                 trait = self.trait(header=True)
                 if trait is not None:
-                    traits.append(trait)
+                    head.traits.append(trait)
                 continue
             if self.is_punct("("):
-                params = True
+                head.params = True
                 self.skip_balanced()
                 continue
             if self.is_punct("["):
@@ -308,33 +343,11 @@ class _Parser:
                 continue
             if t.kind in (Kind.NUMBER, Kind.OP, Kind.OTHER) or self.is_punct("."):
                 if self.is_op("=>") or self.is_op("->"):
-                    code = True
-                words.append(self.take().text)
+                    head.code = True
+                head.words.append(self.take().text)
                 continue
             break
-        if not self.is_punct("{"):
-            if name is None and not words and not traits and not params:
-                # A bare word: HoloScript reads `flag` as the property flag: true.
-                parent.props[kind] = Value(True, self.loc(kw), bare=True)
-                parent.prop_locs[kind] = self.loc(kw)
-                return
-            # A one-line statement (`import x from "y"`, `using "T"`, `let a = 1`): not a declaration.
-            self.skipped.append(Skipped(kind, self.loc(kw), "statement"))
-            return
-        if code or (params and kind not in ("object", "template", "orb", "scene", "composition")):
-            self.skip_balanced()
-            self.skipped.append(Skipped(kind, self.loc(kw)))
-            return
-        block = Block(kind, name, self.loc(kw), self.loc(name_tok), words=words)
-        if using is not None:
-            block.using, block.using_loc = using.text, self.loc(using)
-        for trait in traits:
-            block.traits.append(trait)
-        opener = self.take()
-        self.enter(opener)
-        self.items(block, opener=opener)
-        self.leave()
-        parent.children.append(block)
+        return head
 
     def skip_balanced(self) -> None:
         """Step over ``( ... )``, ``[ ... ]`` or ``{ ... }`` by matching brackets (iteratively)."""
