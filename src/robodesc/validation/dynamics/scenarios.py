@@ -127,13 +127,18 @@ def drive_gains(robot: Robot, stiffness: Gain | None, damping: Gain | None) -> d
 
 
 def source_friction(robot: Robot) -> float | None:
-    """The sliding friction the source gives its colliders, if any: the first collider with a
-    Coulomb coefficient (its own contact over its link's, docs/contact.md)."""
+    """The sliding friction of the robot's colliders when the source gives all of them the same one
+    (docs/contact.md); None otherwise. The slide scenario puts one block of the robot's material on
+    a plane, so a robot whose colliders differ (Spirit's toes 0.5, its body the engine's default) has
+    no single friction to compare: the format readers' tests (tests/contact) check each collider."""
+    found: set[float | None] = set()
     for link in robot.links:
         for col in link.collisions:
             contact = link.collision_contact(col)
-            if contact is not None and contact.mu is not None:
-                return float(contact.mu)
+            found.add(contact.mu if contact is not None else None)
+    if len(found) == 1:
+        (value,) = found
+        return float(value) if value is not None else None
     return None
 
 
