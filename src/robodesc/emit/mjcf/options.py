@@ -3,19 +3,17 @@ so one ``--stiffness`` means the same SI gain for both (docs/mjcf.md)."""
 
 from __future__ import annotations
 
-import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from robodesc.emit.common import approximation
 from robodesc.emit.common import flags as common
 from robodesc.emit.common.approximation import Approximation
+from robodesc.emit.common.drives import check_drives, one_of
 from robodesc.emit.common.flags import flag
 from robodesc.emit.usd import COLLISION_APPROXIMATION
 from robodesc.ir.diagnostics import ConfigError
 
-DRIVE_TYPES = ("force", "acceleration")
-TARGET_TYPES = ("none", "position", "velocity")
 ACTUATORS = ("position", "velocity", "motor", "none")
 INTEGRATORS = ("implicitfast", "implicit", "Euler", "RK4")
 
@@ -54,31 +52,9 @@ class MjcfOptions:
     )
 
     def check(self) -> None:
-        _one_of("drive_type", self.drive_type, DRIVE_TYPES)
-        _one_of("target_type", self.target_type, TARGET_TYPES)
-        _one_of("actuator", self.actuator, ACTUATORS)
+        check_drives(self)
+        one_of("actuator", self.actuator, ACTUATORS)
         approximation.check(self.collision_approximation)
-        _one_of("integrator", self.integrator, INTEGRATORS)
-        for name in ("stiffness", "damping"):
-            gain = getattr(self, name)
-            if isinstance(gain, Mapping):
-                for pattern, value in gain.items():
-                    try:
-                        re.compile(pattern)
-                    except re.error as exc:
-                        raise ConfigError(f"{name}: bad regular expression {pattern!r}: {exc}") from None
-                    _non_negative(f"{name}[{pattern!r}]", value)
-            else:
-                _non_negative(name, gain)
+        one_of("integrator", self.integrator, INTEGRATORS)
         if self.maxhullvert is not None and (not isinstance(self.maxhullvert, int) or self.maxhullvert < 4):
             raise ConfigError(f"maxhullvert must be an integer >= 4 (MuJoCo's minimum), got {self.maxhullvert!r}")
-
-
-def _one_of(name: str, value: str, allowed: tuple[str, ...]) -> None:
-    if value not in allowed:
-        raise ConfigError(f"{name} must be one of {', '.join(allowed)}; got {value!r}")
-
-
-def _non_negative(name: str, value: object) -> None:
-    if not isinstance(value, int | float) or isinstance(value, bool) or not value >= 0:
-        raise ConfigError(f"{name} must be a number >= 0, got {value!r}")

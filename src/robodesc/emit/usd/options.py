@@ -2,17 +2,15 @@
 
 from __future__ import annotations
 
-import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from robodesc.emit.common import approximation
 from robodesc.emit.common import flags as common
+from robodesc.emit.common.drives import check_drives, one_of
 from robodesc.emit.common.flags import flag
 from robodesc.ir.diagnostics import ConfigError
 
-DRIVE_TYPES = ("force", "acceleration")
-TARGET_TYPES = ("none", "position", "velocity")
 FORMATS = (".usda", ".usdc", ".usd")
 COMBINE_MODES = ("average", "min", "multiply", "max")
 
@@ -65,33 +63,11 @@ class UsdOptions:
     initial_positions: Mapping[str, float] | None = None
 
     def check(self) -> None:
-        _one_of("drive_type", self.drive_type, DRIVE_TYPES)
-        _one_of("target_type", self.target_type, TARGET_TYPES)
+        check_drives(self)
         approximation.check(self.collision_approximation)
         if self.friction_combine is not None:
-            _one_of("friction_combine", self.friction_combine, COMBINE_MODES)
-        for name in ("stiffness", "damping"):
-            gain = getattr(self, name)
-            if isinstance(gain, Mapping):
-                for pattern, value in gain.items():
-                    try:
-                        re.compile(pattern)
-                    except re.error as exc:
-                        raise ConfigError(f"{name}: bad regular expression {pattern!r}: {exc}") from None
-                    _non_negative(f"{name}[{pattern!r}]", value)
-            else:
-                _non_negative(name, gain)
+            one_of("friction_combine", self.friction_combine, COMBINE_MODES)
         for name in ("solver_position_iterations", "solver_velocity_iterations"):
             value = getattr(self, name)
             if value is not None and (not isinstance(value, int) or value < 1 or value > 255):
                 raise ConfigError(f"{name} must be an integer in 1..255, got {value!r}")
-
-
-def _one_of(name: str, value: str, allowed: tuple[str, ...]) -> None:
-    if value not in allowed:
-        raise ConfigError(f"{name} must be one of {', '.join(allowed)}; got {value!r}")
-
-
-def _non_negative(name: str, value: object) -> None:
-    if not isinstance(value, int | float) or isinstance(value, bool) or not value >= 0:
-        raise ConfigError(f"{name} must be a number >= 0, got {value!r}")
