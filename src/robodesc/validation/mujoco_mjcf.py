@@ -348,6 +348,10 @@ def _compare_gains(joint: Joint, model: Any, a: int, drives: Drives | None, tall
     if drives is None or joint.name not in drives:
         return
     want_kp, want_kv = drives[joint.name]
+    if want_kp == 0 and want_kv == 0:
+        # A zero-gain servo is passive: MuJoCo stores it as gain 0, which reads as no servo at all.
+        tally.measure(label, abs(kp) + abs(kv), f"MuJoCo kp {kp:.9g}, kv {kv:.9g}; expected 0 and 0 (a passive joint)")
+        return
     if not is_position_servo(model, a):
         tally.fail(label, f"expected a position actuator with kp {want_kp:.9g}; MuJoCo's is not a position servo")
         return
