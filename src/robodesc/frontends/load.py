@@ -14,7 +14,7 @@ import os
 from dataclasses import dataclass
 from typing import Protocol
 
-from robodesc.frontends.contract import Frontend
+from robodesc.frontends.contract import Frontend, head_of
 from robodesc.frontends.options import LoadOptions
 from robodesc.ir.diagnostics import ConfigError, Findings, ParseError, SourceLoc
 from robodesc.ir.model import Robot
@@ -61,12 +61,6 @@ def describe_inputs() -> str:
     return ", ".join(f.label for f in frontends())
 
 
-def _head(path: str) -> str:
-    from robodesc.frontends.xml_safety import read_file
-
-    return read_file(path, limit=HEAD_BYTES)[:HEAD_BYTES].decode("utf-8", errors="replace")
-
-
 def frontend_for(path: str, *, allow_code: bool = True) -> Frontend:
     """The frontend that reads the file ``path``: by suffix, then by content. ``allow_code`` False
     passes over frontends that run the file (a file found by searching a folder)."""
@@ -86,7 +80,7 @@ def frontend_for(path: str, *, allow_code: bool = True) -> Frontend:
     if len(matches) == 1:
         return matches[0]
     candidates = matches or [f for f in known if f.sniff is not None]
-    head = _head(path)
+    head = head_of(path, HEAD_BYTES)
     for frontend in candidates:
         if frontend.sniff is not None and frontend.sniff(head):
             return frontend

@@ -9,6 +9,7 @@ a failing check naming the element; passing elements are summed up in one row pe
 from __future__ import annotations
 
 import math
+from collections.abc import Collection
 from typing import Any
 
 import mujoco
@@ -430,7 +431,15 @@ def keep_worst(
         worst[link] = (ep, er, q)
 
 
-def compare_fk(robot: Robot, model: Any, options: ValidateOptions, report: ValidationReport) -> None:
+def compare_fk(
+    robot: Robot,
+    model: Any,
+    options: ValidateOptions,
+    report: ValidationReport,
+    sites: Collection[str] = (),
+) -> None:
+    """FK of every link at sampled configurations, relative to the root, against the IR. Links in
+    ``sites`` were merged away and are MuJoCo sites of the same name (an MJCF's fixed children)."""
     ids = Ids(model)
     roots = robot.root_links()
     if len(roots) != 1 or ids.body(roots[0].name) < 0:
@@ -445,11 +454,24 @@ def compare_fk(robot: Robot, model: Any, options: ValidateOptions, report: Valid
         mujoco_fk(model, data, ids, resolve_mimic(robot, q))
         inv_root = np.linalg.inv(body_pose(data, root_id))
         for link in robot.links:
-            b = ids.body(link.name)
-            if b < 0 or link.name not in expected:
-                continue
-            keep_worst(worst, link.name, inv_root @ body_pose(data, b), expected[link.name], q, options)
+            pose = _frame_pose(model, data, ids, link.name, link.name in sites)
+            if pose is not None and link.name in expected:
+                keep_worst(worst, link.name, inv_root @ pose, expected[link.name], q, options)
     report_fk(robot, worst, len(configs), options, report)
+
+
+def _frame_pose(model: Any, data: Any, ids: Ids, name: str, is_site: bool) -> Any:
+    """The world pose (4x4) of body ``name``, or of site ``name``; None when there is none."""
+    if not is_site:
+        b = ids.body(name)
+        return body_pose(data, b) if b >= 0 else None
+    s = int(mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, name))
+    if s < 0:
+        return None
+    t = np.eye(4)
+    t[:3, :3] = np.asarray(data.site_xmat[s], dtype=float).reshape(3, 3)
+    t[:3, 3] = data.site_xpos[s]
+    return t
 
 
 def report_fk(

@@ -30,20 +30,16 @@ import numpy as np
 from robodesc.ir.geometry import Inertial, Pose
 from robodesc.ir.inertia import from_tensor, parallel_axis
 from robodesc.ir.model import Joint, JointType, Link, Robot
-from robodesc.ir.transforms import forward_kinematics, resolve_mimic
+from robodesc.ir.transforms import forward_kinematics
 from robodesc.validation.compare import (
     Ids,
-    body_pose,
+    compare_fk,
     compare_inertials,
     compare_joints,
     compare_structure,
     expected_inertial,
     joint_label,
-    keep_worst,
     link_label,
-    mujoco_fk,
-    report_fk,
-    sample_configurations,
 )
 from robodesc.validation.menagerie import add_menagerie_check
 from robodesc.validation.mujoco_load import captured_warnings
@@ -130,7 +126,7 @@ def compare_model(
     compare_inertials(lumped, model, skip, options, report)
     compare_joints(lumped, model, options, report)
     compare_armature(robot, model, options, report)
-    compare_fk_with_sites(robot, model, sites, options, report)
+    compare_fk(robot, model, options, report, sites)
     compare_actuators(robot, model, options, report, drives)
     compare_loops(robot, model, report)
 
@@ -254,41 +250,6 @@ def compare_armature(robot: Robot, model: Any, options: ValidateOptions, report:
 
 
 # ---- forward kinematics, bodies and sites -----------------------------------------------------
-def compare_fk_with_sites(
-    robot: Robot, model: Any, sites: Mapping[str, str], options: ValidateOptions, report: ValidationReport
-) -> None:
-    """As :func:`compare.compare_fk`, with merged links' frames read from their sites."""
-    ids = Ids(model)
-    roots = robot.root_links()
-    if len(roots) != 1 or ids.body(roots[0].name) < 0:
-        report.add("fk", Status.SKIP, "robot", "no single root link is a MuJoCo body; FK not compared")
-        return
-    root_id = ids.body(roots[0].name)
-    data = mujoco.MjData(model)
-    worst: dict[str, tuple[float, float, dict[str, float]]] = {}
-    configs = sample_configurations(robot, options.fk_samples, options.seed)
-    for q in configs:
-        expected = forward_kinematics(robot, q)
-        mujoco_fk(model, data, ids, resolve_mimic(robot, q))
-        inv_root = np.linalg.inv(body_pose(data, root_id))
-        for link in robot.links:
-            pose = _frame_pose(model, data, ids, link.name, link.name in sites)
-            if pose is not None and link.name in expected:
-                keep_worst(worst, link.name, inv_root @ pose, expected[link.name], q, options)
-    report_fk(robot, worst, len(configs), options, report)
-
-
-def _frame_pose(model: Any, data: Any, ids: Ids, name: str, is_site: bool) -> Mat | None:
-    if not is_site:
-        b = ids.body(name)
-        return body_pose(data, b) if b >= 0 else None
-    s = _site(model, name)
-    t = np.eye(4)
-    t[:3, :3] = np.asarray(data.site_xmat[s], dtype=float).reshape(3, 3)
-    t[:3, 3] = data.site_xpos[s]
-    return t
-
-
 # ---- actuators --------------------------------------------------------------------------------
 def joint_actuators(model: Any) -> dict[int, list[int]]:
     """Joint id -> the actuators that drive it directly (transmission type ``joint``)."""

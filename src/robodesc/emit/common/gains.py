@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Collection, Mapping
+from collections.abc import Collection, Iterator, Mapping
 from dataclasses import dataclass
 from typing import Any, Protocol
 
@@ -137,6 +137,20 @@ class HasGains(Protocol):
     damping: Any
 
 
+def _moved_links(
+    joint: Joint, frames: Mapping[str, Frame], children: Mapping[str, list[Joint]], links: Mapping[str, Link]
+) -> Iterator[tuple[Link, float, tuple[float, float, float]]]:
+    """Every link the joint moves that has a mass: (link, mass, its centre of mass in the world)."""
+    stack = [joint.child]
+    while stack:
+        name = stack.pop()
+        stack.extend(j.child for j in children.get(name, []))
+        link = links.get(name)
+        if link is None or link.inertial is None or not link.inertial.mass:
+            continue
+        yield link, link.inertial.mass, (frames[name] @ pose_frame(link.inertial.origin)).translation
+
+
 def _moved_inertia(
     joint: Joint,
     origin: tuple[float, float, float],
@@ -149,20 +163,12 @@ def _moved_inertia(
     axis), so an arm's yaw joint is not left soft because the arm happens to point up at the start.
     Mass, for a prismatic joint."""
     total = 0.0
-    stack = [joint.child]
-    while stack:
-        name = stack.pop()
-        stack.extend(j.child for j in children.get(name, []))
-        link = links.get(name)
-        if link is None or link.inertial is None or not link.inertial.mass:
-            continue
-        mass = link.inertial.mass
+    for link, mass, com in _moved_links(joint, frames, children, links):
         if not joint.type.is_angular:
             total += mass
             continue
-        com = (frames[name] @ pose_frame(link.inertial.origin)).translation
         total += mass * _distance_sq(com, origin)
-        if link.inertial.inertia is not None:
+        if link.inertial is not None and link.inertial.inertia is not None:
             total += max(principal_moments(tensor_rows(link.inertial.inertia)))
     return total
 
@@ -176,17 +182,9 @@ def _moved_moment(
 ) -> float:
     """sum(m·d) over the links the joint moves, d each centre of mass's distance from the joint: the
     largest gravity torque (divided by g) they can put on it, whatever the joints beyond it do."""
-    total = 0.0
-    stack = [joint.child]
-    while stack:
-        name = stack.pop()
-        stack.extend(j.child for j in children.get(name, []))
-        link = links.get(name)
-        if link is None or link.inertial is None or not link.inertial.mass:
-            continue
-        com = (frames[name] @ pose_frame(link.inertial.origin)).translation
-        total += link.inertial.mass * math.sqrt(_distance_sq(com, origin))
-    return total
+    return sum(
+        mass * math.sqrt(_distance_sq(com, origin)) for _, mass, com in _moved_links(joint, frames, children, links)
+    )
 
 
 def _distance_sq(point: tuple[float, float, float], origin: tuple[float, float, float]) -> float:

@@ -26,7 +26,9 @@ IR to compare the URDF that was written with the robot it stands for.
 from __future__ import annotations
 
 import copy
+from collections.abc import Sequence
 from dataclasses import replace
+from typing import TypeVar
 
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.geometry import Capsule, Cylinder, Inertia, Inertial, Pose, Sphere
@@ -100,30 +102,30 @@ def _offset(pose: Pose | None, dz: float) -> Pose:
     return Pose(xyz=xyz, rpy=base.rpy)  # type: ignore[arg-type]
 
 
+ShapeT = TypeVar("ShapeT", Visual, Collision)
+
+
 def _split_capsules(link: Link) -> int:
-    count = 0
-    visuals: list[Visual] = []
-    for v in link.visuals:
-        if isinstance(v.geometry, Capsule):
-            count += 1
-            c = v.geometry
-            visuals.append(replace(v, geometry=Cylinder(radius=c.radius, length=c.length, src=c.src)))
-            for dz in (c.length / 2, -c.length / 2):
-                visuals.append(replace(v, geometry=Sphere(radius=c.radius, src=c.src), origin=_offset(v.origin, dz)))
-        else:
-            visuals.append(v)
-    collisions: list[Collision] = []
-    for k in link.collisions:
-        if isinstance(k.geometry, Capsule):
-            count += 1
-            c = k.geometry
-            collisions.append(replace(k, geometry=Cylinder(radius=c.radius, length=c.length, src=c.src)))
-            for dz in (c.length / 2, -c.length / 2):
-                collisions.append(replace(k, geometry=Sphere(radius=c.radius, src=c.src), origin=_offset(k.origin, dz)))
-        else:
-            collisions.append(k)
+    visuals, n_visual = _split(link.visuals)
+    collisions, n_collision = _split(link.collisions)
     link.visuals, link.collisions = visuals, collisions
-    return count
+    return n_visual + n_collision
+
+
+def _split(shapes: Sequence[ShapeT]) -> tuple[list[ShapeT], int]:
+    """Each capsule of ``shapes`` as a cylinder and a sphere at each end; the count of capsules."""
+    out: list[ShapeT] = []
+    count = 0
+    for shape in shapes:
+        c = shape.geometry
+        if not isinstance(c, Capsule):
+            out.append(shape)
+            continue
+        count += 1
+        out.append(replace(shape, geometry=Cylinder(radius=c.radius, length=c.length, src=c.src)))
+        for dz in (c.length / 2, -c.length / 2):
+            out.append(replace(shape, geometry=Sphere(radius=c.radius, src=c.src), origin=_offset(shape.origin, dz)))
+    return out, count
 
 
 def _ball_link(name: str) -> Link:
