@@ -149,7 +149,9 @@ def test_isaac_findings_name_no_absolute_path(tmp_path: Path) -> None:
     assert str(ROOT) not in text and str(tmp_path) not in text and "quadruped.yaml:" in text
 
 
-@pytest.mark.parametrize("target, out", [("mjcf", "robot.xml"), ("usd", "x.usda"), ("sdf", "x.sdf"), ("urdf", "x.urdf")])
+@pytest.mark.parametrize(
+    "target, out", [("mjcf", "robot.xml"), ("usd", "x.usda"), ("sdf", "x.sdf"), ("urdf", "x.urdf")]
+)
 def test_validation_rows_name_the_output_not_its_staged_copy(
     target: str, out: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
