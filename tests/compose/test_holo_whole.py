@@ -265,6 +265,36 @@ def test_robotics_plugin_notations_read_angles_in_radians(notation: str) -> None
     assert warned and "2.967" in warned[0].message
 
 
+def test_robotics_plugin_inertia_list_and_viscous_friction_are_read() -> None:
+    # The robotics plugin's object: `inertia: [ixx, iyy, izz(, ixy, ixz, iyz)]` beside `mass`, and
+    # joint_viscous_friction (PhysX's viscous coefficient, URDF's damping).
+    result = load("""composition "R" {
+      object "Base" { @static geometry: "box" scale: 0.1 mass: 1 }
+      object "Arm" { @joint_revolute joint_parent: "Base" joint_axis: [0, 1, 0] joint_limits: [-1, 1]
+        joint_viscous_friction: 0.01 joint_friction: 0.05 max_effort: 7
+        geometry: "cylinder" radius: 0.05 length: 0.3 mass: 1.0 inertia: [0.01, 0.01, 0.001, 0.0001, 0, 0] }
+      object "Tip" { @joint_revolute joint_parent: "Arm" joint_axis: [0, 0, 1] joint_limits: [-1, 1]
+        geometry: "sphere" radius: 0.03 mass: 0.2 inertia: [0.003, 0.004, 0.005] }
+    }""")
+    arm = result.robot.link("Arm").inertial
+    assert arm is not None and arm.inertia is not None
+    i = arm.inertia
+    assert (i.ixx, i.iyy, i.izz, i.ixy, i.ixz, i.iyz) == pytest.approx((0.01, 0.01, 0.001, 0.0001, 0, 0))
+    tip = result.robot.link("Tip").inertial
+    assert tip is not None and tip.inertia is not None
+    assert (tip.inertia.ixx, tip.inertia.iyy, tip.inertia.izz) == pytest.approx((0.003, 0.004, 0.005))
+    joint = result.robot.joint("Arm_joint")
+    assert joint.dynamics is not None and joint.dynamics.damping == pytest.approx(0.01)
+    assert joint.dynamics.friction == pytest.approx(0.05)
+    assert joint.limit is not None and joint.limit.effort == pytest.approx(7)
+    ignored = {f.message for f in result.findings if f.code == "ignored-property"}
+    assert not any(k in m for m in ignored for k in ("inertia", "viscous", "max_effort")), ignored
+    with pytest.raises(ParseError, match="inertia"):
+        load("""composition "R" { object "Base" { @static geometry: "box" scale: 0.1 mass: 1 }
+          object "Arm" { @joint_revolute joint_parent: "Base" joint_limits: [-1, 1] joint_axis: [0, 0, 1]
+            geometry: "box" scale: 0.1 mass: 1 inertia: [0.01, 0.02] } }""")
+
+
 def test_values_that_are_expressions_are_kept_as_text() -> None:
     doc = parse('object "A" { speed: rate * 2, on_click: () => { go() }, color: #ff8800 }', "t.holo")
     props = doc.body.children[0].props

@@ -54,7 +54,10 @@ def lower_joint(ctx: Lowering, builder: RobotBuilder, obj: Obj, spec: JointSpec,
         _behavior_limits(p, k, spec.loc, label) if spec.notation.startswith("behavior") else _limits(p, k, spec, label)
     )
     jtype = _check_limits(ctx, jtype, lim, k, spec, label)
-    damping = num(p["damping"], "damping", label) if "damping" in p else None
+    # joint_viscous_friction (the robotics plugin's PhysX viscous friction coefficient) is URDF's
+    # damping: torque per unit joint velocity.
+    dkey = next((key for key in ("damping", "viscous_friction") if key in p), None)
+    damping = num(p[dkey], dkey, label) if dkey is not None else None
     friction = num(p["friction"], "friction", label) if "friction" in p else None
     armature = num(p["armature"], "armature", label) if "armature" in p else None
     mimic, multiplier, offset = _mimic(ctx, p, k, label)
