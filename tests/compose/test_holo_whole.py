@@ -295,6 +295,24 @@ def test_robotics_plugin_inertia_list_and_viscous_friction_are_read() -> None:
             geometry: "box" scale: 0.1 mass: 1 inertia: [0.01, 0.02] } }""")
 
 
+def test_mass_without_shape_is_kept_on_a_moving_body() -> None:
+    # HoloScript's isaac-lab bridge: `robot spot { base_link { mass: 12 } joints { ... } }`. A moving
+    # body keeps its stated mass (not the 1 kg default) with a 1 m cube's inertia; a fixed body
+    # without shape drops it, with one warning (not also "has no mass").
+    result = load("""composition "R" {
+      object "Base" { @static mass: 5 }
+      object "Arm" { @joint_revolute joint_parent: "Base" joint_axis: [0, 0, 1] joint_limits: [-1, 1] mass: 12 }
+    }""")
+    arm = result.robot.link("Arm").inertial
+    assert arm is not None and arm.mass == 12 and arm.inertia is not None
+    assert arm.inertia.ixx == pytest.approx(2.0)
+    assert result.robot.link("Base").inertial is None
+    by_code = {f.code: f.element for f in result.findings}
+    assert "default-mass" not in by_code
+    assert [f.element for f in result.findings if f.code == "mass-without-shape"] == ["object 'Base'", "object 'Arm'"]
+    assert not [f for f in result.findings if f.code == "no-mass" and f.element == "object 'Base'"]
+
+
 def test_values_that_are_expressions_are_kept_as_text() -> None:
     doc = parse('object "A" { speed: rate * 2, on_click: () => { go() }, color: #ff8800 }', "t.holo")
     props = doc.body.children[0].props
