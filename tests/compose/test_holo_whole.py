@@ -311,6 +311,11 @@ def test_mass_without_shape_is_kept_on_a_moving_body() -> None:
     assert "default-mass" not in by_code
     assert [f.element for f in result.findings if f.code == "mass-without-shape"] == ["object 'Base'", "object 'Arm'"]
     assert not [f for f in result.findings if f.code == "no-mass" and f.element == "object 'Base'"]
+    # The base of a floating robot moves too: it keeps its mass.
+    result = load("""robot spot { base_link { mass: 12 }
+      joints { hip { type: revolute, axis: "y", limits: [-1.57, 1.57] } } }""")
+    base = result.robot.link("base_link").inertial
+    assert base is not None and base.mass == 12 and base.inertia is not None
 
 
 def test_values_that_are_expressions_are_kept_as_text() -> None:

@@ -98,7 +98,8 @@ def build(ctx: Lowering, name: str, comp: Block) -> HoloResult:
     )
     parent_of, movable = _connect(ctx, builder, bodies, root, joints)
     for obj in bodies:
-        lower_link(ctx, builder, obj, moves=_moves(obj.name, parent_of, movable))
+        floats = obj is root and not _fixed_base(root)
+        lower_link(ctx, builder, obj, moves=_moves(obj.name, parent_of, movable), floats=floats)
     for obj in bodies:
         lower_sensors(ctx, builder, obj)
     return HoloResult(builder.build(), props, ctx.findings, ctx.gravity)

@@ -23,8 +23,9 @@ from robodesc.ir.transforms import matrix_pose, pose_matrix
 HOLOSCRIPT_DEFAULT_MASS = 1.0
 
 
-def lower_link(ctx: Lowering, builder: RobotBuilder, obj: Obj, *, moves: bool = False) -> None:
-    """Add the object's link; ``moves`` when a movable joint lies between it and the base."""
+def lower_link(ctx: Lowering, builder: RobotBuilder, obj: Obj, *, moves: bool = False, floats: bool = False) -> None:
+    """Add the object's link; ``moves`` when a movable joint lies between it and the base, ``floats``
+    when it is the base of a robot that is not fixed to the world."""
     label = obj.label
     geom, origin, geom_loc = geometry(ctx, obj)
     parts: list[Part] = []
@@ -38,7 +39,7 @@ def lower_link(ctx: Lowering, builder: RobotBuilder, obj: Obj, *, moves: bool = 
     kg, inertia = mass(obj)
     dropped = False
     if geom is None and inertia is None and kg is not None:
-        if moves:
+        if moves or floats:
             # A moving body keeps the mass its author gave, with the inertia HoloScript's own URDF
             # compiler gives a body without a shape (a 1 m cube of that mass): dropping it would
             # leave the 1 kg default in its place.
