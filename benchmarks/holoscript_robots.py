@@ -13,6 +13,10 @@ Debian's ``/usr/bin/check_urdf`` from ``liburdfdom-tools``).
 
 Prints one line per output and a summary; ``--json`` writes the outcomes. Exit 1 when a compile
 crashed or urdfdom refused a URDF that robodesc wrote.
+
+``--joints`` prints instead what the HoloScript frontend reads from each file (no compile): every
+movable joint with its limits (radians as the IR holds them, and degrees), and every link's mass and
+inertia diagonal, so that two robodesc versions can be compared file by file.
 """
 
 from __future__ import annotations
@@ -140,12 +144,55 @@ def survey(folder: str, targets: tuple[str, ...] = tuple(t for t, _, _ in TARGET
     return results
 
 
+def joints_read(folder: str) -> list[str]:
+    """One line per movable joint and per link of every file, as the frontend reads it."""
+    import math
+
+    from robodesc.frontends.holo.lower import load_holo
+    from robodesc.frontends.options import LoadOptions
+    from robodesc.ir.diagnostics import Findings, RobodescError
+
+    lines = []
+    for path in robot_files(folder):
+        rel = os.path.relpath(path, folder)
+        try:
+            robot = load_holo(path, LoadOptions(), Findings()).robot
+        except RobodescError as exc:
+            lines.append(f"{rel}: refused: {str(exc).splitlines()[0]}")
+            continue
+        for j in robot.joints:
+            if j.type.value == "fixed":
+                continue
+            lim = j.limit
+            lo, hi = (lim.lower, lim.upper) if lim is not None else (None, None)
+            span = (
+                f"[{lo:.6g}, {hi:.6g}] rad = [{math.degrees(lo):.4g}, {math.degrees(hi):.4g}] deg"
+                if lo is not None and hi is not None and j.type.value == "revolute"
+                else f"[{lo}, {hi}]"
+            )
+            damping = j.dynamics.damping if j.dynamics is not None else None
+            lines.append(f"{rel}: joint {j.name} {j.type.value} {span} damping={damping}")
+        for link in robot.links:
+            inertial = link.inertial
+            if inertial is None:
+                lines.append(f"{rel}: link {link.name} no inertial")
+                continue
+            i = inertial.inertia
+            diag = "none" if i is None else f"{i.ixx:.6g} {i.iyy:.6g} {i.izz:.6g}"
+            lines.append(f"{rel}: link {link.name} mass={inertial.mass:g} inertia={diag}")
+    return lines
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("folder", help="a folder of HoloScript .holo robot files")
     parser.add_argument("--json", help="write the outcomes here")
     parser.add_argument("--label", default="", help="a label stored in the JSON (e.g. before, after)")
+    parser.add_argument("--joints", action="store_true", help="print the joints and links read; no compile")
     args = parser.parse_args()
+    if args.joints:
+        print("\n".join(joints_read(args.folder)))
+        return 0
     results = survey(args.folder)
     crashed = refused_by_urdfdom = 0
     for result in results:
