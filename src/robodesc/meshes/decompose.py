@@ -12,12 +12,14 @@ parameter that changes the result, and CoACD's version. Entries are written to a
 renamed into place, so batch workers that decompose the same mesh at once never read half a file.
 
 CoACD runs in a child process: its C++ loop cannot be interrupted from Python, and the child can be
-killed at the time limit; it also keeps CoACD's log off robodesc's output.
+killed at the time limit; it keeps CoACD's log off robodesc's output; and CoACD's shared library,
+once loaded, breaks Drake's parser in the same process (see :func:`coacd_version`).
 """
 
 from __future__ import annotations
 
 import hashlib
+import importlib.util
 import io
 import json
 import os
@@ -85,14 +87,14 @@ class DecompositionUnavailable(Exception):
 
 
 def coacd_version() -> str | None:
-    """The installed CoACD's version, None when it is not installed."""
-    try:
-        import coacd  # noqa: F401  # the import itself is the check: a broken wheel fails here
-    except (ImportError, OSError):
+    """The installed CoACD's version, None when it is not installed. Never imported here: its
+    shared library, loaded into robodesc's process, makes Drake's SDF parser throw ("Caught an
+    unknown exception!"), and the child process is where it runs anyway."""
+    if importlib.util.find_spec("coacd") is None:
         return None
     try:
         return metadata.version("coacd")
-    except metadata.PackageNotFoundError:  # pragma: no cover - imported from a source tree
+    except metadata.PackageNotFoundError:  # pragma: no cover - on the path from a source tree
         return "unknown"
 
 
