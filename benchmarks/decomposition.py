@@ -111,7 +111,13 @@ def markdown(results: list[dict[str, Any]], version: str | None) -> str:
             f"| {r['robot']} | {r['meshes']} | {t['mjcf_first']:.2f} s | {t['mjcf_cached']:.2f} s | "
             f"{t['sdf_cached']:.2f} s | {t['mjcf_hull']:.2f} s |"
         )
-    lines += ["", "## Parts per mesh", "", "| robot | mesh | triangles | parts | CoACD time | cached read |", "|---|---|---|---|---|---|"]
+    lines += [
+        "",
+        "## Parts per mesh",
+        "",
+        "| robot | mesh | triangles | parts | CoACD time | cached read |",
+        "|---|---|---|---|---|---|",
+    ]
     for r in results:
         for m in r["per_mesh"]:
             if "error" in m:

@@ -15,9 +15,9 @@ import numpy as np
 import pytest
 
 import robodesc
-from robodesc.pipeline import CompileResult
 from robodesc.ir.diagnostics import ConfigError, Severity
 from robodesc.meshes import decompose as dec
+from robodesc.pipeline import CompileResult
 
 ELL = Path(__file__).resolve().parent / "data" / "ell.obj"
 # The L's outline in x-y (m), extruded 0.03 m along z: what the parts must cover together.

@@ -13,12 +13,16 @@ import hashlib
 import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from robodesc._files import write_atomic
 from robodesc.emit.common.flags import flag
 from robodesc.ir.diagnostics import ConfigError
 from robodesc.ir.geometry import Mesh
 from robodesc.meshes.buffers import MeshReadError
+
+if TYPE_CHECKING:
+    from robodesc.meshes.decompose import Points, Triangles
 
 MESH_DIR = "meshes"
 
@@ -42,6 +46,7 @@ CACHE = flag(
     "~/.cache/robodesc/decomposition)",
     metavar="DIR",
 )
+
 
 def check_settings(options: object) -> None:
     """The decomposition fields of a target's options (``decomposition_max_parts`` ...)."""
@@ -149,7 +154,7 @@ class Decomposer:
         return PartFile(rel, path)
 
 
-def _arrays(mesh: Mesh) -> tuple[object, object]:
+def _arrays(mesh: Mesh) -> tuple[Points, Triangles]:
     import numpy as np
 
     from robodesc.meshes.data import build_mesh

@@ -194,22 +194,22 @@ class BodyWriter:
     def _geoms(self, body: ET.Element, link: Link) -> None:
         label = f"link {link.name!r}"
         for i, collision in enumerate(link.collisions):
-            for el in self._collision_geoms(link, collision.geometry, f"{label} collision {i}"):
-                el.set("class", "collision")
-                _place(el, collision.origin)
-                apply_contact(self.ctx, el, link, link.collision_contact(collision), f"{label} collision {i}")
-                body.append(el)
+            for geom in self._collision_geoms(link, collision.geometry, f"{label} collision {i}"):
+                geom.set("class", "collision")
+                _place(geom, collision.origin)
+                apply_contact(self.ctx, geom, link, link.collision_contact(collision), f"{label} collision {i}")
+                body.append(geom)
         for i, visual in enumerate(link.visuals):
             if isinstance(visual.geometry, Mesh):
                 parts = self.meshes.visual_parts(visual.geometry)
                 if parts is not None:
                     for name, rgba in parts:
-                        el = ET.SubElement(body, "geom", type="mesh", mesh=name)
-                        el.set("class", "visual")
-                        set_pose(el, visual.origin)
+                        piece = ET.SubElement(body, "geom", type="mesh", mesh=name)
+                        piece.set("class", "visual")
+                        set_pose(piece, visual.origin)
                         colour = rgba if rgba is not None else self._rgba(visual.material)
                         if colour is not None:
-                            el.set("rgba", fmt_vec(colour))
+                            piece.set("rgba", fmt_vec(colour))
                     continue
             el = self._geom(visual.geometry, f"{label} visual {i}", collider=False)
             if el is None:

@@ -71,7 +71,11 @@ def approximation_notes(ctx: UsdContext) -> None:
             "usd-triangle-mesh",
             f"triangle-mesh colliders (approximation none) on {_names(triangles)}: PhysX takes triangle meshes "
             "only on static colliders, and every USD link is a rigid body of the articulation"
-            + (f" ({_names(moving)} {'moves' if len(moving) == 1 else 'move'})" if moving else " (these are welded to the world, still bodies)")
+            + (
+                f" ({_names(moving)} {'moves' if len(moving) == 1 else 'move'})"
+                if moving
+                else " (these are welded to the world, still bodies)"
+            )
             + ", so Isaac's PhysX uses their convex hull; Newton collides the triangles. For exact contact in "
             "PhysX use sdf (GPU dynamics) or convexDecomposition",
             "option 'collision_approximation'",
