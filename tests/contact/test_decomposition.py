@@ -247,3 +247,9 @@ def test_static_links() -> None:
     ).robot
     assert static_links(arm, fix_base=True) == {"base", "plate"}
     assert static_links(arm, fix_base=False) == set()
+
+
+def test_gazebo_parity_leaves_the_sdf_meshes_to_gazebo(tmp_path: Path) -> None:
+    result = robodesc.compile_to(str(_robot(tmp_path)), "sdf", str(tmp_path / "r.sdf"), preset="gazebo_parity")
+    assert not [f for f in result.findings if "approximation" in f.code]
+    assert "optimization" not in (tmp_path / "r.sdf").read_text()

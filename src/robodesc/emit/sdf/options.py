@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
+from typing import ClassVar
 
 from robodesc.emit.common import approximation
 from robodesc.emit.common import decomposition as decomp
@@ -45,6 +46,10 @@ class SdfProp:
 
 @dataclass(slots=True)
 class SdfOptions:
+    # --preset gazebo_parity leaves these alone: the SDF is Gazebo's own input, so Gazebo's handling
+    # of a mesh (its triangles) is the parity the preset aims at.
+    PRESET_EXEMPT: ClassVar[tuple[str, ...]] = ("collision_approximation",)
+
     # None: "1.10" for Harmonic, "1.7" for Classic (Gazebo 11's libsdformat 9 stops at 1.7).
     # "1.11" is needed to keep mimic joints.
     version: str | None = field(
