@@ -14,7 +14,7 @@ import math
 
 from lxml import etree
 
-from robodesc.emit.common.approximation import mode_for, static_links
+from robodesc.emit.common.approximation import mode_for
 from robodesc.emit.common.decomposition import Decomposer, PartFile, decomposer
 from robodesc.emit.common.numbers import fmt, fmt_vec
 from robodesc.emit.common.paths import file_reference, mesh_reference
@@ -83,7 +83,6 @@ class SdfModelEmitter:
         self.names = Namespace()
         self.materials = {m.name: m for m in robot.materials}
         self.fix_base_name = FIX_BASE_JOINT
-        self.static = static_links(robot, options.fix_base)
         self._decomposer: Decomposer | None = None
 
     # ---- the model -----------------------------------------------------------------------
