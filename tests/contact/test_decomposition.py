@@ -253,3 +253,12 @@ def test_gazebo_parity_leaves_the_sdf_meshes_to_gazebo(tmp_path: Path) -> None:
     result = robodesc.compile_to(str(_robot(tmp_path)), "sdf", str(tmp_path / "r.sdf"), preset="gazebo_parity")
     assert not [f for f in result.findings if "approximation" in f.code]
     assert "optimization" not in (tmp_path / "r.sdf").read_text()
+
+
+def test_the_command_line_takes_snake_case_modes(tmp_path: Path) -> None:
+    from robodesc.cli import main
+
+    out = tmp_path / "r.usda"
+    argv = ["compile", str(_robot(tmp_path)), "-t", "usd", "-o", str(out), "-q"]
+    assert main([*argv, "--collision-approximation", "arm=convex_decomposition"]) == 0
+    assert out.read_text().count('physics:approximation = "convexDecomposition"') == 1

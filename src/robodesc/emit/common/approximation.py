@@ -76,7 +76,17 @@ def static_links(robot: Robot, fix_base: bool) -> set[str]:
     return out
 
 
+# Snake-case spellings the command line accepts for UsdPhysics' tokens.
+ALIASES = {
+    "convex_hull": "convexHull",
+    "convex_decomposition": "convexDecomposition",
+    "bounding_cube": "boundingCube",
+    "bounding_sphere": "boundingSphere",
+}
+
+
 def parse_mode(text: str) -> str:
+    text = ALIASES.get(text, text)
     if text not in APPROXIMATIONS:
         raise ConfigError(f"--collision-approximation {text!r}: one of {', '.join(APPROXIMATIONS)}")
     return text
