@@ -129,7 +129,14 @@ def _request(spec: Target, stage: Staging, options: CompileOptions, findings: Fi
     if spec.options is not None:
         names = {f.name for f in dataclasses.fields(spec.options)}
         given = {k: v for k, v in options.target_options.items() if k in names}
-        overlay = {k: v for k, v in OVERLAY_TARGET_OPTIONS.get(options.preset or "", {}).items() if k in names}
+        # A target may keep an option out of the preset overlays (SDF: Gazebo's own mesh handling
+        # is what gazebo_parity aims at, so its collision_approximation stays as given).
+        exempt = set(getattr(spec.options, "PRESET_EXEMPT", ()))
+        overlay = {
+            k: v
+            for k, v in OVERLAY_TARGET_OPTIONS.get(options.preset or "", {}).items()
+            if k in names and k not in exempt
+        }
         applied = {k: v for k, v in overlay.items() if k not in given}
         if applied:
             findings.info(

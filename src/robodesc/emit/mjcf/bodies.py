@@ -11,6 +11,8 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
+from robodesc.emit.common.approximation import mode_for
+from robodesc.emit.common.decomposition import Decomposer, decomposer
 from robodesc.emit.common.numbers import fmt_vec
 from robodesc.emit.mjcf.contact_params import apply_contact
 from robodesc.emit.mjcf.context import MjcfContext, num, set_pose
@@ -35,6 +37,7 @@ class BodyWriter:
         self.meshes = MeshAssets(ctx)
         self.children = ctx.robot.child_joints()
         self.materials = {m.name: m for m in ctx.robot.materials}
+        self._decomposer: Decomposer | None = None
 
     def worldbody(self, root_pose: Frame, floating: bool) -> ET.Element:
         world = ET.Element("worldbody")
@@ -191,23 +194,22 @@ class BodyWriter:
     def _geoms(self, body: ET.Element, link: Link) -> None:
         label = f"link {link.name!r}"
         for i, collision in enumerate(link.collisions):
-            el = self._geom(collision.geometry, f"{label} collision {i}", collider=True)
-            if el is not None:
-                el.set("class", "collision")
-                _place(el, collision.origin)
-                apply_contact(self.ctx, el, link, link.collision_contact(collision), f"{label} collision {i}")
-                body.append(el)
+            for geom in self._collision_geoms(link, collision.geometry, f"{label} collision {i}"):
+                geom.set("class", "collision")
+                _place(geom, collision.origin)
+                apply_contact(self.ctx, geom, link, link.collision_contact(collision), f"{label} collision {i}")
+                body.append(geom)
         for i, visual in enumerate(link.visuals):
             if isinstance(visual.geometry, Mesh):
                 parts = self.meshes.visual_parts(visual.geometry)
                 if parts is not None:
                     for name, rgba in parts:
-                        el = ET.SubElement(body, "geom", type="mesh", mesh=name)
-                        el.set("class", "visual")
-                        set_pose(el, visual.origin)
+                        piece = ET.SubElement(body, "geom", type="mesh", mesh=name)
+                        piece.set("class", "visual")
+                        set_pose(piece, visual.origin)
                         colour = rgba if rgba is not None else self._rgba(visual.material)
                         if colour is not None:
-                            el.set("rgba", fmt_vec(colour))
+                            piece.set("rgba", fmt_vec(colour))
                     continue
             el = self._geom(visual.geometry, f"{label} visual {i}", collider=False)
             if el is None:
@@ -218,6 +220,30 @@ class BodyWriter:
             if rgba is not None:
                 el.set("rgba", fmt_vec(rgba))
             body.append(el)
+
+    def _collision_geoms(self, link: Link, geometry: Geometry, element: str) -> list[ET.Element]:
+        """The geoms of one collision: one, or one per convex part under convexDecomposition."""
+        if isinstance(geometry, Mesh) and mode_for(self.ctx.options.collision_approximation, link.name) == (
+            "convexDecomposition"
+        ):
+            if self._decomposer is None:
+                self._decomposer = decomposer(self.ctx.options, self.ctx.out_dir)
+                # The parts it writes are listed with the target's other files.
+                self._decomposer.written = self.ctx.written
+
+            def warn(code: str, message: str) -> None:
+                self.ctx.warn(code, message, element, geometry.src)
+
+            def info(code: str, message: str) -> None:
+                self.ctx.info(code, message, element, geometry.src)
+
+            parts = self._decomposer.parts(geometry, warn, info)
+            if parts is not None:
+                return [
+                    ET.Element("geom", type="mesh", mesh=self.meshes.part_asset(part.rel, geometry)) for part in parts
+                ]
+        el = self._geom(geometry, element, collider=True)
+        return [] if el is None else [el]
 
     def _rgba(self, material: Material | None) -> tuple[float, float, float, float] | None:
         if material is None:

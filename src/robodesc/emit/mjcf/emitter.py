@@ -6,6 +6,7 @@ import os
 import xml.etree.ElementTree as ET
 
 from robodesc._files import write_atomic
+from robodesc.emit.common.approximation import TRIANGLE_MODES, asked, mode_for
 from robodesc.emit.common.paths import PathMode
 from robodesc.emit.mjcf.actuators import actuators
 from robodesc.emit.mjcf.bodies import BodyWriter, bounding_radius
@@ -17,6 +18,7 @@ from robodesc.emit.mjcf.options import MjcfOptions
 from robodesc.emit.mjcf.scene import scene_name, scene_text
 from robodesc.emit.mjcf.sensors import sites_and_sensors
 from robodesc.ir.diagnostics import Findings
+from robodesc.ir.geometry import Mesh
 from robodesc.ir.model import Collision, Robot, Visual
 from robodesc.ir.rigid import Frame, link_frames, pose_frame
 
@@ -49,20 +51,38 @@ def build_mjcf(
     for part in (contact(ctx), eq, act, sensor, home_keyframe(ctx, worldbody, act)):
         if part is not None:
             root.append(part)
-    asked = (
-        {options.collision_approximation}
-        if isinstance(options.collision_approximation, str)
-        else set(options.collision_approximation.values())
-    )
-    if asked - {"convexHull", "none"}:
-        ctx.warn(
-            "mjcf-approximation",
-            f"collision approximation {', '.join(sorted(asked - {'convexHull', 'none'}))}: MuJoCo collides meshes as "
-            "convex hulls, which is what is written",
-            "option 'collision_approximation'",
-        )
+    _approximation_notes(ctx)
     ET.indent(root, space="  ")
     return ET.tostring(root, encoding="unicode") + "\n", ctx.written
+
+
+def _approximation_notes(ctx: MjcfContext) -> None:
+    """What MuJoCo does with the modes it has no word for: it collides every mesh geom as its convex
+    hull (docs/contact.md)."""
+    modes = asked(ctx.options.collision_approximation)
+    bounding = sorted(modes & {"boundingCube", "boundingSphere"})
+    if bounding:
+        ctx.warn(
+            "mjcf-approximation",
+            f"collision approximation {', '.join(bounding)}: MuJoCo collides meshes as convex hulls, which "
+            "is what is written",
+            "option 'collision_approximation'",
+        )
+    spec = ctx.options.collision_approximation
+    exact = [
+        link.name
+        for link in ctx.robot.links
+        if mode_for(spec, link.name) in TRIANGLE_MODES and any(isinstance(c.geometry, Mesh) for c in link.collisions)
+    ]
+    if exact:
+        shown = ", ".join(exact[:5]) + (f" and {len(exact) - 5} more" if len(exact) > 5 else "")
+        ctx.warn(
+            "mjcf-triangle-mesh",
+            f"collision approximation {'/'.join(sorted(modes & set(TRIANGLE_MODES)))} (exact triangles) on {shown}: "
+            "MuJoCo collides every mesh geom as its convex hull, which is what it will use; for a concave "
+            "part use convexDecomposition (robodesc writes CoACD's convex parts)",
+            "option 'collision_approximation'",
+        )
 
 
 def emit_mjcf(

@@ -88,6 +88,21 @@ class MeshAssets:
         self._by_key[key] = name
         return name
 
+    def part_asset(self, rel: str, mesh: Mesh) -> str:
+        """The asset of a convex part written under meshes/ (already scaled, see
+        emit/common/decomposition.py); MuJoCo's hull of it is the part itself."""
+        key = (rel, None, True)
+        if key in self._by_key:
+            return self._by_key[key]
+        stem = os.path.splitext(os.path.basename(rel))[0].rsplit("_", 1)[0]  # without the digest
+        name = self._name(stem, False)
+        el = ET.SubElement(self.ctx.asset, "mesh", name=name, file=rel)
+        el.set("inertia", "shell")  # see asset()
+        if self.ctx.options.maxhullvert is not None:
+            el.set("maxhullvert", str(self.ctx.options.maxhullvert))
+        self._by_key[key] = name
+        return name
+
     def flat_box(self, mesh: Mesh, element: str) -> tuple[Vec3, Vec3] | None:
         """(half sizes, centre) of a box standing in for a flat mesh; None for a solid one."""
         if mesh.path is None or not os.path.isfile(mesh.path):

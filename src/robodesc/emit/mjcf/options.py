@@ -7,11 +7,11 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from robodesc.emit.common import approximation
+from robodesc.emit.common import decomposition as decomp
 from robodesc.emit.common import flags as common
 from robodesc.emit.common.approximation import Approximation
 from robodesc.emit.common.drives import check_drives, one_of
 from robodesc.emit.common.flags import flag
-from robodesc.emit.usd import COLLISION_APPROXIMATION
 from robodesc.ir.diagnostics import ConfigError
 
 ACTUATORS = ("position", "velocity", "motor", "none")
@@ -35,7 +35,12 @@ class MjcfOptions:
         default="position",
         metadata=flag("MuJoCo actuator kind per movable joint", name="--mjcf-actuator", choices=ACTUATORS),
     )
-    collision_approximation: Approximation = field(default="convexHull", metadata=COLLISION_APPROXIMATION)
+    collision_approximation: Approximation = field(default="convexHull", metadata=approximation.FLAG)
+    # convexDecomposition: CoACD's parts, cached by content (emit/common/decomposition.py).
+    decomposition_max_parts: int = field(default=32, metadata=decomp.MAX_PARTS)
+    decomposition_timeout: float = field(default=300.0, metadata=decomp.TIMEOUT)
+    decomposition_threshold: float = field(default=0.05, metadata=decomp.THRESHOLD)
+    decomposition_cache: str | None = field(default=None, metadata=decomp.CACHE)
     # MuJoCo's <mesh maxhullvert>: caps the vertices of the convex hull MuJoCo builds (None: no cap).
     maxhullvert: int | None = field(
         default=None, metadata=flag("vertex cap of collision hulls", name="--mjcf-maxhullvert", type=int)
@@ -58,6 +63,7 @@ class MjcfOptions:
         check_drives(self)
         one_of("actuator", self.actuator, ACTUATORS)
         approximation.check(self.collision_approximation)
+        decomp.check_settings(self)
         one_of("integrator", self.integrator, INTEGRATORS)
         if self.maxhullvert is not None and (not isinstance(self.maxhullvert, int) or self.maxhullvert < 4):
             raise ConfigError(f"maxhullvert must be an integer >= 4 (MuJoCo's minimum), got {self.maxhullvert!r}")

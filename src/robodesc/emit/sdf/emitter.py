@@ -9,13 +9,14 @@ floating joints, transmissions ...) is reported as a finding, never dropped sile
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 from lxml import etree
 
+from robodesc.emit.common.approximation import asked
 from robodesc.emit.sdf.model import SdfModelEmitter
 from robodesc.emit.sdf.names import Namespace
-from robodesc.emit.sdf.options import PoseFrames, SdfFlavour, SdfOptions, SdfProp
+from robodesc.emit.sdf.options import PoseFrames, SdfFlavour, SdfOptions, SdfProp, version_at_least
 from robodesc.emit.sdf.world import GROUND_PLANE, world_element
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
@@ -30,11 +31,15 @@ class SdfResult:
     # The robot model's SDF name, and what each IR link / joint / frame is called in the SDF.
     model_name: str
     names: Namespace
+    # Files written beside the SDF (convexDecomposition's parts), by role ("mesh:<path>").
+    files: dict[str, str] = field(default_factory=dict)
 
 
 def build_sdf(robot: Robot, options: SdfOptions | None = None) -> SdfResult:
     opts = options or SdfOptions()
+    opts.check()
     findings = Findings()
+    _approximation_notes(opts, findings)
     version = opts.resolved_version()
     root = etree.Element("sdf", version=version)
     models = Namespace()
@@ -46,6 +51,7 @@ def build_sdf(robot: Robot, options: SdfOptions | None = None) -> SdfResult:
     main = SdfModelEmitter(robot, opts, findings, in_world=opts.world)
     model_name = models.claim("model", robot.name, findings, loc=robot.src, label="robot")
     main.model(parent, model_name, pose=opts.model_pose)
+    files: dict[str, str] = {}
     if opts.props and not opts.world:
         findings.warn(
             "sdf-props-dropped",
@@ -68,9 +74,33 @@ def build_sdf(robot: Robot, options: SdfOptions | None = None) -> SdfResult:
             )
             static = False
         sub.model(parent, name, static=static, pose=prop.pose)
+        files.update(sub.written)
+    files.update(main.written)
     etree.indent(root, space="  ")
     text = '<?xml version="1.0" encoding="utf-8"?>\n' + etree.tostring(root, encoding="unicode") + "\n"
-    return SdfResult(text, findings, model_name, main.names)
+    return SdfResult(text, findings, model_name, main.names, files)
+
+
+def _approximation_notes(opts: SdfOptions, findings: Findings) -> None:
+    """What Gazebo does with the modes it has no word for (docs/contact.md)."""
+    modes = asked(opts.collision_approximation)
+    if "convexHull" in modes and not version_at_least(opts.resolved_version(), "1.11"):
+        findings.warn(
+            "sdf-approximation",
+            f"convexHull: SDF {opts.resolved_version()} cannot ask Gazebo for a mesh's hull (SDF 1.11's "
+            "<mesh optimization>, --sdf-version 1.11); the mesh is written as given and collides as its triangles",
+            element="option 'collision_approximation'",
+            stage="emit:sdf",
+        )
+    other = sorted(modes & {"boundingCube", "boundingSphere", "sdf"})
+    if other:
+        findings.warn(
+            "sdf-approximation",
+            f"collision approximation {', '.join(other)}: Gazebo has no such mesh collider; the mesh is "
+            "written as given and Gazebo collides its triangles",
+            element="option 'collision_approximation'",
+            stage="emit:sdf",
+        )
 
 
 def _prop_options(opts: SdfOptions) -> SdfOptions:

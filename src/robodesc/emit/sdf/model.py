@@ -14,6 +14,8 @@ import math
 
 from lxml import etree
 
+from robodesc.emit.common.approximation import mode_for
+from robodesc.emit.common.decomposition import Decomposer, PartFile, decomposer
 from robodesc.emit.common.numbers import fmt, fmt_vec
 from robodesc.emit.common.paths import file_reference, mesh_reference
 from robodesc.emit.sdf.names import STAGE, Namespace
@@ -81,6 +83,7 @@ class SdfModelEmitter:
         self.names = Namespace()
         self.materials = {m.name: m for m in robot.materials}
         self.fix_base_name = FIX_BASE_JOINT
+        self._decomposer: Decomposer | None = None
 
     # ---- the model -----------------------------------------------------------------------
     def model(
@@ -186,11 +189,22 @@ class SdfModelEmitter:
         collisions: list[str] = []
         for i, collision in enumerate(link.collisions):
             cname = local.claim("collision", collision.name or f"collision_{i}", self.findings, loc=collision.src)
-            collisions.append(cname)
-            c = E(el, "collision", name=cname)
-            _insert_pose(c, collision.origin, None)
-            self.geometry(c, collision.geometry, f"link {link.name!r} collision {i}")
-            add_surface(c, link.collision_contact(collision), self.findings, f"link {link.name!r} collision {i}")
+            label = f"link {link.name!r} collision {i}"
+            geometry = collision.geometry
+            parts = self._parts(link, geometry, label) if isinstance(geometry, Mesh) else None
+            pieces: list[tuple[str, Geometry]] = [(cname, geometry)]
+            if parts is not None:
+                # One <collision> per convex part, each with the collision's pose and surface.
+                pieces = [
+                    (local.claim("collision", f"{cname}_part{k}", self.findings), _part_mesh(part))
+                    for k, part in enumerate(parts)
+                ]
+            for name, shape in pieces:
+                collisions.append(name)
+                c = E(el, "collision", name=name)
+                _insert_pose(c, collision.origin, None)
+                self.geometry(c, shape, label, collider=mode_for(self.options.collision_approximation, link.name))
+                add_surface(c, link.collision_contact(collision), self.findings, label)
         for sensor in self.robot.sensors:
             if sensor.parent != link.name or sensor.type is SensorType.FORCE_TORQUE:
                 continue
@@ -243,7 +257,37 @@ class SdfModelEmitter:
         for tag, value in zip(("ixx", "ixy", "ixz", "iyy", "iyz", "izz"), values, strict=True):
             E(t, tag).text = fmt(value)
 
-    def geometry(self, parent: etree._Element, geom: Geometry, label: str) -> None:
+    def _parts(self, link: Link, mesh: Mesh, label: str) -> list[PartFile] | None:
+        """The convex parts of a mesh collider under convexDecomposition (None: the mesh as given)."""
+        if mode_for(self.options.collision_approximation, link.name) != "convexDecomposition":
+            return None
+        if self.options.out_dir is None:
+            self.findings.warn(
+                "sdf-decomposition-no-folder",
+                "convexDecomposition writes its parts as files beside the SDF: give -o FILE.sdf; "
+                "the mesh is written as given",
+                element=label,
+                loc=mesh.src,
+                stage=STAGE,
+            )
+            return None
+        if self._decomposer is None:
+            self._decomposer = decomposer(self.options, self.options.out_dir)
+
+        def warn(code: str, message: str) -> None:
+            self.findings.warn(code, message, element=label, loc=mesh.src, stage=STAGE)
+
+        def info(code: str, message: str) -> None:
+            self.findings.info(code, message, element=label, loc=mesh.src, stage=STAGE)
+
+        return self._decomposer.parts(mesh, warn, info)
+
+    @property
+    def written(self) -> dict[str, str]:
+        """Files written beside the SDF (convex parts), by role."""
+        return self._decomposer.written if self._decomposer is not None else {}
+
+    def geometry(self, parent: etree._Element, geom: Geometry, label: str, collider: str | None = None) -> None:
         g = E(parent, "geometry")
         if isinstance(geom, Box):
             E(E(g, "box"), "size").text = fmt_vec(geom.size)
@@ -271,6 +315,10 @@ class SdfModelEmitter:
                 E(c, "length").text = fmt(geom.length + 2 * geom.radius)
         elif isinstance(geom, Mesh):
             m = E(g, "mesh")
+            if collider in ("convexHull", "convexDecomposition") and version_at_least(self.version, "1.11"):
+                # SDF 1.11 (Gazebo Harmonic) asks Gazebo for the hull; a convexDecomposition collider
+                # here is a convex part, or the whole mesh when the decomposition fell back.
+                m.set("optimization", "convex_hull")
             E(m, "uri").text = mesh_reference(geom, self.options.path_mode, self.options.out_dir)
             if geom.scale is not None:
                 E(m, "scale").text = fmt_vec(geom.scale)
@@ -459,6 +507,11 @@ class SdfModelEmitter:
                 element=f"robot {robot.name!r}",
                 stage=STAGE,
             )
+
+
+def _part_mesh(part: PartFile) -> Mesh:
+    """A convex part as the IR's mesh: its file beside the SDF, already scaled."""
+    return Mesh(uri=part.rel, path=part.path)
 
 
 def _insert_pose(el: etree._Element, pose: Pose | None, relative_to: str | None) -> None:

@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
+from typing import ClassVar
 
+from robodesc.emit.common import approximation
+from robodesc.emit.common import decomposition as decomp
 from robodesc.emit.common import flags as common
 from robodesc.emit.common.flags import flag
 from robodesc.emit.common.paths import PathMode
@@ -43,6 +46,10 @@ class SdfProp:
 
 @dataclass(slots=True)
 class SdfOptions:
+    # --preset gazebo_parity leaves these alone: the SDF is Gazebo's own input, so Gazebo's handling
+    # of a mesh (its triangles) is the parity the preset aims at.
+    PRESET_EXEMPT: ClassVar[tuple[str, ...]] = ("collision_approximation",)
+
     # None: "1.10" for Harmonic, "1.7" for Classic (Gazebo 11's libsdformat 9 stops at 1.7).
     # "1.11" is needed to keep mimic joints.
     version: str | None = field(
@@ -64,6 +71,14 @@ class SdfOptions:
     )
     # Weld the root link to the world (a fixed joint to ``world``); SDF models float by default.
     fix_base: bool = field(default=False, metadata=common.FIX_BASE)
+    # Gazebo collides a <mesh> as its triangles: "none" writes the mesh as given (the default);
+    # convexHull asks Gazebo for its hull (SDF 1.11's optimization attribute); convexDecomposition
+    # writes robodesc's CoACD parts (docs/contact.md).
+    collision_approximation: approximation.Approximation = field(default="none", metadata=approximation.FLAG)
+    decomposition_max_parts: int = field(default=32, metadata=decomp.MAX_PARTS)
+    decomposition_timeout: float = field(default=300.0, metadata=decomp.TIMEOUT)
+    decomposition_threshold: float = field(default=0.05, metadata=decomp.THRESHOLD)
+    decomposition_cache: str | None = field(default=None, metadata=decomp.CACHE)
     pose_frames: PoseFrames = PoseFrames.RELATIVE
     path_mode: PathMode = PathMode.RELATIVE
     # The folder the SDF will be written to; relative mesh paths are computed against it.
@@ -83,6 +98,10 @@ class SdfOptions:
     # None: "dantzig" (DART, Harmonic's default engine) or "quick" (ODE, Classic's).
     solver: str | None = None
     gravity: Vec3 = (0.0, 0.0, -9.8)
+
+    def check(self) -> None:
+        approximation.check(self.collision_approximation)
+        decomp.check_settings(self)
 
     def resolved_version(self) -> str:
         version = self.version or ("1.7" if self.flavour is SdfFlavour.CLASSIC else "1.10")

@@ -31,6 +31,7 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     if request.out:
         write_atomic(request.out, result.text)
         emitted.files["sdf"] = request.out
+    emitted.files.update(result.files)
     return emitted
 
 

@@ -31,7 +31,7 @@ from robodesc.emit.usd.context import (
     UsdContext,
     check_identifier,
 )
-from robodesc.emit.usd.geometry import emit_link_geometry
+from robodesc.emit.usd.geometry import approximation_notes, emit_link_geometry
 from robodesc.emit.usd.joints import emit_joint, emit_loop_joint, loop_scope_paths
 from robodesc.emit.usd.layers import PAYLOAD_DIR, LayerSet, robot_prim, stage_metadata, write_layers
 from robodesc.emit.usd.materials import MaterialLibrary
@@ -102,6 +102,7 @@ def build_layers(ctx: UsdContext, layers: LayerSet) -> None:
     for joint in robot.joints:
         emit_joint(ctx, joint)
     emit_articulation(ctx, root)
+    approximation_notes(ctx)
     emit_robot_schema(ctx)
     loops = loop_scope_paths(ctx)
     if loops:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from robodesc.emit.common.approximation import mode_for
+from robodesc.emit.common.approximation import TRIANGLE_MODES, mode_for, static_links
 from robodesc.emit.usd.contact import PhysicsMaterials
 from robodesc.emit.usd.context import GEOMETRY, MATERIALS, PHYSICS, UsdContext, set_pose, unique_name
 from robodesc.emit.usd.materials import MaterialLibrary
@@ -18,6 +18,9 @@ from robodesc.ir.model import Collision, Link, Visual
 from robodesc.ir.rigid import pose_frame
 from robodesc.usdfile.spec import Prim
 from robodesc.usdfile.usdc import keep_packed
+
+# PhysX's default SDF resolution (voxels along the mesh's longest side).
+SDF_RESOLUTION = 256
 
 if TYPE_CHECKING:
     from robodesc.meshes.buffers import MeshData
@@ -47,6 +50,48 @@ def emit_link_geometry(ctx: UsdContext, link: Link, looks: MaterialLibrary, cont
             if _shape(ctx, path, collision, f"{label} collision {index}"):
                 prim = _collider(ctx, path, collision, link.name)
                 contacts.bind(prim, link.collision_contact(collision), label)
+
+
+def approximation_notes(ctx: UsdContext) -> None:
+    """What PhysX does with the exact-triangle modes (docs/contact.md): a triangle mesh ("none") only
+    on a static collider, never on a dynamic body or articulation link, which every link robodesc
+    writes is (static links too: they are bodies of the articulation, welded by fixed joints); an
+    SDF collider on any body, with GPU dynamics."""
+    spec = ctx.options.collision_approximation
+    static = static_links(ctx.robot, ctx.options.fix_base)
+    by_mode: dict[str, list[str]] = {}
+    for link in ctx.robot.links:
+        mode = mode_for(spec, link.name)
+        if mode in TRIANGLE_MODES and any(isinstance(c.geometry, Mesh) for c in link.collisions):
+            by_mode.setdefault(mode, []).append(link.name)
+    triangles = by_mode.get("none", [])
+    if triangles:
+        moving = [n for n in triangles if n not in static]
+        ctx.warn(
+            "usd-triangle-mesh",
+            f"triangle-mesh colliders (approximation none) on {_names(triangles)}: PhysX takes triangle meshes "
+            "only on static colliders, and every USD link is a rigid body of the articulation"
+            + (
+                f" ({_names(moving)} {'moves' if len(moving) == 1 else 'move'})"
+                if moving
+                else " (these are welded to the world, still bodies)"
+            )
+            + ", so Isaac's PhysX uses their convex hull; Newton collides the triangles. For exact contact in "
+            "PhysX use sdf (GPU dynamics) or convexDecomposition",
+            "option 'collision_approximation'",
+        )
+    moving_sdf = [n for n in by_mode.get("sdf", []) if n not in static]
+    if moving_sdf:
+        ctx.warn(
+            "usd-sdf-collider",
+            f"SDF colliders on moving links {_names(moving_sdf)}: PhysX simulates them on dynamic bodies with "
+            "GPU dynamics only",
+            "option 'collision_approximation'",
+        )
+
+
+def _names(links: list[str]) -> str:
+    return ", ".join(links[:5]) + (f" and {len(links) - 5} more" if len(links) > 5 else "")
 
 
 def _shape(ctx: UsdContext, path: str, item: Visual | Collision, label: str) -> bool:
@@ -144,6 +189,11 @@ def _collider(ctx: UsdContext, path: str, collision: Collision, link: str) -> Pr
         mode = mode_for(options.collision_approximation, link)
         prim.apply("PhysicsMeshCollisionAPI")
         prim.attr("physics:approximation", "token", mode, uniform=True)
+        if mode == "sdf":
+            # PhysX collides the triangles through a signed distance field, on any body (GPU
+            # dynamics); 256 is PhysX's own default resolution, written so every loader agrees.
+            prim.apply("PhysxSDFMeshCollisionAPI")
+            prim.attr("physxSDFMeshCollision:sdfResolution", "int", SDF_RESOLUTION)
         if mode == "convexDecomposition":
             # PhysX decomposes on load (V-HACD); its parameters written out so every loader gets
             # the same hulls (PhysX's defaults: up to 32 hulls of up to 64 vertices).

@@ -15,13 +15,7 @@ FORMATS = (".usda", ".usdc", ".usd")
 COMBINE_MODES = ("average", "min", "multiply", "max")
 
 # Flags of options the Isaac folder shares (emit/isaac/settings.py declares its fields with these).
-COLLISION_APPROXIMATION = flag(
-    f"how mesh colliders are approximated: {', '.join(approximation.APPROXIMATIONS)} (default convexHull), "
-    "or LINK_REGEX=MODE rules on top of it (repeatable, first match wins)",
-    kind="rules",
-    rule_value=approximation.parse_mode,
-    metavar="MODE|REGEX=MODE",
-)
+COLLISION_APPROXIMATION = approximation.FLAG
 LAYERED = flag("USD as an interface layer + payload (like NVIDIA's converter) instead of one file", kind="on")
 POSITION_ITERATIONS = flag("PhysX articulation position iterations", type=int, metavar="N")
 VELOCITY_ITERATIONS = flag("PhysX articulation velocity iterations", type=int, metavar="N")
