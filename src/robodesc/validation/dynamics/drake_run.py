@@ -94,18 +94,27 @@ def _root_body(plant: Any, robot: Robot, models: list[Any]) -> Any:
     return (named or candidates or [plant.get_body(plant.GetBodyIndices(models[0])[0])])[0]
 
 
-def _robot_mu(plant: Any, scene_graph: Any, models: list[Any]) -> tuple[float | None, list[Any]]:
-    """(the most common sliding friction of the robot's colliders, their geometry ids)."""
+def _robot_mu(
+    plant: Any, scene_graph: Any, models: list[Any], feet: tuple[str, ...] = ()
+) -> tuple[float | None, list[Any]]:
+    """(the most common sliding friction of the robot's colliders, their geometry ids): the feet's
+    friction when the robot stands on some (``Setup.feet``), else all colliders'."""
     inspector = scene_graph.model_inspector()
     values: list[float] = []
+    on_feet: list[float] = []
     ids: list[Any] = []
     for model in models:
         for index in plant.GetBodyIndices(model):
-            for gid in plant.GetCollisionGeometriesForBody(plant.get_body(index)):
+            body = plant.get_body(index)
+            for gid in plant.GetCollisionGeometriesForBody(body):
                 ids.append(gid)
                 props = inspector.GetProximityProperties(gid)
                 if props is not None and props.HasProperty("material", "coulomb_friction"):
-                    values.append(round(props.GetProperty("material", "coulomb_friction").dynamic_friction(), 9))
+                    value = round(props.GetProperty("material", "coulomb_friction").dynamic_friction(), 9)
+                    values.append(value)
+                    if body.name() in feet:
+                        on_feet.append(value)
+    values = on_feet or values
     return (max(set(values), key=values.count) if values else None), ids
 
 
@@ -122,7 +131,7 @@ def _robot_run(robot: Robot, path: str, options: Any, setup: Setup, run: Run, *,
     root = _root_body(plant, robot, models)
     if not floor and not _is_welded(plant, root):
         plant.WeldFrames(plant.world_frame(), root.body_frame())
-    mu, robot_geoms = _robot_mu(plant, scene_graph, models)
+    mu, robot_geoms = _robot_mu(plant, scene_graph, models, setup.feet)
     run.mu = mu if floor else None
     if floor:
         friction = mu if mu is not None else 1.0
@@ -233,7 +242,7 @@ def _slide(robot: Robot, path: str, options: Any, setup: Setup, run: Run, mu: fl
     if mu is None:
         _, plant, scene_graph = _plant(setup.timestep)
         models = _parse(plant, robot, path, options, shapes=False)
-        mu, _ = _robot_mu(plant, scene_graph, models)
+        mu, _ = _robot_mu(plant, scene_graph, models, setup.feet)
     if mu is None:
         run.ok, run.error = False, "Drake reads no collider from the file"
         return

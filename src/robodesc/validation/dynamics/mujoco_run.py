@@ -120,10 +120,16 @@ def _simulate(model: Any, data: Any, setup: Setup, run: Run, addr: dict[str, int
     return True
 
 
+def _colliders(spec: Any) -> list[Any]:
+    """The geoms that collide: an MJCF's visual geoms (contype and conaffinity 0, robodesc's
+    ``visual`` class) touch nothing and must stay so."""
+    return [g for g in spec.geoms if int(g.contype) or int(g.conaffinity)]
+
+
 def _no_self_contact(spec: Any) -> None:
-    """Robot geoms collide with the floor only: convex hulls of meshes overlap on most robots and
-    their pushes are not what these scenarios measure."""
-    for geom in spec.geoms:
+    """Robot colliders touch the floor only: convex hulls of meshes overlap on most robots and
+    their pushes are not what these scenarios measure. Visual geoms stay out of contact."""
+    for geom in _colliders(spec):
         geom.contype, geom.conaffinity = 1, 0
 
 
@@ -146,18 +152,26 @@ def _hold(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
     _simulate(model, data, setup, run, addr)
 
 
-def _robot_mu(spec: Any) -> float:
-    """The sliding friction MuJoCo gives the robot's colliders (the most common one)."""
-    values = [round(float(g.friction[0]), 9) for g in spec.geoms]
+def _robot_mu(spec: Any, feet: tuple[str, ...] = ()) -> float:
+    """The sliding friction MuJoCo gives the robot's colliders (the most common one): its feet's
+    when it stands on some (``Setup.feet``), else all of them."""
+    geoms = _colliders(spec)
+    on_feet = [g for g in geoms if _body_name(g) in feet]
+    values = [round(float(g.friction[0]), 9) for g in on_feet or geoms]
     return max(set(values), key=values.count) if values else 1.0
+
+
+def _body_name(geom: Any) -> str:
+    parent = geom.parent
+    return str(parent.name) if parent is not None else ""
 
 
 def _drop(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
     s = spec.copy()
     add_floating_base(s, robot)
     _actuate(s, kind, setup)
+    mu = _robot_mu(s, setup.feet)
     _no_self_contact(s)
-    mu = _robot_mu(s)
     run.mu = mu
     # Equal friction on both sides: MuJoCo takes the larger, Drake a harmonic mean, Newton its own
     # rule; all of them give mu when the two are equal.
@@ -195,7 +209,7 @@ def _free_root(model: Any) -> int | None:
 
 
 def _slide(spec: Any, setup: Setup, run: Run) -> None:
-    mu = _robot_mu(spec)
+    mu = _robot_mu(spec, setup.feet)
     run.mu = mu
     stick, slide = slide_angles(mu)
     run.stick = _block_travel(mu, stick, setup)

@@ -44,11 +44,24 @@ def _load(req, floating, floor=False):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         builder.add_usd(req["usd"], floating=floating, enable_self_collisions=False, load_visual_shapes=False)
-    values = [round(float(v), 6) for v in builder.shape_material_mu]
-    mu = max(set(values), key=values.count) if values else None
+    mu = _robot_mu(builder, req["setup"].get("feet") or ())
     if floor:
         builder.add_ground_plane(cfg=newton.ModelBuilder.ShapeConfig(mu=1.0 if mu is None else mu))
     return builder.finalize(device="cpu"), mu
+
+
+def _robot_mu(builder, feet):
+    """The most common friction of the robot's shapes: its feet's when it stands on some (as the
+    other engines' runners), else all shapes'. A body's label ends with its prim name."""
+    values = [round(float(v), 6) for v in builder.shape_material_mu]
+    labels = list(getattr(builder, "body_label", None) or getattr(builder, "body_key", None) or [])
+    on_feet = [
+        v
+        for v, body in zip(values, builder.shape_body, strict=False)
+        if 0 <= body < len(labels) and _short(str(labels[body])) in set(feet)
+    ]
+    values = on_feet or values
+    return max(set(values), key=values.count) if values else None
 
 
 def _names(model, usd):
