@@ -11,13 +11,14 @@ from __future__ import annotations
 import logging
 import math
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from robodesc.ir.model import Robot
-from robodesc.validation.dynamics.result import Run
+from robodesc.validation.dynamics.result import Run, settle_time
 from robodesc.validation.dynamics.scenarios import Setup, slide_angles
 
 ENGINE = "drake"
@@ -164,7 +165,8 @@ def _robot_run(robot: Robot, path: str, options: Any, setup: Setup, run: Run, *,
             _set_position(joint, context, setup.pose[name])
     if floor and _floating(root):
         plant.SetFreeBodyPose(context, root, RigidTransform(_vec(0.0, 0.0, setup.stand_height + setup.drop_clearance)))
-    _advance(simulator, context, table, setup, run)
+    height = (lambda: float(plant.EvalBodyPoseInWorld(context, root).translation()[2])) if floor else None
+    _advance(simulator, context, table, setup, run, height)
     if run.ok and floor:
         pose = plant.EvalBodyPoseInWorld(context, root)
         run.height = float(pose.translation()[2])
@@ -218,15 +220,25 @@ def _desired_for(plant: Any, model: Any, setup: Setup) -> Any:
     return np.array(q + [0.0] * len(q))
 
 
-def _advance(simulator: Any, context: Any, table: dict[str, Any], setup: Setup, run: Run) -> None:
+def _advance(
+    simulator: Any,
+    context: Any,
+    table: dict[str, Any],
+    setup: Setup,
+    run: Run,
+    height: Callable[[], float] | None = None,
+) -> None:
     joints = {n: j for n in setup.pose if (j := table.get(n)) is not None and j.num_positions() == 1}
     if setup.pose and not joints:
         run.ok, run.error = False, "none of the robot's driven joints is in the file"
         return
     steps = max(1, round(setup.duration / _SAMPLE))
     q: dict[str, float] = {}
+    heights: list[tuple[float, float]] = []
     for k in range(1, steps + 1):
         simulator.AdvanceTo(k * _SAMPLE)
+        if height is not None:
+            heights.append((k * _SAMPLE, height()))
         q = {n: float(j.GetOnePosition(context)) for n, j in joints.items()}
         if not all(math.isfinite(v) for v in q.values()):
             run.ok, run.error = False, f"state not finite after {k * _SAMPLE:.3g} s"
@@ -234,6 +246,7 @@ def _advance(simulator: Any, context: Any, table: dict[str, Any], setup: Setup, 
         run.trajectory.append((k * _SAMPLE, q))
     run.final_q = q
     run.drift, run.worst_joint = max(((abs(v - setup.pose[n]), n) for n, v in q.items()), default=(0.0, ""))
+    run.settle = settle_time(heights) if height is not None else None
 
 
 def _slide(robot: Robot, path: str, options: Any, setup: Setup, run: Run, mu: float | None) -> None:

@@ -17,7 +17,7 @@ import mujoco
 import numpy as np
 
 from robodesc.ir.model import Robot
-from robodesc.validation.dynamics.result import Run
+from robodesc.validation.dynamics.result import Run, settle_time
 from robodesc.validation.dynamics.scenarios import Setup, slide_angles
 from robodesc.validation.mujoco_load import add_floating_base, load_urdf_in_mujoco
 from robodesc.validation.options import ValidateOptions
@@ -101,12 +101,13 @@ def _start(model: Any, data: Any, setup: Setup) -> dict[str, int]:
     return addr
 
 
-def _simulate(model: Any, data: Any, setup: Setup, run: Run, addr: dict[str, int]) -> bool:
+def _simulate(model: Any, data: Any, setup: Setup, run: Run, addr: dict[str, int], root: int | None = None) -> bool:
     if setup.pose and not addr:
         run.ok, run.error = False, "none of the robot's driven joints is in the file"
         return False
     steps = max(1, round(setup.duration / setup.timestep))
     every = max(1, round(_SAMPLE / setup.timestep))
+    heights: list[tuple[float, float]] = []
     for step in range(steps):
         mujoco.mj_step(model, data)
         if not np.all(np.isfinite(data.qpos)):
@@ -114,6 +115,9 @@ def _simulate(model: Any, data: Any, setup: Setup, run: Run, addr: dict[str, int
             return False
         if (step + 1) % every == 0:
             run.trajectory.append(((step + 1) * setup.timestep, {n: float(data.qpos[a]) for n, a in addr.items()}))
+            if root is not None:
+                heights.append(((step + 1) * setup.timestep, float(data.xpos[root][2])))
+    run.settle = settle_time(heights) if root is not None else None
     run.final_q = {n: float(data.qpos[a]) for n, a in addr.items()}
     worst = max(((abs(q - setup.pose[n]), n) for n, q in run.final_q.items()), default=(0.0, ""))
     run.drift, run.worst_joint = worst
@@ -195,8 +199,8 @@ def _drop(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
         return
     qadr = int(model.jnt_qposadr[root])
     data.qpos[qadr + 2] = setup.stand_height + setup.drop_clearance
-    if _simulate(model, data, setup, run, addr):
-        body = int(model.jnt_bodyid[root])
+    body = int(model.jnt_bodyid[root])
+    if _simulate(model, data, setup, run, addr, body):
         run.height = float(data.xpos[body][2])
         run.tilt = math.acos(max(-1.0, min(1.0, float(data.xmat[body][8]))))
 

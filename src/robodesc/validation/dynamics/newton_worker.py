@@ -120,6 +120,8 @@ def _run_robot(req, scenario):
             if not np.all(np.isfinite(jq)):
                 return {**run, "ok": False, "error": f"state not finite after {(step + 1) * dt:.3g} s"}
             run["trajectory"].append([(step + 1) * dt, {n: float(jq[names[n][0]]) for n in pose}])
+            if floor:
+                run.setdefault("heights", []).append([(step + 1) * dt, float(state0.body_q.numpy()[root_body][2])])
     jq = state0.joint_q.numpy()
     final = {n: float(jq[names[n][0]]) for n in pose}
     worst = max(((abs(v - pose[n]), n) for n, v in final.items()), default=(0.0, ""))
