@@ -23,7 +23,7 @@ from robodesc.validation.dynamics.scenarios import Setup, slide_angles
 
 ENGINE = "drake"
 _SAMPLE = 0.01  # s
-_BOX = 0.05  # m
+_BOX, _BOX_H = 0.05, 0.01  # m: the slide block's half length and height (mujoco_run: why flat)
 
 
 def run_file(
@@ -278,14 +278,14 @@ def _block_travel(mu: float, angle: float, setup: Setup) -> float:
     plant.RegisterCollisionGeometry(
         plant.world_body(), RigidTransform(tilt, _vec(0.0, 0.0, 0.0)), HalfSpace(), "plane", friction
     )
-    inertia = SpatialInertia(1.0, _vec(0.0, 0.0, 0.0), UnitInertia.SolidBox(2 * _BOX, 2 * _BOX, 2 * _BOX))
+    inertia = SpatialInertia(1.0, _vec(0.0, 0.0, 0.0), UnitInertia.SolidBox(2 * _BOX, 2 * _BOX, 2 * _BOX_H))
     block = plant.AddRigidBody("block", inertia)
-    plant.RegisterCollisionGeometry(block, RigidTransform(), Box(2 * _BOX, 2 * _BOX, 2 * _BOX), "block", friction)
+    plant.RegisterCollisionGeometry(block, RigidTransform(), Box(2 * _BOX, 2 * _BOX, 2 * _BOX_H), "block", friction)
     plant.Finalize()
     simulator = Simulator(builder.Build())
     context = plant.GetMyMutableContextFromRoot(simulator.get_mutable_context())
     normal = tilt.col(2)
-    start = _vec(*(np.asarray(normal) * (_BOX + 1e-4)))
+    start = _vec(*(np.asarray(normal) * (_BOX_H + 1e-4)))
     plant.SetFreeBodyPose(context, block, RigidTransform(tilt, start))
     simulator.AdvanceTo(setup.duration)
     return float(np.linalg.norm(plant.EvalBodyPoseInWorld(context, block).translation() - start))

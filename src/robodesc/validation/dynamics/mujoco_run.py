@@ -25,7 +25,10 @@ from robodesc.validation.report import ValidationReport
 
 ENGINE = "mujoco"
 _SAMPLE = 0.01  # s between trajectory samples
-_BOX = 0.05  # m: half size of the slide block
+_BOX = 0.05  # m: half length and width of the slide block
+# Half its height: a flat block tips only past tan = _BOX / _BOX_H = 5, so it slides, not rolls, at
+# tan = 1.3 mu up to mu 3.8 (a cube tipped over from mu 0.77 on: rolling, not friction, set its travel).
+_BOX_H = 0.01  # m
 # Implicit in the drives' velocity terms: MuJoCo's default Euler is explicit in an actuator's kv,
 # and kv = 1 N·m·s/rad on a 10 g fingertip is unstable at any usable time step (Drake's PD and
 # Newton's MuJoCo solver are implicit too). A URDF names no integrator; an MJCF's own is kept.
@@ -229,9 +232,9 @@ def _block_travel(mu: float, angle: float, setup: Setup) -> float:
     c, sn = math.cos(angle / 2), math.sin(angle / 2)
     s.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 1], quat=[c, 0, sn, 0], friction=[mu, 0, 0])
     normal = np.array([math.sin(angle), 0.0, math.cos(angle)])
-    body = s.worldbody.add_body(pos=list(normal * (_BOX + 1e-4)), quat=[c, 0, sn, 0])
+    body = s.worldbody.add_body(pos=list(normal * (_BOX_H + 1e-4)), quat=[c, 0, sn, 0])
     body.add_freejoint()
-    body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[_BOX] * 3, mass=1.0, friction=[mu, 0, 0], condim=3)
+    body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[_BOX, _BOX, _BOX_H], mass=1.0, friction=[mu, 0, 0], condim=3)
     model = s.compile()
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)

@@ -21,7 +21,7 @@ import traceback
 import warnings
 
 _SAMPLE = 0.01
-_BOX = 0.05
+_BOX, _BOX_H = 0.05, 0.01  # the slide block's half length and height (mujoco_run: why flat)
 
 
 def _short(label):
@@ -143,9 +143,9 @@ def _block_travel(mu, angle, setup):
     builder = _builder(gravity=(g * math.sin(angle), 0.0, -g * math.cos(angle)))
     cfg = newton.ModelBuilder.ShapeConfig(mu=mu)
     builder.add_ground_plane(cfg=cfg)
-    body = builder.add_body(xform=wp.transform((0.0, 0.0, _BOX + 1e-4), wp.quat_identity()))
-    box_cfg = newton.ModelBuilder.ShapeConfig(mu=mu, density=1.0 / (2 * _BOX) ** 3)
-    builder.add_shape_box(body, hx=_BOX, hy=_BOX, hz=_BOX, cfg=box_cfg)
+    body = builder.add_body(xform=wp.transform((0.0, 0.0, _BOX_H + 1e-4), wp.quat_identity()))
+    box_cfg = newton.ModelBuilder.ShapeConfig(mu=mu, density=1.0 / (8 * _BOX * _BOX * _BOX_H))
+    builder.add_shape_box(body, hx=_BOX, hy=_BOX, hz=_BOX_H, cfg=box_cfg)
     model = builder.finalize(device="cpu")
     s0, s1, control = model.state(), model.state(), model.control()
     newton.eval_fk(model, s0.joint_q, s0.joint_qd, s0)
