@@ -201,6 +201,8 @@ def test_spirit_toes_in_mjcf_read_by_mujoco(tmp_path: Path, preset: str | None) 
     mass = sum(mujoco.MjModel.from_xml_path(str(out)).body_mass) / 4  # a quarter of Spirit per toe
     omega = (30000 / mass) ** 0.5  # kp 30000 N/m
     ratio = 1000 / (2 * (30000 * mass) ** 0.5)  # kd 1000 N·s/m; > 1, so restitution 0 holds as given
+    priorities = {int(p) for p in mujoco.MjModel.from_xml_path(str(out)).geom_priority}
+    assert priorities == ({0, 1} if preset else {0})  # under gazebo_parity: the colliders', not the visuals'
     for mu, timeconst, dampratio in _spirit_toe_geoms(out):
         assert mu == pytest.approx(0.5)  # MuJoCo's slide friction
         # MuJoCo's damping is 2 / timeconst and its stiffness 1 / (timeconst dampratio)^2 (at full
@@ -261,3 +263,34 @@ def test_mjcf_contact_rings_at_the_sources_frequency(tmp_path: Path) -> None:
     rising = np.flatnonzero((z[:-1] < 0) & (z[1:] >= 0))
     period = float(np.mean(np.diff(rising))) * 0.0002
     assert 2 * np.pi / 100 <= period <= 1.07 * 2 * np.pi / 100
+
+
+@pytest.mark.parametrize(("preset", "applied"), [(None, 1.0), ("gazebo_parity", 0.5)])
+def test_mjcf_friction_against_a_floor(tmp_path: Path, preset: str | None, applied: float) -> None:
+    """A ball of mu 0.5 on MuJoCo's default floor (mu 1): MuJoCo's rule takes the larger; under
+    gazebo_parity the ball's priority gives ODE's minimum, 0.5, and its own solref."""
+    mujoco = pytest.importorskip("mujoco")
+    src = tmp_path / "ball.urdf"
+    src.write_text(BALL.replace("<kp>", "<mu1>0.5</mu1><mu2>0.5</mu2><kp>"))
+    out = tmp_path / "ball.xml"
+    result = robodesc.compile_to_mjcf(str(src), out, fix_base=False, **({"preset": preset} if preset else {}))
+    if preset:
+        notes = [f.message for f in result.findings if f.code == "preset-applied"]
+        assert notes and "friction_combine=min" in notes[0]
+    spec = mujoco.MjSpec.from_file(str(out))
+    spec.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 1])
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    data.qpos[2] = 0.05 - 1e-4
+    mujoco.mj_forward(model, data)
+    assert data.ncon == 1 and data.contact.friction[0][0] == pytest.approx(applied)
+    ball = next(g for g in range(model.ngeom) if model.geom_bodyid[g] != 0)
+    if preset:
+        assert data.contact.solref[0] == pytest.approx(model.geom_solref[ball])
+
+
+def test_mjcf_refuses_a_combine_rule_mujoco_has_not(tmp_path: Path) -> None:
+    from robodesc.ir.diagnostics import ConfigError
+
+    with pytest.raises(ConfigError, match="no average or product"):
+        robodesc.compile_to_mjcf(str(SPIRIT_XACRO), tmp_path / "r.xml", friction_combine="average")

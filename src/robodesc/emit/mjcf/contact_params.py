@@ -18,6 +18,9 @@ contact (Gazebo's ODE vocabulary, SI; docs/contact.md).
   given is SDF's default, 1 N·s/m.
 - ``min_depth``, ``max_vel``: MuJoCo's soft contacts always penetrate a little and correct at the
   rate solref sets; there is no allowed depth or correction speed to write (left out).
+- ``friction_combine``: MuJoCo takes the larger friction of two geoms, or the higher priority
+  geom's friction, solref and solimp. ``min`` (ODE's rule, ``--preset gazebo_parity``) writes
+  ``priority="1"`` on every collision geom of the robot; ``max`` is MuJoCo's rule (nothing written).
 - ``restitution``: MuJoCo has none for hard contacts; a bounce comes from an underdamped solref.
   Restitution 0 (the common case) is a damping ratio of at least 1; anything else is a warning.
 """
@@ -61,6 +64,10 @@ def solref(kp: float, kd: float | None, mass: float, no_bounce: bool) -> tuple[f
 
 
 def apply_contact(ctx: MjcfContext, el: ET.Element, link: Link, contact: Contact | None, label: str) -> None:
+    if ctx.options.friction_combine == "min":
+        # The robot's surface wins against priority-0 geoms (a scene's floor): ODE's minimum when
+        # the floor grips at least as much, and the robot's own solref rather than a mix with it.
+        el.set("priority", "1")
     if contact is None:
         return
     c = contact
