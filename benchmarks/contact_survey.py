@@ -67,8 +67,9 @@ def survey(robot_entry: Any) -> dict[str, Any] | None:
             own = [g for g in geoms if g.get("friction") is not None or g.get("solref") is not None]
             row["mjcf_geoms"] = len(own)
             row["mjcf_solref"] = sum(1 for g in own if g.get("solref") is not None)
-            source_blocks = (urdf.text or "").count("<gazebo reference=")
-            row["urdf_gazebo_blocks"] = source_blocks
+            # Parsed, not counted as text: the writer may wrap or reorder a block's attributes.
+            kept = ET.fromstring(urdf.text).iter("gazebo") if urdf.text else iter(())
+            row["urdf_gazebo_blocks"] = sum(1 for g in kept if g.get("reference"))
             row["not_representable"] = _lost(usd)
             row["mjcf_not_representable"] = _lost(mjcf)
     return row
