@@ -68,8 +68,9 @@ def survey(robot_entry: Any) -> dict[str, Any] | None:
             row["mjcf_geoms"] = len(own)
             row["mjcf_solref"] = sum(1 for g in own if g.get("solref") is not None)
             # Parsed, not counted as text: the writer may wrap or reorder a block's attributes.
-            kept = ET.fromstring(urdf.text).iter("gazebo") if urdf.text else iter(())
-            row["urdf_gazebo_blocks"] = sum(1 for g in kept if g.get("reference"))
+            tree = ET.fromstring(urdf.text) if urdf.text else ET.Element("robot")
+            row["urdf_gazebo_blocks"] = sum(1 for g in tree.iter("gazebo") if g.get("reference"))
+            row["urdf_surfaces"] = sum(1 for c in tree.iter("collision") for _ in c.iter("surface"))
             row["not_representable"] = _lost(usd)
             row["mjcf_not_representable"] = _lost(mjcf)
     return row
@@ -88,17 +89,19 @@ def markdown(rows: list[dict[str, Any]]) -> str:
         f"**{len(rows)} robots read** ({len(refused)} refused by the loader), **{len(with_contact)} carry Gazebo "
         f"contact parameters**. Their colliders: USD binds a physics material to {total['usd_bindings']}, SDF "
         f"writes {total['sdf_surfaces']} `<surface>`, MJCF gives {total['mjcf_geoms']} collision geoms their own "
-        "`friction` (and `solref` where kp is given); URDF keeps every `<gazebo reference>` block as it came.",
+        "`friction` (and `solref` where kp is given); URDF keeps every `<gazebo reference>` block (all of a "
+        "robot's, not only contact ones) and every `<surface>` inside a `<collision>` (Stretch's, Spirit's) "
+        "as it came.",
         "",
         "| robot | links | parameters | USD materials / bound colliders | SDF `<surface>` | MJCF geoms (with solref) "
-        "| URDF `<gazebo reference>` blocks written | not in USD | not in MJCF |",
+        "| URDF `<gazebo reference>` blocks / collision `<surface>` written | not in USD | not in MJCF |",
         "|---|---|---|---|---|---|---|---|---|",
     ]
     for r in with_contact:
         params = ", ".join(f"{k} {v}" for k, v in sorted(r["parameters"].items()))
         lines.append(
             f"| {r['robot']} | {r['links_with_contact']} | {params} | {r['usd_materials']} / {r['usd_bindings']} | "
-            f"{r['sdf_surfaces']} | {r['mjcf_geoms']} ({r['mjcf_solref']}) | {r['urdf_gazebo_blocks']} | "
+            f"{r['sdf_surfaces']} | {r['mjcf_geoms']} ({r['mjcf_solref']}) | {r['urdf_gazebo_blocks']} / {r['urdf_surfaces']} | "
             f"{'; '.join(r['not_representable']) or '–'} | {'; '.join(r['mjcf_not_representable']) or '–'} |"
         )
     if refused:
