@@ -272,7 +272,12 @@ def validate_emitted(
     request = CheckRequest(
         out=stage.path, options=ValidateOptions(package_paths=dict(options.load.package_paths)), folder=spec.folder
     )
-    return spec.check(robot, emitted, request)
+    report = spec.check(robot, emitted, request)
+    if report is not None and stage.path and stage.final:
+        # The checks ran on the staged copy; name the output the user typed, whole path first.
+        report.rename(stage.path, stage.final)
+        report.rename(os.path.basename(stage.path), os.path.basename(stage.final))
+    return report
 
 
 # Validation checks that fail when the source is at fault whatever robodesc writes: the consumer

@@ -50,7 +50,7 @@ composition 'Gantry' {
     spatial_group "Head" {
       origin: [0, 0, 0.2]
       object "Turret" {
-        behavior "RevoluteJoint" { axis: [0, 0, 1], lowerLimit: -90, upperLimit: 90, maxVelocity: 1, maxTorque: 4 }
+        behavior "RevoluteJoint" { axis: [0, 0, 1], lowerLimit: -1.5707963, upperLimit: 1.5707963, maxVelocity: 1, maxTorque: 4 }
         parent: "Rail"
         geometry: "cylinder"
         scale: [0.2, 0.1, 0.2]

@@ -93,7 +93,7 @@ EXPECTED = {
     },
     # @joint_revolute / @joint_prismatic with joint_* properties
     "joint_traits_props.holo": {
-        "Yaw_joint": (JointType.REVOLUTE, (0.0, 0.0, 1.0), -math.radians(120), math.radians(120)),
+        "Yaw_joint": (JointType.REVOLUTE, (0.0, 0.0, 1.0), -2.094395, 2.094395),  # radians as written
         "Lift_joint": (JointType.PRISMATIC, (0.0, 0.0, 1.0), 0.0, 0.25),
     },
     # top-level joint blocks with parent / child, and one with neither
@@ -102,10 +102,10 @@ EXPECTED = {
         "Knee": (JointType.REVOLUTE, (0.0, 1.0, 0.0), 0.0, math.radians(150)),
         "Ankle": (JointType.REVOLUTE, (1.0, 0.0, 0.0), -math.radians(30), math.radians(30)),
     },
-    # behavior "RevoluteJoint" in a template, connectedBody, templates as defaults
+    # behavior "RevoluteJoint" in a template, connectedBody, templates as defaults (radians)
     "behaviors_templates.holo": {
-        "J1_joint": (JointType.REVOLUTE, (0.0, 0.0, 1.0), -math.radians(170), math.radians(170)),
-        "J2_joint": (JointType.REVOLUTE, (0.0, 1.0, 0.0), -math.radians(100), math.radians(100)),
+        "J1_joint": (JointType.REVOLUTE, (0.0, 0.0, 1.0), -2.96706, 2.96706),
+        "J2_joint": (JointType.REVOLUTE, (0.0, 1.0, 0.0), -1.745329, 1.745329),
         "Finger_joint": (JointType.PRISMATIC, (1.0, 0.0, 0.0), 0.0, 0.04),
     },
 }
@@ -194,7 +194,7 @@ def test_robot_block_with_joints_block() -> None:
     result = load("""robot arm {
       base { mass: 2 geometry: "box" scale: 0.2 }
       joints {
-        swing { type: revolute, axis: "z", limits: [-90, 90] }
+        swing { type: revolute, axis: "z", limits: [-1.5707963, 1.5707963] }  // radians, as the robotics plugin reads them
         lift { type: prismatic, axis: "x", limits: [0, 0.1] }
       }
     }""")
@@ -218,14 +218,104 @@ def test_substituted_geometry_is_reported() -> None:
 
 
 def test_radian_looking_limits_are_read_in_degrees_and_reported() -> None:
+    # @joint's unit is degrees (HoloScript's URDF compiler multiplies its limits by pi/180).
     result = load("""composition "R" {
       object "Base" { @physics { type: "static" mass: 1 } geometry: "box" scale: 0.1 }
       object "Arm" { geometry: "box" scale: 0.1 mass: 1
-        behavior "RevoluteJoint" { axis: [0, 0, 1], lowerLimit: -3.14159, upperLimit: 3.14159 } }
+        @joint { jointType: "hinge", connectedBody: "Base", axis: [0, 0, 1], limits: { min: -3.14159, max: 3.14159 } } }
     }""")
     lim = result.robot.joint("Arm_joint").limit
     assert lim is not None and lim.upper == pytest.approx(math.radians(3.14159))
     assert "radian-looking-limits" in codes(result)
+
+
+# Angles in the robotics plugin's notations (behavior blocks, @joint_revolute with joint_limits, the
+# joints of a robot block) are radians, as HoloScript's examples write them: a shoulder written
+# [-3.14159, 3.14159] turns half a turn each way, not 3 degrees.
+RADIAN_NOTATIONS = {
+    "behavior": """object "Arm" { geometry: "box" scale: 0.1 mass: 1 parent: "Base"
+        behavior "RevoluteJoint" { axis: [0, 0, 1], lowerLimit: LO, upperLimit: HI } }""",
+    "joint_revolute": """object "Arm" { @joint_revolute joint_parent: "Base" joint_axis: [0, 0, 1]
+        joint_limits: [LO, HI] geometry: "box" scale: 0.1 mass: 1 }""",
+    "robot block": """robot arm { joints { Arm_joint { type: revolute, parent: "Base", axis: "z",
+        limits: [LO, HI] } } }""",
+}
+
+
+@pytest.mark.parametrize("notation", sorted(RADIAN_NOTATIONS))
+def test_robotics_plugin_notations_read_angles_in_radians(notation: str) -> None:
+    def read(lo: float, hi: float) -> HoloResult:
+        body = RADIAN_NOTATIONS[notation].replace("LO", repr(lo)).replace("HI", repr(hi))
+        return load(
+            'composition "R" { object "Base" { @physics { type: "static" mass: 1 } geometry: "box" scale: 0.1 }\n'
+            + body
+            + "\n}"
+        )
+
+    result = read(-2.3562, 3.14159)
+    lim = result.robot.joint("Arm_joint").limit
+    assert lim is not None and (lim.lower, lim.upper) == pytest.approx((-2.3562, 3.14159))
+    assert not {"radian-looking-limits", "degree-looking-limits"} & set(codes(result))
+    # Degrees written where radians are read: kept as written (a notation has one unit), reported
+    # with the radian values to write.
+    result = read(-170.0, 170.0)
+    lim = result.robot.joint("Arm_joint").limit
+    assert lim is not None and lim.upper == pytest.approx(170.0)
+    warned = [f for f in result.findings if f.code == "degree-looking-limits"]
+    assert warned and "2.967" in warned[0].message
+
+
+def test_robotics_plugin_inertia_list_and_viscous_friction_are_read() -> None:
+    # The robotics plugin's object: `inertia: [ixx, iyy, izz(, ixy, ixz, iyz)]` beside `mass`, and
+    # joint_viscous_friction (PhysX's viscous coefficient, URDF's damping).
+    result = load("""composition "R" {
+      object "Base" { @static geometry: "box" scale: 0.1 mass: 1 }
+      object "Arm" { @joint_revolute joint_parent: "Base" joint_axis: [0, 1, 0] joint_limits: [-1, 1]
+        joint_viscous_friction: 0.01 joint_friction: 0.05 max_effort: 7
+        geometry: "cylinder" radius: 0.05 length: 0.3 mass: 1.0 inertia: [0.01, 0.01, 0.001, 0.0001, 0, 0] }
+      object "Tip" { @joint_revolute joint_parent: "Arm" joint_axis: [0, 0, 1] joint_limits: [-1, 1]
+        geometry: "sphere" radius: 0.03 mass: 0.2 inertia: [0.003, 0.004, 0.005] }
+    }""")
+    arm = result.robot.link("Arm").inertial
+    assert arm is not None and arm.inertia is not None
+    i = arm.inertia
+    assert (i.ixx, i.iyy, i.izz, i.ixy, i.ixz, i.iyz) == pytest.approx((0.01, 0.01, 0.001, 0.0001, 0, 0))
+    tip = result.robot.link("Tip").inertial
+    assert tip is not None and tip.inertia is not None
+    assert (tip.inertia.ixx, tip.inertia.iyy, tip.inertia.izz) == pytest.approx((0.003, 0.004, 0.005))
+    joint = result.robot.joint("Arm_joint")
+    assert joint.dynamics is not None and joint.dynamics.damping == pytest.approx(0.01)
+    assert joint.dynamics.friction == pytest.approx(0.05)
+    assert joint.limit is not None and joint.limit.effort == pytest.approx(7)
+    ignored = {f.message for f in result.findings if f.code == "ignored-property"}
+    assert not any(k in m for m in ignored for k in ("inertia", "viscous", "max_effort")), ignored
+    with pytest.raises(ParseError, match="inertia"):
+        load("""composition "R" { object "Base" { @static geometry: "box" scale: 0.1 mass: 1 }
+          object "Arm" { @joint_revolute joint_parent: "Base" joint_limits: [-1, 1] joint_axis: [0, 0, 1]
+            geometry: "box" scale: 0.1 mass: 1 inertia: [0.01, 0.02] } }""")
+
+
+def test_mass_without_shape_is_kept_on_a_moving_body() -> None:
+    # HoloScript's isaac-lab bridge: `robot spot { base_link { mass: 12 } joints { ... } }`. A moving
+    # body keeps its stated mass (not the 1 kg default) with a 1 m cube's inertia; a fixed body
+    # without shape drops it, with one warning (not also "has no mass").
+    result = load("""composition "R" {
+      object "Base" { @static mass: 5 }
+      object "Arm" { @joint_revolute joint_parent: "Base" joint_axis: [0, 0, 1] joint_limits: [-1, 1] mass: 12 }
+    }""")
+    arm = result.robot.link("Arm").inertial
+    assert arm is not None and arm.mass == 12 and arm.inertia is not None
+    assert arm.inertia.ixx == pytest.approx(2.0)
+    assert result.robot.link("Base").inertial is None
+    by_code = {f.code: f.element for f in result.findings}
+    assert "default-mass" not in by_code
+    assert [f.element for f in result.findings if f.code == "mass-without-shape"] == ["object 'Base'", "object 'Arm'"]
+    assert not [f for f in result.findings if f.code == "no-mass" and f.element == "object 'Base'"]
+    # The base of a floating robot moves too: it keeps its mass.
+    result = load("""robot spot { base_link { mass: 12 }
+      joints { hip { type: revolute, axis: "y", limits: [-1.57, 1.57] } } }""")
+    base = result.robot.link("base_link").inertial
+    assert base is not None and base.mass == 12 and base.inertia is not None
 
 
 def test_values_that_are_expressions_are_kept_as_text() -> None:
@@ -279,10 +369,11 @@ DECLARED = {
 
 R, P = JointType.REVOLUTE, JointType.PRISMATIC
 X, Y, Z = (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)
-PI = 3.14159  # as the examples write it (read in degrees, as HoloScript's unit says; reported)
+PI = 3.14159  # as the examples write it
 
-# The joints as written in each example (type, axis in the object's frame, limits in degrees for
-# revolute and metres for prismatic), read off the files by hand.
+# The joints as written in each example (type, axis in the object's frame, limits as written: degrees
+# or radians for revolute joints, by notation (RADIANS lists the files written in radians), metres for
+# prismatic), read off the files by hand.
 WRITTEN: dict[str, dict[str, tuple[JointType, tuple[float, float, float], float, float]]] = {
     "benchmarks/cross-compilation/compositions/15-robotics.holo": {
         "J1_joint": (R, Y, -PI, PI),  # behavior: { axis } over the template's behavior block
@@ -339,6 +430,16 @@ WRITTEN: dict[str, dict[str, tuple[JointType, tuple[float, float, float], float,
 }
 
 
+# Files whose joints are behavior blocks, @joint_revolute with joint_limits, or a robot block.
+RADIANS = {
+    "benchmarks/cross-compilation/compositions/15-robotics.holo",
+    "examples/domain-starters/robotics/robotics-starter.holo",
+    "examples/specialized/robotics/robot-arm-simulation.holo",
+    "packages/plugins/robotics-plugin/examples/isaac-lab-sim-to-real.holo",
+    "packages/plugins/robotics-plugin/examples/isaac-lab-sim-to-real-bridge.holo",
+}
+
+
 @pytest.mark.skipif(REPO is None, reason="set ROBODESC_HOLOSCRIPT_REPO to a HoloScript checkout")
 @pytest.mark.parametrize("rel", sorted(DECLARED))
 def test_holoscript_checkout(rel: str, tmp_path: Path) -> None:
@@ -348,7 +449,7 @@ def test_holoscript_checkout(rel: str, tmp_path: Path) -> None:
     got = movable(result.robot)
     assert len(got) == DECLARED[rel]
     for joint, (jtype, axis, lower, upper) in WRITTEN[rel].items():
-        k = math.pi / 180 if jtype is R else 1.0
+        k = math.pi / 180 if jtype is R and rel not in RADIANS else 1.0
         assert got[joint][0] is jtype, joint
         assert got[joint][1] == pytest.approx(axis), joint
         assert (got[joint][2], got[joint][3]) == pytest.approx((lower * k, upper * k)), joint

@@ -147,3 +147,17 @@ def test_isaac_findings_name_no_absolute_path(tmp_path: Path) -> None:
     )
     text = (out / "findings.md").read_text()
     assert str(ROOT) not in text and str(tmp_path) not in text and "quadruped.yaml:" in text
+
+
+@pytest.mark.parametrize(
+    "target, out", [("mjcf", "robot.xml"), ("usd", "x.usda"), ("sdf", "x.sdf"), ("urdf", "x.urdf")]
+)
+def test_validation_rows_name_the_output_not_its_staged_copy(
+    target: str, out: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Checks run on a staged copy (.robodesc-…); the table names the file the user typed."""
+    path = tmp_path / "out" / out
+    code = main(["compile", ARM, "-t", target, "-o", str(path), "-v"])
+    assert code == 0
+    text = capsys.readouterr()
+    assert ".robodesc-" not in text.out + text.err

@@ -1,6 +1,7 @@
 """Compile every robot of the examples, the compositions, the fuzz seeds and the corpus to each URDF
 robodesc writes for ROS (``-t urdf`` from a composition, ``--ros2``, ``-t isaac``) and run urdfdom's
-``check_urdf`` on the result (the test tier, ``tests/urdfdom/run.sh``).
+``check_urdf`` on the result (the test tier, ``tests/urdfdom/run.sh``); with ``ROBODESC_HOLOSCRIPT_DIR``
+set, also every ``.holo`` file of that folder (HoloScript's own robot files, not part of robodesc).
 
 Prints one line per output and a summary; exits 1 when urdfdom refused any output that robodesc wrote
 for ROS. ``-t urdf`` of a URDF input is a faithful round trip: it is checked and reported, but its
@@ -49,6 +50,11 @@ def inputs(corpus: bool) -> list[tuple[str, list[str]]]:
         holo = os.path.join(ROOT, "..", "shared", "corpus", "holoscript", "isaac-sim-robot-arm.holo")
         if os.path.isfile(holo):
             out.append((holo, []))
+    # HoloScript's own robot files, when the tier is given a folder of them (tests/urdfdom/run.sh).
+    holoscript = os.environ.get("ROBODESC_HOLOSCRIPT_DIR")
+    if holoscript:
+        for path in sorted(glob.glob(os.path.join(holoscript, "**", "*.holo"), recursive=True)):
+            out.append((path, []))
     return out
 
 
@@ -59,8 +65,8 @@ def compile_one(path: str, extra: list[str], target: str, out: str) -> tuple[int
     return proc.returncode, proc.stderr.strip()
 
 
-def check_urdf(path: str) -> tuple[bool, str]:
-    proc = subprocess.run(["check_urdf", path], capture_output=True, text=True, timeout=120)
+def check_urdf(path: str, binary: str = "check_urdf") -> tuple[bool, str]:
+    proc = subprocess.run([binary, path], capture_output=True, text=True, timeout=120)
     text = (proc.stdout + proc.stderr).strip().splitlines()
     # urdfdom logs some refusals (a <capsule> visual of URDF 1.0) and still loads the rest, without
     # the element: an "Error:" line counts as a refusal too.

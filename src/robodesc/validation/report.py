@@ -84,6 +84,16 @@ class ValidationReport:
             self.note_error(key, value)
         self.info.update(other.info)
 
+    def rename(self, staged: str, final: str) -> None:
+        """Say ``final`` wherever a check names ``staged``: checks run on a staged copy
+        (``.robodesc-…``), and the user should read the name they typed."""
+        if not staged or staged == final:
+            return
+        for check in self.checks:
+            check.element = check.element.replace(staged, final)
+            check.message = check.message.replace(staged, final)
+        self.info = {key: value.replace(staged, final) for key, value in self.info.items()}
+
     # ---- reading -------------------------------------------------------------------------
     @property
     def ok(self) -> bool:

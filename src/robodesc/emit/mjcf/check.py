@@ -32,6 +32,7 @@ def check_mjcf(robot: Robot, emitted: Emitted, request: CheckRequest) -> Validat
                 re.sub(r'<include file="[^"]*"/>', f'<include file="{os.path.basename(robot_file)}"/>', text, count=1)
             )
         report = validate_mjcf(robot, robot_file, probe, request.options, expected_drives=emitted.extra.get("drives"))
+        report.rename(os.path.basename(probe), os.path.basename(scene))
     finally:
         os.unlink(probe)
     return report

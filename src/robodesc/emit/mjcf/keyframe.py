@@ -1,5 +1,6 @@
-"""The ``home`` keyframe: ``--init-joint-pos`` (else zero) clamped into each joint's range, the root
-where the root body starts, and position actuators holding that pose."""
+"""The ``home`` keyframe: ``--init-joint-pos`` (else zero; a floating robot's default stance) clamped
+into each joint's range, the root where the root body starts (a floating robot's at its stance height),
+and position actuators holding that pose."""
 
 from __future__ import annotations
 
@@ -19,7 +20,10 @@ def home_keyframe(ctx: MjcfContext, worldbody: ET.Element, actuator: ET.Element 
             body = worldbody.find("body")
             pos = body.get("pos", "0 0 0") if body is not None else "0 0 0"
             quat = body.get("quat", "1 0 0 0") if body is not None else "1 0 0 0"
-            qpos.extend(float(x) for x in (pos + " " + quat).split())
+            xyz = [float(x) for x in pos.split()]
+            if ctx.options.home_height is not None:
+                xyz[2] = ctx.options.home_height  # the stance's spawn height (target._default_base_and_pose)
+            qpos.extend([*xyz, *(float(x) for x in quat.split())])
             continue
         if kind == "ball":
             qpos.extend((1.0, 0.0, 0.0, 0.0))

@@ -49,6 +49,9 @@ class MjcfOptions:
     )
     init_pos: tuple[float, float, float] | None = field(default=None, metadata=common.INIT_POS)
     init_joint_pos: Mapping[str, float] = field(default_factory=dict, metadata=common.INIT_JOINT_POS)
+    # Not a flag: the root height of a floating robot's home keyframe, set by the target from the
+    # stance it chose (the body stays at its zero-pose height); None keeps the body's position.
+    home_height: float | None = None
     # Write scene.xml beside the robot (floor, light, sky).
     scene: bool = field(
         default=True, metadata=flag("write scene.xml beside the robot", name="--mjcf-scene", kind="switch")

@@ -4,6 +4,8 @@ its scene and converted meshes beside the file (docs/mjcf.md, Outputs)."""
 from __future__ import annotations
 
 import os
+import re
+from typing import TYPE_CHECKING
 
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
 from robodesc.emit.mjcf.actuators import FROM_TARGET
@@ -14,6 +16,11 @@ from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
 from robodesc.ir.rules import lookup
 
+if TYPE_CHECKING:
+    from robodesc.emit.common.stance import Stance
+
+STAGE = "emit:mjcf"
+
 
 def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
     from robodesc.emit.mjcf.emitter import emit_mjcf  # numpy and the writer: only when writing
@@ -21,7 +28,8 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     out = request.output("MJCF is written to a file: give one with -o OUT/robot.xml")
     request.default("fix_base", robot.fixed_base)
     request.default("init_pos", robot.placement.xyz if robot.placement is not None else None)
-    _default_gains(robot, request, findings)
+    stance = _default_base_and_pose(robot, request, findings)
+    _default_gains(robot, request, findings, stance)
     files = emit_mjcf(
         robot,
         out,
@@ -34,20 +42,68 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     return Emitted(files=files, extra={"mjcf_options": request.options, "drives": _asked_drives(robot, request)})
 
 
-def _default_gains(robot: Robot, request: EmitRequest, findings: Findings) -> None:
+def _default_base_and_pose(robot: Robot, request: EmitRequest, findings: Findings) -> Stance:
+    """The base and the ``home`` pose where the user gave none (docs/mjcf.md, "Defaults and why").
+
+    A robot that stands on three or more legs floats, so that scene.xml drops it onto its feet; an
+    arm (no legs) stays welded. A floating robot's home keyframe is its stance (the Isaac folder's
+    default pose: named pose, else the legged heuristic), with the root at the stance's spawn height.
+    The body itself stays at the zero pose's height: at qpos0 its straight legs must not start in the floor.
+    """
+    # Loaded here, not at import: building the CLI's parser imports this module, and these read meshes.
+    from robodesc.emit.common.gains import sig4
+    from robodesc.emit.common.pose_report import report_pose
+    from robodesc.emit.common.stance import CLEARANCE, Stance, choose_stance, complete, find_legs
+
+    options: MjcfOptions = request.options
+    element = f"robot {robot.name!r}"
+    if "fix_base" not in request.given and robot.fixed_base is None and robot.root.name != "world":
+        legs = find_legs(robot, complete(robot, {}))
+        if len(legs) >= 3:
+            options.fix_base = False
+            findings.info(
+                "mjcf-floating-base",
+                f"{len(legs)} legs ({', '.join(leg.foot for leg in legs)}): the root floats (a <freejoint/>) so "
+                "the robot stands on them in scene.xml; --fix-base welds it to the world",
+                element=element,
+                stage=STAGE,
+            )
+    if options.fix_base or robot.root.name == "world":
+        return Stance(complete(robot, dict(_given_pose(robot, options))), "zeros")
+    wanted = dict(_given_pose(robot, options))
+    stance = choose_stance(robot, wanted or None)
+    report_pose(robot, stance, findings, STAGE)
+    if not wanted:
+        options.init_joint_pos = {
+            re.escape(j.name): stance.positions[j.name] for j in robot.actuated_joints() if j.name in stance.positions
+        }
+    if options.init_pos is None and stance.lowest_z is not None:
+        options.home_height = sig4(CLEARANCE - stance.lowest_z)
+    return stance
+
+
+def _given_pose(robot: Robot, options: MjcfOptions) -> dict[str, float]:
+    return {
+        j.name: value
+        for j in robot.joints
+        if j.type.dof == 1
+        and options.init_joint_pos
+        and (value := lookup(dict(options.init_joint_pos), j.name, "init_joint_pos")) is not None
+    }
+
+
+def _default_gains(robot: Robot, request: EmitRequest, findings: Findings, stance: Stance) -> None:
     """Gains the user did not give are derived per joint, as the Isaac folder's are
     (emit/common/gains.py): one constant kp is too stiff for a 10 g finger at MuJoCo's timestep
-    (mujoco_menagerie's test went to NaN on 18 corpus robots with kp 100) and too weak for a knee."""
+    (mujoco_menagerie's test went to NaN on 18 corpus robots with kp 100) and too weak for a knee.
+    A floating robot's gains depend on the legs it stands on; a fixed one's on its zero pose."""
     options: MjcfOptions = request.options
     if options.target_type == "none" or {"stiffness", "damping"} <= request.given:
         return
     from robodesc.emit.common.gains import fill_default_gains
-    from robodesc.emit.common.stance import Stance, choose_stance, complete
 
-    floating = not options.fix_base
-    # A floating robot's gains depend on the legs it stands on; a fixed one's on its zero pose.
-    stance = choose_stance(robot, None) if floating else Stance(complete(robot, {}), "zeros")
-    fill_default_gains(robot, options, request.given, stance, floating, findings, "emit:mjcf")
+    floating = not options.fix_base and robot.root.name != "world"
+    fill_default_gains(robot, options, request.given, stance, floating, findings, STAGE)
 
 
 def _asked_drives(robot: Robot, request: EmitRequest) -> dict[str, tuple[float, float]]:

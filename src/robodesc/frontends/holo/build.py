@@ -25,6 +25,7 @@ KNOWN_PROPS = frozenset(
         "color",
         "material",
         "mass",
+        "inertia",
         "physics",
         "parent",
         "joint_type",
@@ -42,6 +43,8 @@ KNOWN_PROPS = frozenset(
         "joint_origin",
         "joint_friction",
         "joint_damping",
+        "joint_viscous_friction",
+        "max_effort",
         "max_velocity",
         "armature",
         "static",
@@ -95,7 +98,8 @@ def build(ctx: Lowering, name: str, comp: Block) -> HoloResult:
     )
     parent_of, movable = _connect(ctx, builder, bodies, root, joints)
     for obj in bodies:
-        lower_link(ctx, builder, obj, moves=_moves(obj.name, parent_of, movable))
+        floats = obj is root and not _fixed_base(root)
+        lower_link(ctx, builder, obj, moves=_moves(obj.name, parent_of, movable), floats=floats)
     for obj in bodies:
         lower_sensors(ctx, builder, obj)
     return HoloResult(builder.build(), props, ctx.findings, ctx.gravity)

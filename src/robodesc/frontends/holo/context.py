@@ -82,6 +82,9 @@ class JointSpec:
     notation: str
     name: str | None = None
     in_degrees: set[str] = field(default_factory=set)
+    # Angles (limits, mimic offset, soft limits) in radians rather than degrees: the notations of
+    # HoloScript's robotics plugin and of its behavior blocks (see joints.py).
+    radians: bool = False
 
 
 def _identity() -> Mat:
@@ -101,6 +104,8 @@ class Lowering:
     # Original name -> the unique name of its first object, for names used more than once.
     renamed: dict[str, str] = field(default_factory=dict)
     joint_decls: list[tuple[Block, str | None]] = field(default_factory=list)
+    # Joint blocks that a `robot NAME { joints { ... } }` block declares (angles in radians).
+    robot_joints: set[int] = field(default_factory=set)
     # Objects drawn as a stand-in primitive whose inertia is another shape's: (kind, a, b).
     solids: dict[str, tuple[str, float, float]] = field(default_factory=dict)
     # Empty links standing for bodies the file names but does not declare.

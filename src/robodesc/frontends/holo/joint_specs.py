@@ -96,8 +96,9 @@ def _joint_block(
         parent_loc=None if parent_value is None else parent_value.loc,
         params=p,
         loc=block.loc,
-        notation="joint block",
+        notation="robot joint" if id(block) in ctx.robot_joints else "joint block",
         name=jname,
+        radians=id(block) in ctx.robot_joints,
     )
     return child, spec
 
@@ -154,6 +155,7 @@ def _typed_trait_spec(obj: Obj, t: Trait) -> JointSpec:
         loc=t.loc,
         notation=f"@{t.name}",
         name=text(obj.props.get("joint_name"), "joint_name", label),
+        radians=True,
     )
 
 
@@ -188,6 +190,7 @@ def _behavior_specs(ctx: Lowering, obj: Obj) -> list[JointSpec]:
                 params=params,
                 loc=b.loc,
                 notation=f'behavior "{b.name}"',
+                radians=True,
             )
         )
     return specs

@@ -1,5 +1,19 @@
-"""Lowering one :class:`JointSpec` to a builder joint: its type, axis, limits (degrees for angular
-joints, metres for prismatic ones), dynamics, mimic, safety controller and ``@actuator`` s."""
+"""Lowering one :class:`JointSpec` to a builder joint: its type, axis, limits (degrees or radians for
+angular joints, by notation; metres for prismatic ones), dynamics, mimic, safety controller and
+``@actuator`` s.
+
+HoloScript has two units for joint angles, and which one a file means follows its notation:
+- ``@joint { limits: { min, max } }``, ``@joint(limits: [..])``, ``joint_type`` properties and joint
+  blocks: **degrees**. HoloScript's URDF compiler multiplies ``@joint`` limits by pi/180, and every
+  example in these notations writes degrees (+-180, +-135, [0, 150]).
+- ``@joint_revolute`` & co. with ``joint_limits``, ``behavior "RevoluteJoint" { lowerLimit,
+  upperLimit }`` and the joints of a ``robot`` block: **radians**. The robotics plugin, the only
+  HoloScript code that reads ``@joint_revolute``, writes ``joint_limits`` to URDF as they are and
+  converts them from radians to degrees for USD ("HoloScript angular inputs are radians"); HoloScript's
+  own documentation of ``behavior "RevoluteJoint"`` writes +-3.14159 with ``maxVelocity: 2.094``; and
+  every example in these notations writes radians (+-3.14159, -2.3562, +-6.28318, +-1.57).
+Limits that look like the other unit are read as the notation says, with a warning that gives the
+values to write."""
 
 from __future__ import annotations
 
@@ -32,14 +46,18 @@ def lower_joint(ctx: Lowering, builder: RobotBuilder, obj: Obj, spec: JointSpec,
     jtype = _joint_type(ctx, spec, label)
     p = spec.params
     angular = jtype in (JointType.REVOLUTE, JointType.CONTINUOUS)
-    # Revolute limits, offsets and soft limits are degrees in HoloScript; prismatic ones metres.
-    k = math.pi / 180.0 if angular else 1.0
+    # Revolute limits, offsets and soft limits: degrees or radians by notation (see the module's
+    # docstring); prismatic ones metres.
+    k = math.pi / 180.0 if angular and not spec.radians else 1.0
     axis = _axis(ctx, spec, jtype, label)
     lim = (
         _behavior_limits(p, k, spec.loc, label) if spec.notation.startswith("behavior") else _limits(p, k, spec, label)
     )
     jtype = _check_limits(ctx, jtype, lim, k, spec, label)
-    damping = num(p["damping"], "damping", label) if "damping" in p else None
+    # joint_viscous_friction (the robotics plugin's PhysX viscous friction coefficient) is URDF's
+    # damping: torque per unit joint velocity.
+    dkey = next((key for key in ("damping", "viscous_friction") if key in p), None)
+    damping = num(p[dkey], dkey, label) if dkey is not None else None
     friction = num(p["friction"], "friction", label) if "friction" in p else None
     armature = num(p["armature"], "armature", label) if "armature" in p else None
     mimic, multiplier, offset = _mimic(ctx, p, k, label)
@@ -168,15 +186,8 @@ def _check_limits(ctx: Lowering, jtype: JointType, lim: _Limits, k: float, spec:
     if lower is not None and upper is not None and lower > upper:
         raise fail("the lower limit is above the upper limit", label, lim.loc)
     angular = jtype in (JointType.REVOLUTE, JointType.CONTINUOUS)
-    if angular and lower is not None and upper is not None and looks_like_radians(lower / k, upper / k):
-        ctx.note(
-            "radian-looking-limits",
-            f"limits [{lower / k:g}, {upper / k:g}] are read in degrees (HoloScript's unit for angles) but look like "
-            f"radians; if radians were meant, write [{math.degrees(lower / k):.4g}, {math.degrees(upper / k):.4g}]",
-            label,
-            lim.loc,
-            warn=True,
-        )
+    if angular and lower is not None and upper is not None:
+        _check_unit(ctx, spec, lower / k, upper / k, lim.loc, label)
     if jtype is JointType.REVOLUTE and (lower is None or upper is None):
         ctx.note(
             "unlimited-revolute",
@@ -192,11 +203,40 @@ def _check_limits(ctx: Lowering, jtype: JointType, lim: _Limits, k: float, spec:
     return jtype
 
 
+def _check_unit(ctx: Lowering, spec: JointSpec, lower: float, upper: float, loc: SourceLoc, label: str) -> None:
+    """Warn when angular limits, as written, look like the other unit than the notation's."""
+    if not spec.radians and looks_like_radians(lower, upper):
+        ctx.note(
+            "radian-looking-limits",
+            f"limits [{lower:g}, {upper:g}] are read in degrees (HoloScript's unit for angles in "
+            f"{spec.notation}) but look like radians; if radians were meant, write "
+            f"[{math.degrees(lower):.4g}, {math.degrees(upper):.4g}]",
+            label,
+            loc,
+            warn=True,
+        )
+    elif spec.radians and looks_like_degrees(lower, upper):
+        ctx.note(
+            "degree-looking-limits",
+            f"limits [{lower:g}, {upper:g}] are read in radians (HoloScript's unit for angles in "
+            f"{spec.notation}, as its robotics plugin reads them) but look like degrees; if degrees "
+            f"were meant, write [{math.radians(lower):.4g}, {math.radians(upper):.4g}]",
+            label,
+            loc,
+            warn=True,
+        )
+
+
 def looks_like_radians(lower: float, upper: float) -> bool:
     """Both limits within 2π and at least one a multiple of π/2 (±1.57, ±3.14, 6.28)."""
     if max(abs(lower), abs(upper)) > 2 * math.pi + 1e-3 or (lower == 0 and upper == 0):
         return False
     return any(v != 0 and abs(v / (math.pi / 2) - round(v / (math.pi / 2))) < 2e-3 for v in (lower, upper))
+
+
+def looks_like_degrees(lower: float, upper: float) -> bool:
+    """A limit beyond one turn (2 pi): rare in radians, common in degrees (+-90, +-170)."""
+    return max(abs(lower), abs(upper)) > 2 * math.pi + 1e-3
 
 
 def _mimic(ctx: Lowering, p: dict[str, Value], k: float, label: str) -> tuple[str | None, float | None, float | None]:

@@ -23,8 +23,9 @@ from robodesc.ir.transforms import matrix_pose, pose_matrix
 HOLOSCRIPT_DEFAULT_MASS = 1.0
 
 
-def lower_link(ctx: Lowering, builder: RobotBuilder, obj: Obj, *, moves: bool = False) -> None:
-    """Add the object's link; ``moves`` when a movable joint lies between it and the base."""
+def lower_link(ctx: Lowering, builder: RobotBuilder, obj: Obj, *, moves: bool = False, floats: bool = False) -> None:
+    """Add the object's link; ``moves`` when a movable joint lies between it and the base, ``floats``
+    when it is the base of a robot that is not fixed to the world."""
     label = obj.label
     geom, origin, geom_loc = geometry(ctx, obj)
     parts: list[Part] = []
@@ -36,23 +37,32 @@ def lower_link(ctx: Lowering, builder: RobotBuilder, obj: Obj, *, moves: bool = 
     else:
         ctx.note("no-geometry", "object has no geometry: a link without visuals", label, obj.block.loc)
     kg, inertia = mass(obj)
+    dropped = False
     if geom is None and inertia is None and kg is not None:
+        if moves or floats:
+            # A moving body keeps the mass its author gave, with the inertia HoloScript's own URDF
+            # compiler gives a body without a shape (a 1 m cube of that mass): dropping it would
+            # leave the 1 kg default in its place.
+            inertia = Inertia(kg / 6.0, kg / 6.0, kg / 6.0, src=obj.block.loc)
+            what = "the inertia of a 1 m cube of that mass (HoloScript's rule)"
+        else:
+            dropped = True
+            what = "no inertia can be computed, the link gets no inertial"
         ctx.note(
             "mass-without-shape",
-            f"mass {kg:g} kg without a shape or an inertia tensor: no inertia can be computed, the link gets "
-            "no inertial",
+            f"mass {kg:g} kg without a shape or an inertia tensor: {what}",
             label,
             obj.block.loc,
             warn=True,
         )
-        kg = None
+        kg = None if dropped else kg
     com: Pose | None = None
     solid = ctx.solids.get(obj.name)
     if solid is not None and kg is not None and inertia is None:
         inertia, com = _solid_inertia(solid, kg, origin, geom_loc, label)
     if kg is None and moves:
         kg, inertia = _default_mass(ctx, obj, geom, inertia)
-    if kg is None:
+    if kg is None and not dropped:  # a dropped mass has had its own warning
         ctx.note(
             "no-mass",
             "object has no mass (mass, @physics { mass } or physics: { mass })",

@@ -1,5 +1,6 @@
-"""An object's mass and inertia tensor: ``mass``, ``@physics { mass, inertia }`` or ``physics: { }``
-(the same mass may be stated more than once; different ones are an error)."""
+"""An object's mass and inertia tensor: ``mass``, ``@physics { mass, inertia }``, ``physics: { }`` or
+the object's own ``inertia`` (the same mass may be stated more than once; different ones are an
+error; the tensor once)."""
 
 from __future__ import annotations
 
@@ -61,10 +62,27 @@ def _stated(obj: Obj) -> tuple[list[tuple[str, float, SourceLoc]], Value | None]
             if inertia_value is not None:
                 raise fail("inertia given twice (@physics and physics:)", label, ph.data["inertia"].loc)
             inertia_value = ph.data["inertia"]
+    if "inertia" in obj.props:
+        # `inertia: [ixx, iyy, izz, ixy, ixz, iyz]` beside `mass`, as HoloScript's robotics plugin
+        # reads it (its Isaac Lab examples write the tensor so).
+        if inertia_value is not None:
+            raise fail("inertia given twice (inertia: and physics)", label, obj.props["inertia"].loc)
+        inertia_value = obj.props["inertia"]
     return found, inertia_value
 
 
 def _inertia(value: Value, label: str) -> Inertia:
+    if isinstance(value.data, list):
+        # [ixx, iyy, izz] or [ixx, iyy, izz, ixy, ixz, iyz]: the robotics plugin's order.
+        items = value.data
+        if len(items) not in (3, 6):
+            raise fail(
+                f"inertia: expected [ixx, iyy, izz] or [ixx, iyy, izz, ixy, ixz, iyz], got {len(items)} numbers",
+                label,
+                value.loc,
+            )
+        n = [num(item, f"inertia[{i}]", label) for i, item in enumerate(items)] + [0.0] * (6 - len(items))
+        return Inertia(n[0], n[1], n[2], n[3], n[4], n[5], src=value.loc)
     if not isinstance(value.data, dict):
         raise fail("inertia: expected { ixx, iyy, izz, ixy, ixz, iyz }", label, value.loc)
     d = value.data

@@ -190,6 +190,7 @@ def _robot_block(ctx: Lowering, block: Block) -> None:
             for j in child.children:
                 j.name, j.kind = j.kind, "joint"
                 j.name_loc = j.loc
+                ctx.robot_joints.add(id(j))
             child.kind = "group"
             ctx.note("robot-joints", "each block in 'joints' read as a joint named by its keyword", loc=child.loc)
         else:
