@@ -294,3 +294,16 @@ def test_mjcf_refuses_a_combine_rule_mujoco_has_not(tmp_path: Path) -> None:
 
     with pytest.raises(ConfigError, match="no average or product"):
         robodesc.compile_to_mjcf(str(SPIRIT_XACRO), tmp_path / "r.xml", friction_combine="average")
+
+
+def test_mjcf_warns_when_a_contact_is_stiffer_than_mujocos_step(tmp_path: Path) -> None:
+    """kp 1.8e7 N/m (iCub's feet) and kd 2000 N·s/m on 2 kg need a 2 ms time constant (2 m / kd):
+    MuJoCo clamps it to two 2 ms steps, which the compile says."""
+    src = tmp_path / "ball.urdf"
+    src.write_text(BALL.replace("<kp>20000</kp><kd>4</kd>", "<kp>1.8e7</kp><kd>2000</kd>"))
+    result = robodesc.compile_to_mjcf(str(src), tmp_path / "ball.xml", fix_base=False)
+    (warning,) = [f.message for f in result.findings if f.code == "contact-too-stiff-for-timestep"]
+    assert "0.004 s" in warning
+    src.write_text(BALL)
+    result = robodesc.compile_to_mjcf(str(src), tmp_path / "ball.xml", fix_base=False)
+    assert not [f for f in result.findings if f.code == "contact-too-stiff-for-timestep"]

@@ -48,6 +48,9 @@ def contact_mass(ctx: MjcfContext) -> float:
     return max(ctx.robot.total_mass(), 1e-6) / max(len(bearing), 1)
 
 
+# MuJoCo's default time step (s): robodesc's MJCF writes none.
+MUJOCO_TIMESTEP = 0.002
+
 # SDF's default contact damping (N·s/m), which Gazebo's ODE applies when kd is not given.
 SDF_KD = 1.0
 
@@ -90,6 +93,15 @@ def apply_contact(ctx: MjcfContext, el: ET.Element, link: Link, contact: Contact
     if c.kp is not None and c.kp > 0:
         timeconst, ratio = solref(c.kp, c.kd, contact_mass(ctx), c.restitution == 0)
         el.set("solref", f"{num(timeconst)} {num(ratio)}")
+        if timeconst < 2 * MUJOCO_TIMESTEP:
+            ctx.warn(
+                "contact-too-stiff-for-timestep",
+                f"kp {c.kp:g} N/m, kd {(c.kd if c.kd is not None else SDF_KD):g} N·s/m give a contact time constant of "
+                f"{timeconst:.3g} s; MuJoCo clamps it to two steps (0.004 s at its default 2 ms step), a softer "
+                f"contact, unless the step is {timeconst / 2:.2g} s or less",
+                label,
+                c.src,
+            )
     if c.restitution:
         ctx.warn(
             "contact-not-representable",
