@@ -1,12 +1,14 @@
 """How many corpus robots carry Gazebo contact parameters, which ones, and what each target writes.
 
     python benchmarks/contact_survey.py            # the 100-robot test corpus (robodesc.validation.corpora)
-    python benchmarks/contact_survey.py --json out.json
+    python benchmarks/contact_survey.py --json out.json --md out.md
 
 Reads each robot with default flags (as ``robodesc compile`` would), then counts links and colliders
 with contact parameters (``Link.contact``, ``Collision.contact``) by parameter, and compiles each
-robot that has any to USD and SDF to count the physics materials and ``<surface>`` elements written.
-Results: benchmarks/results/contact_survey.md.
+robot that has any to USD, SDF, MJCF and URDF to count what each writes: USD physics materials and
+their bindings, SDF ``<surface>`` elements, MJCF collision geoms with a ``friction`` / ``solref`` of
+their own, URDF ``<gazebo reference>`` blocks kept; and each target's "not representable" warnings.
+Results: benchmarks/results/contact_survey.md and .json.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ import json
 import os
 import sys
 import tempfile
+import xml.etree.ElementTree as ET
 from collections import Counter
 from typing import Any
 
@@ -23,6 +26,12 @@ import robodesc
 from robodesc.frontends.load import load_path
 from robodesc.frontends.options import LoadOptions
 from robodesc.validation.corpora import all_robots
+
+
+def _lost(result: Any) -> list[str]:
+    return sorted(
+        {f.message.split(";")[0].split(":")[0] for f in result.findings if f.code == "contact-not-representable"}
+    )
 
 
 def survey(robot_entry: Any) -> dict[str, Any] | None:
@@ -47,34 +56,74 @@ def survey(robot_entry: Any) -> dict[str, Any] | None:
             opts = {"package_paths": robot_entry.packages, "xacro_args": robot_entry.xacro_args, "validate": False}
             usd = robodesc.compile_to_usd(robot_entry.path, os.path.join(tmp, "r.usda"), **opts)
             sdf = robodesc.compile_to_sdf(robot_entry.path, os.path.join(tmp, "r.sdf"), **opts)
+            mjcf = robodesc.compile_to_mjcf(robot_entry.path, os.path.join(tmp, "r.xml"), **opts)
+            urdf = robodesc.compile_to_urdf(robot_entry.path, **opts)
             with open(usd.files["usd"], encoding="utf-8") as handle:
                 text = handle.read()
             row["usd_materials"] = text.count('def Material "contact')
             row["usd_bindings"] = text.count("material:binding:physics")
             row["sdf_surfaces"] = (sdf.text or "").count("<surface>")
-            row["not_representable"] = sorted(
-                {f.message.split(";")[0] for f in usd.findings if f.code == "contact-not-representable"}
-            )
+            geoms = ET.parse(mjcf.files["mjcf"]).getroot().iter("geom")
+            own = [g for g in geoms if g.get("friction") is not None or g.get("solref") is not None]
+            row["mjcf_geoms"] = len(own)
+            row["mjcf_solref"] = sum(1 for g in own if g.get("solref") is not None)
+            # Parsed, not counted as text: the writer may wrap or reorder a block's attributes.
+            tree = ET.fromstring(urdf.text) if urdf.text else ET.Element("robot")
+            row["urdf_gazebo_blocks"] = sum(1 for g in tree.iter("gazebo") if g.get("reference"))
+            row["urdf_surfaces"] = sum(1 for c in tree.iter("collision") for _ in c.iter("surface"))
+            row["not_representable"] = _lost(usd)
+            row["mjcf_not_representable"] = _lost(mjcf)
     return row
+
+
+def markdown(rows: list[dict[str, Any]]) -> str:
+    with_contact = [r for r in rows if r.get("links_with_contact")]
+    total = {k: sum(r.get(k, 0) for r in with_contact) for k in ("usd_bindings", "sdf_surfaces", "mjcf_geoms")}
+    refused = [r for r in rows if "error" in r]
+    lines = [
+        "# Gazebo contact parameters on the corpus, and what each target writes",
+        "",
+        "`python benchmarks/contact_survey.py --json benchmarks/results/contact_survey.json --md "
+        "benchmarks/results/contact_survey.md` (default flags).",
+        "",
+        f"**{len(rows)} robots read** ({len(refused)} refused by the loader), **{len(with_contact)} carry Gazebo "
+        f"contact parameters**. Their colliders: USD binds a physics material to {total['usd_bindings']}, SDF "
+        f"writes {total['sdf_surfaces']} `<surface>`, MJCF gives {total['mjcf_geoms']} collision geoms their own "
+        "`friction` (and `solref` where kp is given); URDF keeps every `<gazebo reference>` block (all of a "
+        "robot's, not only contact ones) and every `<surface>` inside a `<collision>` (Stretch's, Spirit's) "
+        "as it came.",
+        "",
+        "| robot | links | parameters | USD materials / bound colliders | SDF `<surface>` | MJCF geoms (with solref) "
+        "| URDF `<gazebo reference>` blocks / collision `<surface>` written | not in USD | not in MJCF |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in with_contact:
+        params = ", ".join(f"{k} {v}" for k, v in sorted(r["parameters"].items()))
+        lines.append(
+            f"| {r['robot']} | {r['links_with_contact']} | {params} | {r['usd_materials']} / {r['usd_bindings']} | "
+            f"{r['sdf_surfaces']} | {r['mjcf_geoms']} ({r['mjcf_solref']}) | {r['urdf_gazebo_blocks']} / {r['urdf_surfaces']} | "
+            f"{'; '.join(r['not_representable']) or '–'} | {'; '.join(r['mjcf_not_representable']) or '–'} |"
+        )
+    if refused:
+        lines += ["", "Refused: " + "; ".join(f"{r['robot']} ({r['error']})" for r in refused)]
+    return "\n".join(lines) + "\n"
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--json", help="also write every row")
+    parser.add_argument("--md", help="also write the table")
     args = parser.parse_args()
     shared = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "corpus")
     rows = [r for r in (survey(e) for e in all_robots(shared)) if r is not None]
-    with_contact = [r for r in rows if r.get("links_with_contact")]
-    print(f"{len(rows)} robots read; {len(with_contact)} carry Gazebo contact parameters")
-    for r in with_contact:
-        print(
-            f"  {r['robot']}: {r['links_with_contact']} links, parameters {r['parameters']}; USD "
-            f"{r['usd_materials']} material(s) bound to {r['usd_bindings']} collider(s); SDF {r['sdf_surfaces']} <surface>"
-            + (f"; not in USD: {r['not_representable']}" if r["not_representable"] else "")
-        )
+    text = markdown(rows)
+    print(text)
     if args.json:
         with open(args.json, "w", encoding="utf-8") as handle:
             json.dump(rows, handle, indent=1)
+    if args.md:
+        with open(args.md, "w", encoding="utf-8") as handle:
+            handle.write(text)
     return 0
 
 

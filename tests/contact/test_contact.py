@@ -178,18 +178,132 @@ def test_compositions_carry_contact(tmp_path: Path, kind: str) -> None:
     assert attrs["physics:dynamicFriction"] == pytest.approx(0.7) and attrs["physics:restitution"] == pytest.approx(0.1)
 
 
-def test_spirit_toes_in_mjcf_read_by_mujoco(tmp_path: Path) -> None:
+def _spirit_toe_geoms(path: Path) -> list[tuple[float, float, float]]:
+    """(slide friction, timeconst, dampratio) of each toe's collision geom, as MuJoCo compiles them."""
     import mujoco
 
-    out = tmp_path / "robot.xml"
-    robodesc.compile_to_mjcf(str(SPIRIT_XACRO), out, fix_base=False)
-    model = mujoco.MjModel.from_xml_path(str(out))
+    model = mujoco.MjModel.from_xml_path(str(path))
+    out = []
     for toe in TOES:
         body = model.body(toe).id
         (geom,) = [g for g in range(model.ngeom) if model.geom_bodyid[g] == body and model.geom_group[g] == 3]
-        assert model.geom_friction[geom][0] == pytest.approx(0.5)  # mu, MuJoCo's slide friction
-        timeconst, ratio = model.geom_solref[geom]
-        # kp 30000 N/m, kd 1000 N·s/m on a quarter of Spirit's mass (docs/contact.md).
-        mass = sum(model.body_mass) / 4
-        assert timeconst == pytest.approx(2 * 3.141592653589793 / (30000 / mass) ** 0.5, rel=1e-3)
-        assert ratio == pytest.approx(1000 / (2 * (30000 * mass) ** 0.5), rel=1e-3)
+        out.append((float(model.geom_friction[geom][0]), *map(float, model.geom_solref[geom])))
+    return out
+
+
+@pytest.mark.parametrize("preset", [None, "gazebo_parity"])
+def test_spirit_toes_in_mjcf_read_by_mujoco(tmp_path: Path, preset: str | None) -> None:
+    pytest.importorskip("mujoco")
+    out = tmp_path / "robot.xml"
+    robodesc.compile_to_mjcf(str(SPIRIT_XACRO), out, fix_base=False, **({"preset": preset} if preset else {}))
+    import mujoco
+
+    mass = sum(mujoco.MjModel.from_xml_path(str(out)).body_mass) / 4  # a quarter of Spirit per toe
+    omega = (30000 / mass) ** 0.5  # kp 30000 N/m
+    ratio = 1000 / (2 * (30000 * mass) ** 0.5)  # kd 1000 N·s/m; > 1, so restitution 0 holds as given
+    priorities = {int(p) for p in mujoco.MjModel.from_xml_path(str(out)).geom_priority}
+    assert priorities == ({0, 1} if preset else {0})  # under gazebo_parity: the colliders', not the visuals'
+    for mu, timeconst, dampratio in _spirit_toe_geoms(out):
+        assert mu == pytest.approx(0.5)  # MuJoCo's slide friction
+        # MuJoCo's damping is 2 / timeconst and its stiffness 1 / (timeconst dampratio)^2 (at full
+        # impedance): kd/m and kp/m need timeconst = 1 / (dampratio omega) (docs/contact.md).
+        assert dampratio == pytest.approx(ratio, rel=1e-3) and dampratio >= 1.0
+        assert timeconst == pytest.approx(1 / (ratio * omega), rel=1e-3)
+        assert timeconst == pytest.approx(2 * mass / 1000, rel=1e-3)
+
+
+def test_spirit_toes_under_gazebo_parity_carry_the_source(tmp_path: Path) -> None:
+    """The preset adds PhysX's combine rule and leaves the toes' own numbers as the source gives them."""
+    out = tmp_path / "spirit.usda"
+    robodesc.compile_to_usd(str(SPIRIT_XACRO), out, validate=False, preset="gazebo_parity")
+    toes = {p: m for p, m in _usd_materials(out).items() if any(f"/{t}/" in p for t in TOES)}
+    assert len(toes) == 4
+    for attrs in toes.values():
+        assert attrs["physics:staticFriction"] == pytest.approx(0.5)
+        assert attrs["physics:dynamicFriction"] == pytest.approx(0.5)
+        assert attrs["physics:restitution"] == 0.0
+        assert attrs["physxMaterial:compliantContactStiffness"] == pytest.approx(30000.0)
+        assert attrs["physxMaterial:compliantContactDamping"] == pytest.approx(1000.0)
+        assert attrs["newton:contactStiffness"] == pytest.approx(30000.0)
+        assert attrs["newton:contactDamping"] == pytest.approx(1000.0)
+        assert attrs["physxMaterial:frictionCombineMode"] == "min"
+
+
+BALL = """<robot name="ball">
+  <link name="ball"><inertial><mass value="2"/><inertia ixx="0.002" iyy="0.002" izz="0.002" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><sphere radius="0.05"/></geometry></collision></link>
+  <gazebo reference="ball"><kp>20000</kp><kd>4</kd></gazebo>
+</robot>"""
+
+
+def test_mjcf_contact_rings_at_the_sources_frequency(tmp_path: Path) -> None:
+    """kp 20000 N/m under 2 kg rings at sqrt(kp / m) = 100 rad/s in MuJoCo reading the MJCF (a
+    period of 63 ms; MuJoCo's impedance, 0.9 to 0.95 at this depth, makes it up to 6 % slower)."""
+    mujoco = pytest.importorskip("mujoco")
+    import numpy as np
+
+    src = tmp_path / "ball.urdf"
+    src.write_text(BALL)
+    out = tmp_path / "ball.xml"
+    robodesc.compile_to_mjcf(str(src), out, fix_base=False)
+    spec = mujoco.MjSpec.from_file(str(out))
+    # A floor whose own solref does not mix in (MuJoCo averages two geoms' by their solmix weights).
+    spec.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 1], solmix=1e-9)
+    spec.option.timestep = 0.0002
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    root = next(j for j in range(model.njnt) if model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE)
+    address = int(model.jnt_qposadr[root])
+    data.qpos[address + 2] = 0.05 - 2e-4  # pressed in, so it rings without leaving the floor
+    heights = []
+    for _ in range(2500):  # 0.5 s
+        mujoco.mj_step(model, data)
+        heights.append(float(data.qpos[address + 2]))
+    z = np.asarray(heights[500:]) - np.mean(heights[500:])
+    rising = np.flatnonzero((z[:-1] < 0) & (z[1:] >= 0))
+    period = float(np.mean(np.diff(rising))) * 0.0002
+    assert 2 * np.pi / 100 <= period <= 1.07 * 2 * np.pi / 100
+
+
+@pytest.mark.parametrize(("preset", "applied"), [(None, 1.0), ("gazebo_parity", 0.5)])
+def test_mjcf_friction_against_a_floor(tmp_path: Path, preset: str | None, applied: float) -> None:
+    """A ball of mu 0.5 on MuJoCo's default floor (mu 1): MuJoCo's rule takes the larger; under
+    gazebo_parity the ball's priority gives ODE's minimum, 0.5, and its own solref."""
+    mujoco = pytest.importorskip("mujoco")
+    src = tmp_path / "ball.urdf"
+    src.write_text(BALL.replace("<kp>", "<mu1>0.5</mu1><mu2>0.5</mu2><kp>"))
+    out = tmp_path / "ball.xml"
+    result = robodesc.compile_to_mjcf(str(src), out, fix_base=False, **({"preset": preset} if preset else {}))
+    if preset:
+        notes = [f.message for f in result.findings if f.code == "preset-applied"]
+        assert notes and "friction_combine=min" in notes[0]
+    spec = mujoco.MjSpec.from_file(str(out))
+    spec.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 1])
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    data.qpos[2] = 0.05 - 1e-4
+    mujoco.mj_forward(model, data)
+    assert data.ncon == 1 and data.contact.friction[0][0] == pytest.approx(applied)
+    ball = next(g for g in range(model.ngeom) if model.geom_bodyid[g] != 0)
+    if preset:
+        assert data.contact.solref[0] == pytest.approx(model.geom_solref[ball])
+
+
+def test_mjcf_refuses_a_combine_rule_mujoco_has_not(tmp_path: Path) -> None:
+    from robodesc.ir.diagnostics import ConfigError
+
+    with pytest.raises(ConfigError, match="no average or product"):
+        robodesc.compile_to_mjcf(str(SPIRIT_XACRO), tmp_path / "r.xml", friction_combine="average")
+
+
+def test_mjcf_warns_when_a_contact_is_stiffer_than_mujocos_step(tmp_path: Path) -> None:
+    """kp 1.8e7 N/m (iCub's feet) and kd 2000 N·s/m on 2 kg need a 2 ms time constant (2 m / kd):
+    MuJoCo clamps it to two 2 ms steps, which the compile says."""
+    src = tmp_path / "ball.urdf"
+    src.write_text(BALL.replace("<kp>20000</kp><kd>4</kd>", "<kp>1.8e7</kp><kd>2000</kd>"))
+    result = robodesc.compile_to_mjcf(str(src), tmp_path / "ball.xml", fix_base=False)
+    (warning,) = [f.message for f in result.findings if f.code == "contact-too-stiff-for-timestep"]
+    assert "0.004 s" in warning
+    src.write_text(BALL)
+    result = robodesc.compile_to_mjcf(str(src), tmp_path / "ball.xml", fix_base=False)
+    assert not [f for f in result.findings if f.code == "contact-too-stiff-for-timestep"]

@@ -171,3 +171,22 @@ def test_names_the_checked_target_renamed_still_match() -> None:
     assert dyn is not None and dyn.ok, dyn.to_text()
     hold = next(r for r in dyn.runs if r.file == "urdf" and r.scenario == "hold-fixed")
     assert len(hold.final_q) == 12 and hold.final_q["1"] == pytest.approx(1.52, abs=0.05)
+
+
+def test_a_quadruped_slides_and_stands_on_its_feet_friction(tmp_path: Path) -> None:
+    """Feet with their own friction, a body with none: the slide's material and the drop's floor
+    are the feet's (what touches the ground), read back from the MJCF and judged against the
+    source; the dropped robot settles before the run ends."""
+    text = Path(QUAD).read_text()
+    calf = "        mass: 0.25\n        pose: [0, 0, -0.22]\n"
+    assert calf in text
+    src = tmp_path / "quadruped.yaml"
+    src.write_text(text.replace(calf, calf + "        contact: {mu: 0.6}\n"))
+    dyn = robodesc.check(str(src), "mjcf", dynamics=MUJOCO, fix_base=False).dynamics
+    assert dyn is not None and dyn.ok, dyn.to_text()
+    assert dyn.info["setup"]["friction"] == pytest.approx(0.6)
+    assert sorted(dyn.info["setup"]["feet"]) == sorted(f"{leg}_calf" for leg in ("FL", "FR", "RL", "RR"))
+    runs = {r.scenario: r for r in dyn.runs if r.file == "mjcf"}
+    assert runs["slide"].mu == pytest.approx(0.6) and runs["drop"].mu == pytest.approx(0.6)
+    assert _rows(dyn, "friction") == [] and _rows(dyn, "slide") == [Status.PASS]
+    assert runs["drop"].settle is not None and runs["drop"].settle < 1.0

@@ -17,6 +17,9 @@ from robodesc.ir.diagnostics import ConfigError
 ACTUATORS = ("position", "velocity", "motor", "none")
 INTEGRATORS = ("implicitfast", "implicit", "Euler", "RK4")
 
+# The friction combine rules an MJCF can say (docs/contact.md).
+MJCF_COMBINE = ("min", "max")
+
 # One number for every joint, or an ordered {regex: value} table (first full match wins).
 Gain = float | Mapping[str, float]
 
@@ -59,7 +62,19 @@ class MjcfOptions:
         default=True, metadata=flag("write scene.xml beside the robot", name="--mjcf-scene", kind="switch")
     )
 
+    # MuJoCo combines two geoms' friction by the larger, or takes the higher priority geom's. "min"
+    # (ODE's rule, --preset gazebo_parity) gives the robot's colliders priority 1: their own
+    # friction and solref apply against the world's, which is ODE's minimum whenever the world's
+    # surface grips at least as much (Gazebo's ground: mu 100). "max" is MuJoCo's own rule.
+    friction_combine: str | None = field(default=None, metadata=common.FRICTION_COMBINE)
+
     def check(self) -> None:
+        if self.friction_combine is not None and self.friction_combine not in MJCF_COMBINE:
+            raise ConfigError(
+                f"friction_combine {self.friction_combine!r}: MuJoCo combines friction by the larger (max) or "
+                "by geom priority (min: the robot's own); it has no average or product",
+                element="option 'friction_combine'",
+            )
         check_drives(self)
         one_of("actuator", self.actuator, ACTUATORS)
         approximation.check(self.collision_approximation)

@@ -11,18 +11,19 @@ from __future__ import annotations
 import logging
 import math
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from robodesc.ir.model import Robot
-from robodesc.validation.dynamics.result import Run
+from robodesc.validation.dynamics.result import Run, settle_time
 from robodesc.validation.dynamics.scenarios import Setup, slide_angles
 
 ENGINE = "drake"
 _SAMPLE = 0.01  # s
-_BOX = 0.05  # m
+_BOX, _BOX_H = 0.05, 0.01  # m: the slide block's half length and height (mujoco_run: why flat)
 
 
 def run_file(
@@ -94,18 +95,27 @@ def _root_body(plant: Any, robot: Robot, models: list[Any]) -> Any:
     return (named or candidates or [plant.get_body(plant.GetBodyIndices(models[0])[0])])[0]
 
 
-def _robot_mu(plant: Any, scene_graph: Any, models: list[Any]) -> tuple[float | None, list[Any]]:
-    """(the most common sliding friction of the robot's colliders, their geometry ids)."""
+def _robot_mu(
+    plant: Any, scene_graph: Any, models: list[Any], feet: tuple[str, ...] = ()
+) -> tuple[float | None, list[Any]]:
+    """(the most common sliding friction of the robot's colliders, their geometry ids): the feet's
+    friction when the robot stands on some (``Setup.feet``), else all colliders'."""
     inspector = scene_graph.model_inspector()
     values: list[float] = []
+    on_feet: list[float] = []
     ids: list[Any] = []
     for model in models:
         for index in plant.GetBodyIndices(model):
-            for gid in plant.GetCollisionGeometriesForBody(plant.get_body(index)):
+            body = plant.get_body(index)
+            for gid in plant.GetCollisionGeometriesForBody(body):
                 ids.append(gid)
                 props = inspector.GetProximityProperties(gid)
                 if props is not None and props.HasProperty("material", "coulomb_friction"):
-                    values.append(round(props.GetProperty("material", "coulomb_friction").dynamic_friction(), 9))
+                    value = round(props.GetProperty("material", "coulomb_friction").dynamic_friction(), 9)
+                    values.append(value)
+                    if body.name() in feet:
+                        on_feet.append(value)
+    values = on_feet or values
     return (max(set(values), key=values.count) if values else None), ids
 
 
@@ -122,7 +132,7 @@ def _robot_run(robot: Robot, path: str, options: Any, setup: Setup, run: Run, *,
     root = _root_body(plant, robot, models)
     if not floor and not _is_welded(plant, root):
         plant.WeldFrames(plant.world_frame(), root.body_frame())
-    mu, robot_geoms = _robot_mu(plant, scene_graph, models)
+    mu, robot_geoms = _robot_mu(plant, scene_graph, models, setup.feet)
     run.mu = mu if floor else None
     if floor:
         friction = mu if mu is not None else 1.0
@@ -155,7 +165,8 @@ def _robot_run(robot: Robot, path: str, options: Any, setup: Setup, run: Run, *,
             _set_position(joint, context, setup.pose[name])
     if floor and _floating(root):
         plant.SetFreeBodyPose(context, root, RigidTransform(_vec(0.0, 0.0, setup.stand_height + setup.drop_clearance)))
-    _advance(simulator, context, table, setup, run)
+    height = (lambda: float(plant.EvalBodyPoseInWorld(context, root).translation()[2])) if floor else None
+    _advance(simulator, context, table, setup, run, height)
     if run.ok and floor:
         pose = plant.EvalBodyPoseInWorld(context, root)
         run.height = float(pose.translation()[2])
@@ -209,15 +220,25 @@ def _desired_for(plant: Any, model: Any, setup: Setup) -> Any:
     return np.array(q + [0.0] * len(q))
 
 
-def _advance(simulator: Any, context: Any, table: dict[str, Any], setup: Setup, run: Run) -> None:
+def _advance(
+    simulator: Any,
+    context: Any,
+    table: dict[str, Any],
+    setup: Setup,
+    run: Run,
+    height: Callable[[], float] | None = None,
+) -> None:
     joints = {n: j for n in setup.pose if (j := table.get(n)) is not None and j.num_positions() == 1}
     if setup.pose and not joints:
         run.ok, run.error = False, "none of the robot's driven joints is in the file"
         return
     steps = max(1, round(setup.duration / _SAMPLE))
     q: dict[str, float] = {}
+    heights: list[tuple[float, float]] = []
     for k in range(1, steps + 1):
         simulator.AdvanceTo(k * _SAMPLE)
+        if height is not None:
+            heights.append((k * _SAMPLE, height()))
         q = {n: float(j.GetOnePosition(context)) for n, j in joints.items()}
         if not all(math.isfinite(v) for v in q.values()):
             run.ok, run.error = False, f"state not finite after {k * _SAMPLE:.3g} s"
@@ -225,6 +246,7 @@ def _advance(simulator: Any, context: Any, table: dict[str, Any], setup: Setup, 
         run.trajectory.append((k * _SAMPLE, q))
     run.final_q = q
     run.drift, run.worst_joint = max(((abs(v - setup.pose[n]), n) for n, v in q.items()), default=(0.0, ""))
+    run.settle = settle_time(heights) if height is not None else None
 
 
 def _slide(robot: Robot, path: str, options: Any, setup: Setup, run: Run, mu: float | None) -> None:
@@ -233,7 +255,7 @@ def _slide(robot: Robot, path: str, options: Any, setup: Setup, run: Run, mu: fl
     if mu is None:
         _, plant, scene_graph = _plant(setup.timestep)
         models = _parse(plant, robot, path, options, shapes=False)
-        mu, _ = _robot_mu(plant, scene_graph, models)
+        mu, _ = _robot_mu(plant, scene_graph, models, setup.feet)
     if mu is None:
         run.ok, run.error = False, "Drake reads no collider from the file"
         return
@@ -256,14 +278,14 @@ def _block_travel(mu: float, angle: float, setup: Setup) -> float:
     plant.RegisterCollisionGeometry(
         plant.world_body(), RigidTransform(tilt, _vec(0.0, 0.0, 0.0)), HalfSpace(), "plane", friction
     )
-    inertia = SpatialInertia(1.0, _vec(0.0, 0.0, 0.0), UnitInertia.SolidBox(2 * _BOX, 2 * _BOX, 2 * _BOX))
+    inertia = SpatialInertia(1.0, _vec(0.0, 0.0, 0.0), UnitInertia.SolidBox(2 * _BOX, 2 * _BOX, 2 * _BOX_H))
     block = plant.AddRigidBody("block", inertia)
-    plant.RegisterCollisionGeometry(block, RigidTransform(), Box(2 * _BOX, 2 * _BOX, 2 * _BOX), "block", friction)
+    plant.RegisterCollisionGeometry(block, RigidTransform(), Box(2 * _BOX, 2 * _BOX, 2 * _BOX_H), "block", friction)
     plant.Finalize()
     simulator = Simulator(builder.Build())
     context = plant.GetMyMutableContextFromRoot(simulator.get_mutable_context())
     normal = tilt.col(2)
-    start = _vec(*(np.asarray(normal) * (_BOX + 1e-4)))
+    start = _vec(*(np.asarray(normal) * (_BOX_H + 1e-4)))
     plant.SetFreeBodyPose(context, block, RigidTransform(tilt, start))
     simulator.AdvanceTo(setup.duration)
     return float(np.linalg.norm(plant.EvalBodyPoseInWorld(context, block).translation() - start))

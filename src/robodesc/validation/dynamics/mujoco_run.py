@@ -17,7 +17,7 @@ import mujoco
 import numpy as np
 
 from robodesc.ir.model import Robot
-from robodesc.validation.dynamics.result import Run
+from robodesc.validation.dynamics.result import Run, settle_time
 from robodesc.validation.dynamics.scenarios import Setup, slide_angles
 from robodesc.validation.mujoco_load import add_floating_base, load_urdf_in_mujoco
 from robodesc.validation.options import ValidateOptions
@@ -25,7 +25,10 @@ from robodesc.validation.report import ValidationReport
 
 ENGINE = "mujoco"
 _SAMPLE = 0.01  # s between trajectory samples
-_BOX = 0.05  # m: half size of the slide block
+_BOX = 0.05  # m: half length and width of the slide block
+# Half its height: a flat block tips only past tan = _BOX / _BOX_H = 5, so it slides, not rolls, at
+# tan = 1.3 mu up to mu 3.8 (a cube tipped over from mu 0.77 on: rolling, not friction, set its travel).
+_BOX_H = 0.01  # m
 # Implicit in the drives' velocity terms: MuJoCo's default Euler is explicit in an actuator's kv,
 # and kv = 1 N·m·s/rad on a 10 g fingertip is unstable at any usable time step (Drake's PD and
 # Newton's MuJoCo solver are implicit too). A URDF names no integrator; an MJCF's own is kept.
@@ -101,12 +104,13 @@ def _start(model: Any, data: Any, setup: Setup) -> dict[str, int]:
     return addr
 
 
-def _simulate(model: Any, data: Any, setup: Setup, run: Run, addr: dict[str, int]) -> bool:
+def _simulate(model: Any, data: Any, setup: Setup, run: Run, addr: dict[str, int], root: int | None = None) -> bool:
     if setup.pose and not addr:
         run.ok, run.error = False, "none of the robot's driven joints is in the file"
         return False
     steps = max(1, round(setup.duration / setup.timestep))
     every = max(1, round(_SAMPLE / setup.timestep))
+    heights: list[tuple[float, float]] = []
     for step in range(steps):
         mujoco.mj_step(model, data)
         if not np.all(np.isfinite(data.qpos)):
@@ -114,16 +118,25 @@ def _simulate(model: Any, data: Any, setup: Setup, run: Run, addr: dict[str, int
             return False
         if (step + 1) % every == 0:
             run.trajectory.append(((step + 1) * setup.timestep, {n: float(data.qpos[a]) for n, a in addr.items()}))
+            if root is not None:
+                heights.append(((step + 1) * setup.timestep, float(data.xpos[root][2])))
+    run.settle = settle_time(heights) if root is not None else None
     run.final_q = {n: float(data.qpos[a]) for n, a in addr.items()}
     worst = max(((abs(q - setup.pose[n]), n) for n, q in run.final_q.items()), default=(0.0, ""))
     run.drift, run.worst_joint = worst
     return True
 
 
+def _colliders(spec: Any) -> list[Any]:
+    """The geoms that collide: an MJCF's visual geoms (contype and conaffinity 0, robodesc's
+    ``visual`` class) touch nothing and must stay so."""
+    return [g for g in spec.geoms if int(g.contype) or int(g.conaffinity)]
+
+
 def _no_self_contact(spec: Any) -> None:
-    """Robot geoms collide with the floor only: convex hulls of meshes overlap on most robots and
-    their pushes are not what these scenarios measure."""
-    for geom in spec.geoms:
+    """Robot colliders touch the floor only: convex hulls of meshes overlap on most robots and
+    their pushes are not what these scenarios measure. Visual geoms stay out of contact."""
+    for geom in _colliders(spec):
         geom.contype, geom.conaffinity = 1, 0
 
 
@@ -146,18 +159,26 @@ def _hold(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
     _simulate(model, data, setup, run, addr)
 
 
-def _robot_mu(spec: Any) -> float:
-    """The sliding friction MuJoCo gives the robot's colliders (the most common one)."""
-    values = [round(float(g.friction[0]), 9) for g in spec.geoms]
+def _robot_mu(spec: Any, feet: tuple[str, ...] = ()) -> float:
+    """The sliding friction MuJoCo gives the robot's colliders (the most common one): its feet's
+    when it stands on some (``Setup.feet``), else all of them."""
+    geoms = _colliders(spec)
+    on_feet = [g for g in geoms if _body_name(g) in feet]
+    values = [round(float(g.friction[0]), 9) for g in on_feet or geoms]
     return max(set(values), key=values.count) if values else 1.0
+
+
+def _body_name(geom: Any) -> str:
+    parent = geom.parent
+    return str(parent.name) if parent is not None else ""
 
 
 def _drop(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
     s = spec.copy()
     add_floating_base(s, robot)
     _actuate(s, kind, setup)
+    mu = _robot_mu(s, setup.feet)
     _no_self_contact(s)
-    mu = _robot_mu(s)
     run.mu = mu
     # Equal friction on both sides: MuJoCo takes the larger, Drake a harmonic mean, Newton its own
     # rule; all of them give mu when the two are equal.
@@ -181,8 +202,8 @@ def _drop(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
         return
     qadr = int(model.jnt_qposadr[root])
     data.qpos[qadr + 2] = setup.stand_height + setup.drop_clearance
-    if _simulate(model, data, setup, run, addr):
-        body = int(model.jnt_bodyid[root])
+    body = int(model.jnt_bodyid[root])
+    if _simulate(model, data, setup, run, addr, body):
         run.height = float(data.xpos[body][2])
         run.tilt = math.acos(max(-1.0, min(1.0, float(data.xmat[body][8]))))
 
@@ -195,7 +216,7 @@ def _free_root(model: Any) -> int | None:
 
 
 def _slide(spec: Any, setup: Setup, run: Run) -> None:
-    mu = _robot_mu(spec)
+    mu = _robot_mu(spec, setup.feet)
     run.mu = mu
     stick, slide = slide_angles(mu)
     run.stick = _block_travel(mu, stick, setup)
@@ -211,9 +232,9 @@ def _block_travel(mu: float, angle: float, setup: Setup) -> float:
     c, sn = math.cos(angle / 2), math.sin(angle / 2)
     s.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 1], quat=[c, 0, sn, 0], friction=[mu, 0, 0])
     normal = np.array([math.sin(angle), 0.0, math.cos(angle)])
-    body = s.worldbody.add_body(pos=list(normal * (_BOX + 1e-4)), quat=[c, 0, sn, 0])
+    body = s.worldbody.add_body(pos=list(normal * (_BOX_H + 1e-4)), quat=[c, 0, sn, 0])
     body.add_freejoint()
-    body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[_BOX] * 3, mass=1.0, friction=[mu, 0, 0], condim=3)
+    body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[_BOX, _BOX, _BOX_H], mass=1.0, friction=[mu, 0, 0], condim=3)
     model = s.compile()
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)

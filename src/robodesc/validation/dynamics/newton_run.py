@@ -10,7 +10,7 @@ import subprocess
 from typing import Any
 
 from robodesc.ir.model import Robot
-from robodesc.validation.dynamics.result import Run
+from robodesc.validation.dynamics.result import Run, settle_time
 from robodesc.validation.dynamics.scenarios import Setup
 
 ENGINE = "newton"
@@ -77,4 +77,6 @@ def _run(kind: str, raw: dict[str, Any]) -> Run:
     run.seconds = float(raw.get("seconds", 0.0))
     run.final_q = {str(k): float(v) for k, v in (raw.get("final_q") or {}).items()}
     run.trajectory = [(float(t), {str(k): float(v) for k, v in q.items()}) for t, q in raw.get("trajectory", [])]
+    if raw.get("heights"):
+        run.settle = settle_time([(float(t), float(z)) for t, z in raw["heights"]])
     return run

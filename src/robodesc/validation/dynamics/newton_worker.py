@@ -21,7 +21,7 @@ import traceback
 import warnings
 
 _SAMPLE = 0.01
-_BOX = 0.05
+_BOX, _BOX_H = 0.05, 0.01  # the slide block's half length and height (mujoco_run: why flat)
 
 
 def _short(label):
@@ -44,11 +44,24 @@ def _load(req, floating, floor=False):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         builder.add_usd(req["usd"], floating=floating, enable_self_collisions=False, load_visual_shapes=False)
-    values = [round(float(v), 6) for v in builder.shape_material_mu]
-    mu = max(set(values), key=values.count) if values else None
+    mu = _robot_mu(builder, req["setup"].get("feet") or ())
     if floor:
         builder.add_ground_plane(cfg=newton.ModelBuilder.ShapeConfig(mu=1.0 if mu is None else mu))
     return builder.finalize(device="cpu"), mu
+
+
+def _robot_mu(builder, feet):
+    """The most common friction of the robot's shapes: its feet's when it stands on some (as the
+    other engines' runners), else all shapes'. A body's label ends with its prim name."""
+    values = [round(float(v), 6) for v in builder.shape_material_mu]
+    labels = list(getattr(builder, "body_label", None) or getattr(builder, "body_key", None) or [])
+    on_feet = [
+        v
+        for v, body in zip(values, builder.shape_body, strict=False)
+        if 0 <= body < len(labels) and _short(str(labels[body])) in set(feet)
+    ]
+    values = on_feet or values
+    return max(set(values), key=values.count) if values else None
 
 
 def _names(model, usd):
@@ -107,6 +120,8 @@ def _run_robot(req, scenario):
             if not np.all(np.isfinite(jq)):
                 return {**run, "ok": False, "error": f"state not finite after {(step + 1) * dt:.3g} s"}
             run["trajectory"].append([(step + 1) * dt, {n: float(jq[names[n][0]]) for n in pose}])
+            if floor:
+                run.setdefault("heights", []).append([(step + 1) * dt, float(state0.body_q.numpy()[root_body][2])])
     jq = state0.joint_q.numpy()
     final = {n: float(jq[names[n][0]]) for n in pose}
     worst = max(((abs(v - pose[n]), n) for n, v in final.items()), default=(0.0, ""))
@@ -128,9 +143,9 @@ def _block_travel(mu, angle, setup):
     builder = _builder(gravity=(g * math.sin(angle), 0.0, -g * math.cos(angle)))
     cfg = newton.ModelBuilder.ShapeConfig(mu=mu)
     builder.add_ground_plane(cfg=cfg)
-    body = builder.add_body(xform=wp.transform((0.0, 0.0, _BOX + 1e-4), wp.quat_identity()))
-    box_cfg = newton.ModelBuilder.ShapeConfig(mu=mu, density=1.0 / (2 * _BOX) ** 3)
-    builder.add_shape_box(body, hx=_BOX, hy=_BOX, hz=_BOX, cfg=box_cfg)
+    body = builder.add_body(xform=wp.transform((0.0, 0.0, _BOX_H + 1e-4), wp.quat_identity()))
+    box_cfg = newton.ModelBuilder.ShapeConfig(mu=mu, density=1.0 / (8 * _BOX * _BOX * _BOX_H))
+    builder.add_shape_box(body, hx=_BOX, hy=_BOX, hz=_BOX_H, cfg=box_cfg)
     model = builder.finalize(device="cpu")
     s0, s1, control = model.state(), model.state(), model.control()
     newton.eval_fk(model, s0.joint_q, s0.joint_qd, s0)

@@ -9,6 +9,23 @@ from typing import Any
 
 from robodesc.validation.report import Check, Status
 
+# A dropped robot has settled once its root height stays within this of where it ends.
+SETTLE_BAND = 0.001  # m
+
+
+def settle_time(heights: list[tuple[float, float]], band: float = SETTLE_BAND) -> float | None:
+    """The first sample time after which every (time, root height) sample stays within ``band`` of
+    the last one; None without samples."""
+    if not heights:
+        return None
+    final = heights[-1][1]
+    settled = heights[-1][0]
+    for t, z in reversed(heights):
+        if abs(z - final) > band:
+            break
+        settled = t
+    return settled
+
 
 @dataclass(slots=True)
 class Run:
@@ -23,6 +40,7 @@ class Run:
     worst_joint: str = ""
     height: float | None = None  # root height at the end, m
     tilt: float | None = None  # angle between the root's z and the world's, rad
+    settle: float | None = None  # drop: time after which the root height stays within SETTLE_BAND of its end, s
     mu: float | None = None  # friction the engine gave the robot's colliders
     stick: float | None = None  # slide: distance moved on the "sticks" plane, m
     slide: float | None = None  # slide: distance moved on the "slides" plane, m
@@ -34,7 +52,7 @@ class Run:
     def as_dict(self) -> dict[str, Any]:
         keys = ("engine", "file", "scenario", "ok", "error", "drift", "worst_joint", "height", "tilt", "mu")
         out: dict[str, Any] = {k: getattr(self, k) for k in keys}
-        out.update(stick=self.stick, slide=self.slide, seconds=round(self.seconds, 3))
+        out.update(stick=self.stick, slide=self.slide, settle=self.settle, seconds=round(self.seconds, 3))
         return out
 
 

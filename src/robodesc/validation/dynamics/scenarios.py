@@ -76,6 +76,9 @@ class Setup:
     floating: bool  # the robot stands on three or more links: the drop scenario applies (stands())
     stand_height: float  # m: root height at which the lowest collider touches z = 0 at the pose
     friction: float | None  # the source's collider friction (None: not given, engine default)
+    # The links the robot stands on at the home pose (feet, wheels), when it stands: the slide's
+    # material and the drop floor's friction are theirs, as the ground touches nothing else.
+    feet: tuple[str, ...] = ()
     # Mimic joints: follower -> leader. An output that cannot carry a mimic (SDF before 1.11) has
     # already warned at compile time; a trajectory that differs there is that warning, not a new fault.
     mimics: dict[str, str] = field(default_factory=dict)
@@ -89,6 +92,7 @@ class Setup:
             "gains": {k: list(v) for k, v in self.gains.items()},
             "stand_height": self.stand_height,
             "friction": self.friction,
+            "feet": list(self.feet),
             "duration": self.duration,
             "timestep": self.timestep,
             "drop_clearance": self.drop_clearance,
@@ -126,13 +130,15 @@ def drive_gains(robot: Robot, stiffness: Gain | None, damping: Gain | None) -> d
     return out
 
 
-def source_friction(robot: Robot) -> float | None:
+def source_friction(robot: Robot, feet: tuple[str, ...] = ()) -> float | None:
     """The sliding friction of the robot's colliders when the source gives all of them the same one
     (docs/contact.md); None otherwise. The slide scenario puts one block of the robot's material on
-    a plane, so a robot whose colliders differ (Spirit's toes 0.5, its body the engine's default) has
-    no single friction to compare: the format readers' tests (tests/contact) check each collider."""
+    a plane. A robot that stands is judged by its feet (``feet``: Spirit's toes give 0.5 while its
+    body gives none), since they are what touches the ground; a robot whose colliders differ and
+    that does not stand has no single friction to compare."""
     found: set[float | None] = set()
-    for link in robot.links:
+    chosen = [link for link in robot.links if link.name in feet and link.collisions]
+    for link in chosen or robot.links:
         for col in link.collisions:
             contact = link.collision_contact(col)
             found.add(contact.mu if contact is not None else None)
@@ -175,6 +181,13 @@ def stand_height(robot: Robot, pose: Mapping[str, float]) -> float:
 FOOT_BAND = 0.01  # m
 
 
+def feet(robot: Robot, pose: Mapping[str, float]) -> tuple[str, ...]:
+    """The links within :data:`FOOT_BAND` of the lowest collider point at the pose, in link order."""
+    lows = _link_lows(robot, pose)
+    lowest = min(lows.values(), default=math.inf)
+    return tuple(name for name, z in lows.items() if z <= lowest + FOOT_BAND) if math.isfinite(lowest) else ()
+
+
 def stands(robot: Robot, pose: Mapping[str, float]) -> bool:
     """Whether the drop scenario applies: a free root (not welded to ``world``) and at least three
     links touching the ground at the home pose (feet, wheels). An arm or a biped on one sole would
@@ -182,9 +195,7 @@ def stands(robot: Robot, pose: Mapping[str, float]) -> bool:
     roots = robot.root_links()
     if not roots or roots[0].name == "world":
         return False
-    lows = _link_lows(robot, pose)
-    lowest = min(lows.values(), default=math.inf)
-    return math.isfinite(lowest) and sum(1 for z in lows.values() if z <= lowest + FOOT_BAND) >= 3
+    return len(feet(robot, pose)) >= 3
 
 
 def _lowest(frame: Frame, geom: object) -> float:
@@ -219,12 +230,15 @@ def _mesh_points(mesh: Mesh) -> NDArray[np.float64] | None:
 
 def make_setup(robot: Robot, options: DynamicsOptions) -> Setup:
     pose = home_pose(robot, options.pose)
+    floating = stands(robot, pose)
+    standing_on = feet(robot, pose) if floating else ()
     return Setup(
         pose=pose,
         gains=drive_gains(robot, options.stiffness, options.damping),
-        floating=stands(robot, pose),
+        floating=floating,
         stand_height=stand_height(robot, pose),
-        friction=source_friction(robot),
+        friction=source_friction(robot, standing_on),
+        feet=standing_on,
         mimics={j.name: j.mimic.joint for j in robot.joints if j.mimic is not None},
         duration=options.duration,
         timestep=options.timestep,
