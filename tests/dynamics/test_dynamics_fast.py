@@ -190,3 +190,18 @@ def test_a_quadruped_slides_and_stands_on_its_feet_friction(tmp_path: Path) -> N
     assert runs["slide"].mu == pytest.approx(0.6) and runs["drop"].mu == pytest.approx(0.6)
     assert _rows(dyn, "friction") == [] and _rows(dyn, "slide") == [Status.PASS]
     assert runs["drop"].settle is not None and runs["drop"].settle < 1.0
+
+
+def test_an_engine_reading_the_source_differently_is_a_warning() -> None:
+    """Drake reads SDF's mu/mu2 as static/dynamic friction and refuses a source's lone mu 0.8 (SDF's
+    mu2 defaults to 1): the file says what the source says, so the failed run is a warning."""
+    from robodesc.validation.dynamics.result import READS_DIFFERENTLY
+
+    refused = Run("drake", "sdf", "slide", ok=False, error=f"{READS_DIFFERENTLY} Drake reads SDF's mu ...")
+    report = DynamicsReport("r", runs=[refused])
+    judge(report, _setup(), Thresholds())
+    assert _rows(report, "run") == [Status.WARN] and report.ok
+    crashed = Run("drake", "sdf", "slide", ok=False, error="NaN")
+    report = DynamicsReport("r", runs=[crashed])
+    judge(report, _setup(), Thresholds())
+    assert _rows(report, "run") == [Status.FAIL]

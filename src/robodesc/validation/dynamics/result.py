@@ -11,6 +11,9 @@ from robodesc.validation.report import Check, Status
 
 # A dropped robot has settled once its root height stays within this of where it ends.
 SETTLE_BAND = 0.001  # m
+# How an engine's refusal starts when the file says what the source says and the engine reads that
+# differently: a warning, not robodesc's fault.
+READS_DIFFERENTLY = "reads the source differently:"
 
 
 def settle_time(heights: list[tuple[float, float]], band: float = SETTLE_BAND) -> float | None:
