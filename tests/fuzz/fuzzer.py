@@ -516,7 +516,10 @@ def _classify_batch(case: Case, code: int, err: str, outside: dict[str, bytes], 
     elif code not in (0, 1, 2):
         outcome.status, outcome.detail = "crash", f"exit code {code}: {err[-2000:]}"
     elif "crashed" in by_status:
-        outcome.status, outcome.detail = "crash", f"job {by_status['crashed'].get('id')}: {by_status['crashed'].get('message')}"
+        outcome.status, outcome.detail = (
+            "crash",
+            f"job {by_status['crashed'].get('id')}: {by_status['crashed'].get('error')}",
+        )
     elif "timeout" in by_status:
         outcome.status, outcome.detail = "hang", f"job {by_status['timeout'].get('id')} timed out"
     elif case.marker is not None and case.marker.exists() and not case.run_python:
@@ -525,7 +528,7 @@ def _classify_batch(case: Case, code: int, err: str, outside: dict[str, bytes], 
         outcome.status, outcome.detail = "escaped", "the batch wrote into a folder outside its output"
     elif code == 1 or "validation-failed" in by_status:
         job = by_status.get("validation-failed", {})
-        outcome.status, outcome.detail = "blame", f"job {job.get('id')}: {job.get('message')} {first}"
+        outcome.status, outcome.detail = "blame", f"job {job.get('id')}: {job.get('error')} {first}"
     elif not summary_file.is_file() and code != 2:
         outcome.status, outcome.detail = "crash", f"exit {code} without summary.json: {first}"
     else:

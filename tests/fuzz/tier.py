@@ -16,6 +16,7 @@ any case failed. ``--json FILE`` keeps every outcome.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import dataclasses
 import json
 import os
@@ -58,10 +59,8 @@ def _spawn(first: int, last: int, seed: int, root: Path, time_limit: int, progre
 
 
 def _stop(child: subprocess.Popen[bytes]) -> None:
-    try:
+    with contextlib.suppress(ProcessLookupError):
         os.killpg(child.pid, signal.SIGKILL)
-    except ProcessLookupError:
-        pass
     child.wait()
 
 
@@ -163,13 +162,21 @@ def main(argv: list[str] | None = None) -> int:
     outcomes = drive(args.cases, args.seed, root, args.time_limit)
     seconds = time.monotonic() - began
     tally = counts(outcomes)
-    print(f"{len(outcomes)} cases (seed {args.seed}) in {seconds:.0f} s: " + ", ".join(f"{n} {k}" for k, n in tally.items()))
+    print(
+        f"{len(outcomes)} cases (seed {args.seed}) in {seconds:.0f} s: "
+        + ", ".join(f"{n} {k}" for k, n in tally.items())
+    )
     print(f"by target: {dict(sorted(Counter(o.target for o in outcomes).items()))}")
     if args.json:
         args.json.write_text(
             json.dumps(
-                {"seed": args.seed, "cases": args.cases, "seconds": round(seconds, 1), "counts": tally,
-                 "outcomes": [dataclasses.asdict(o) for o in outcomes]},
+                {
+                    "seed": args.seed,
+                    "cases": args.cases,
+                    "seconds": round(seconds, 1),
+                    "counts": tally,
+                    "outcomes": [dataclasses.asdict(o) for o in outcomes],
+                },
                 indent=1,
             )
         )
