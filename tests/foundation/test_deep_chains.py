@@ -11,8 +11,8 @@ import re
 from pathlib import Path
 
 import pytest
-
 from benchmarks.deep_chain import chain_urdf
+
 from robodesc.cli import main
 from robodesc.emit.common import gains
 from robodesc.emit.common.stance import Stance
