@@ -40,9 +40,10 @@ RUNNER = (
     "tune_gc()\n"
     "code = main(sys.argv[1:])\n"
     "sys.stderr.flush()\n"
-    "own = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss\n"
-    "kids = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss\n"
-    "print(f'@@rss {max(own, kids)}', file=sys.stderr)\n"
+    "own = resource.getrusage(resource.RUSAGE_SELF)\n"
+    "kids = resource.getrusage(resource.RUSAGE_CHILDREN)\n"
+    "cpu = own.ru_utime + own.ru_stime + kids.ru_utime + kids.ru_stime\n"
+    "print(f'@@rss {max(own.ru_maxrss, kids.ru_maxrss)} {cpu:.1f}', file=sys.stderr)\n"
     "sys.exit(code)\n"
 )
 # target -> (options, output relative to the run's folder)
@@ -79,13 +80,16 @@ def run_target(src: Path, target: str, work: Path, timeout: float) -> dict[str, 
                 "peak_rss_mib": None, "written": out.exists(), "message": f"no answer within {timeout:.0f} s"}  # fmt: skip
     seconds = time.perf_counter() - start
     lines = done.stderr.strip().splitlines()
-    rss = next((int(line.split()[1]) for line in reversed(lines) if line.startswith("@@rss ")), None)
+    usage = next((line.split()[1:] for line in reversed(lines) if line.startswith("@@rss ")), None)
+    rss = int(usage[0]) if usage else None
+    cpu = float(usage[1]) if usage and len(usage) > 1 else None
     said = [line for line in lines if not line.startswith("@@rss ")]
     first = next((line for line in said if line.startswith(("error", "robodesc"))), said[0] if said else "")
     return {
         "target": target,
         "exit": done.returncode,
         "seconds": round(seconds, 1),
+        "cpu_seconds": cpu,
         "peak_rss_mib": round(rss / 1024) if rss else None,
         "written": out.exists(),
         "message": first[:400],
@@ -99,8 +103,8 @@ def to_markdown(rows: list[dict[str, object]], links: int, note: str) -> str:
         "",
         note,
         "",
-        "| target | exit | time (s) | peak RSS (MiB) | written | first line |",
-        "|---|---:|---:|---:|---|---|",
+        "| target | exit | wall (s) | CPU (s) | peak RSS (MiB) | written | first line |",
+        "|---|---:|---:|---:|---:|---|---|",
     ]
     for r in rows:
         message = str(r["message"]).replace("|", "\\|")
