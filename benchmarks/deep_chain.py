@@ -120,7 +120,19 @@ def main() -> None:
     parser.add_argument("--targets", default=",".join(TARGETS))
     parser.add_argument("--timeout", type=float, default=1800.0, help="seconds per target")
     parser.add_argument("--out", type=Path, help="write OUT.json and OUT.md")
+    parser.add_argument(
+        "--merge", type=Path, nargs="+", metavar="JSON", help="combine earlier runs' JSON files into --out (no run)"
+    )
     args = parser.parse_args()
+    if args.merge:
+        runs = [json.loads(path.read_text(encoding="utf-8")) for path in args.merge]
+        merged = [row for run in runs for row in run["runs"]]
+        note = runs[0]["note"]
+        args.out.with_suffix(".json").write_text(
+            json.dumps({"links": runs[0]["links"], "note": note, "runs": merged}, indent=2) + "\n", encoding="utf-8"
+        )
+        args.out.with_suffix(".md").write_text(to_markdown(merged, runs[0]["links"], note), encoding="utf-8")
+        return
     rows = []
     with tempfile.TemporaryDirectory(prefix="robodesc-deep-chain-") as tmp:
         src = Path(tmp) / f"chain{args.links}.urdf"

@@ -85,7 +85,7 @@ def test_drake_validation_of_a_deep_tree_skips_only_fk(
 
 
 def test_derived_gains_vectorised_equal_the_exact_sums(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Beyond 4,096 moved links the subtree sums run in numpy (a chain's n²/2 terms); they equal the
+    """Beyond 512 moved links the subtree sums run in numpy (a chain's n²/2 terms); they equal the
     exact per-link sums to rounding, on a branching robot."""
     robot = load_path(str(ROOT / "examples" / "quadruped.yaml")).robot
     stance = Stance({j.name: 0.0 for j in robot.joints if j.type.dof == 1}, "zeros")

@@ -137,8 +137,9 @@ class HasGains(Protocol):
 
 
 # Subtrees with more massive links than this are summed with numpy: a chain's joints each move every
-# link beyond them, n²/2 terms in all (1.25e9 for 50,000 links). Smaller ones keep the exact sums.
-_VECTOR_FROM = 4096
+# link beyond them, n²/2 terms in all (1.25e9 for 50,000 links). Smaller ones keep the exact sums
+# (robots of a few hundred links: the numbers are those before this change, bit for bit).
+_VECTOR_FROM = 512
 
 
 class _MovedLinks:
@@ -211,8 +212,9 @@ class _MovedLinks:
             d2 = ((com[a:b] - origin) ** 2).sum(axis=1)
             return float((mass[a:b] * d2 + moment[a:b]).sum())
         total = 0.0
+        angular = joint.type.is_angular
         for m, com_, top in self.rows[a:b]:
-            if not joint.type.is_angular:
+            if not angular:
                 total += m
                 continue
             total += m * _distance_sq(com_, origin)
