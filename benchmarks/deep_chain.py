@@ -17,6 +17,7 @@ import argparse
 import json
 import os
 import platform
+import re
 import subprocess
 import sys
 import tempfile
@@ -103,13 +104,16 @@ def to_markdown(rows: list[dict[str, object]], links: int, note: str) -> str:
         "",
         note,
         "",
-        "| target | exit | wall (s) | CPU (s) | peak RSS (MiB) | written | first line |",
-        "|---|---:|---:|---:|---:|---|---|",
+        "| target | links | exit | wall (s) | CPU (s) | peak RSS (MiB) | written | first line |",
+        "|---|---:|---:|---:|---:|---:|---|---|",
     ]
     for r in rows:
-        message = str(r["message"]).replace("|", "\\|")
+        # The run's temporary folder says nothing: the output as the user named it.
+        message = re.sub(r"/\S*robodesc-deep-chain-[^/]+/", "", str(r["message"])).replace("|", "\\|")
+        n = int(r.get("links", links))  # type: ignore[call-overload]
         out.append(
-            f"| {r['target']} | {r['exit']} | {r['seconds']} | {r['peak_rss_mib']} | {r['written']} | {message} |"
+            f"| {r['target']} | {n:,} | {r['exit']} | {r['seconds']} | {r.get('cpu_seconds')} "
+            f"| {r['peak_rss_mib']} | {r['written']} | {message} |"
         )
     return "\n".join(out) + "\n"
 
@@ -126,7 +130,7 @@ def main() -> None:
     args = parser.parse_args()
     if args.merge:
         runs = [json.loads(path.read_text(encoding="utf-8")) for path in args.merge]
-        merged = [row for run in runs for row in run["runs"]]
+        merged = [{"links": run["links"], **row} for run in runs for row in run["runs"]]
         note = runs[0]["note"]
         args.out.with_suffix(".json").write_text(
             json.dumps({"links": runs[0]["links"], "note": note, "runs": merged}, indent=2) + "\n", encoding="utf-8"

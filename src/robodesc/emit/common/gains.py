@@ -230,7 +230,9 @@ class _MovedLinks:
             import numpy as np
 
             mass, com, _ = self._vectors()
-            return float(mass[a:b] @ np.sqrt(((com[a:b] - origin) ** 2).sum(axis=1)))
+            # Multiply and sum, not ``@``: a dot product goes to BLAS, whose worker threads spin on a
+            # busy machine (a 50,000-link chain sat in exec_blas for minutes).
+            return float((mass[a:b] * np.sqrt(((com[a:b] - origin) ** 2).sum(axis=1))).sum())
         return sum(m * math.sqrt(_distance_sq(c, origin)) for m, c, _ in self.rows[a:b])
 
 
