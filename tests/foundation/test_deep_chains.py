@@ -84,6 +84,17 @@ def test_drake_validation_of_a_deep_tree_skips_only_fk(
     assert any(c["name"] == "mass" and c["status"] == "pass" for c in checks)
 
 
+def test_drake_does_not_parse_a_tree_deeper_than_its_graph_checks_take(
+    chain: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """libsdformat's graph checks grow with depth²: past the limit validation says so, exit 0."""
+    monkeypatch.setattr("robodesc.validation.drake_sdf.DRAKE_PARSE_DEPTH", 3)
+    assert main(["compile", str(chain), "-t", "sdf", "-o", str(tmp_path / "c.sdf"), "--json"]) == 0
+    checks = json.loads(capsys.readouterr().out)["validation"]["checks"]
+    assert [c["status"] for c in checks if c["name"] == "drake-parse"] == ["warn"]
+    assert "5 joints deep" in checks[0]["message"] and (tmp_path / "c.sdf").is_file()
+
+
 def test_derived_gains_vectorised_equal_the_exact_sums(monkeypatch: pytest.MonkeyPatch) -> None:
     """Beyond 512 moved links the subtree sums run in numpy (a chain's n²/2 terms); they equal the
     exact per-link sums to rounding, on a branching robot."""
