@@ -126,9 +126,9 @@ def validate_sdf(
             "drake-parse",
             Status.WARN,
             "document",
-            f"not parsed: the tree is {depth} joints deep, and libsdformat's graph checks inside Drake take time "
-            f"that grows with the square of the depth (11 s at 10,000, far longer at 50,000); Drake parses trees "
-            f"up to {DRAKE_PARSE_DEPTH} deep",
+            f"not loaded: the tree is {depth} joints deep and Drake's SDF parser takes time that grows with the "
+            f"square of the depth beyond {DRAKE_PARSE_DEPTH} (libsdformat's graph checks: 11 s at 10,000, "
+            "far longer at 50,000); the other checks need the parsed model",
         )
         return report
     finalize = depth <= DRAKE_FINALIZE_DEPTH
