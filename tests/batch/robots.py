@@ -91,13 +91,21 @@ def build():
     b.link("base", box(0.1, 0.1, 0.1), mass=1.0)
     b.link("arm", box(0.05, 0.05, 0.3), mass=0.5, pose=(0, 0, 0.2))
     b.joint("j", "revolute", "base", "arm", axis="y", lower=-1, upper=1, effort=1, velocity=1)
-    return b.build()
+    robot = b.build()
+    {after}
+    return robot
 """
 
 
-def python_robot(path: Path, name: str, body: str = "pass", prelude: str = "") -> Path:
-    path.write_text(PYTHON_ROBOT.format(name=name, body=body, prelude=prelude), encoding="utf-8")
+def python_robot(path: Path, name: str, body: str = "pass", prelude: str = "", after: str = "pass") -> Path:
+    """A Python composition; ``body`` runs before it builds, ``after`` on the built ``robot``."""
+    path.write_text(PYTHON_ROBOT.format(name=name, body=body, prelude=prelude, after=after), encoding="utf-8")
     return path
+
+
+# A composition's own exception is an input error (exit 2 at its line); one in robodesc's code is a
+# crash. A robot that is not valid IR (a None visual) makes robodesc's own code raise.
+CORRUPT_IR = "robot.links[0].visuals.append(None)"
 
 
 def make_collection(root: Path) -> Path:

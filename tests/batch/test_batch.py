@@ -23,7 +23,7 @@ from robodesc.frontends.options import LoadOptions, MissingMesh
 from robodesc.ir.diagnostics import ConfigError
 from robodesc.options import CompileOptions
 
-from .robots import STL, make_collection, mesh_urdf, python_robot
+from .robots import CORRUPT_IR, STL, make_collection, mesh_urdf, python_robot
 
 
 def batch(*args: str) -> tuple[int, dict[str, Any]]:
@@ -232,6 +232,7 @@ def test_a_crash_an_exception_and_a_timeout_are_results_and_the_batch_goes_on(tm
         robots / "segfault.py", "segfault", body="os.kill(os.getpid(), signal.SIGSEGV)", prelude="import os, signal"
     )
     python_robot(robots / "raises.py", "raises", body="raise RuntimeError('boom')")
+    python_robot(robots / "corrupt.py", "corrupt", after=CORRUPT_IR)
     python_robot(robots / "hangs.py", "hangs", body="time.sleep(120)", prelude="import time")
     out = tmp_path / "out"
     started = time.monotonic()
@@ -241,13 +242,16 @@ def test_a_crash_an_exception_and_a_timeout_are_results_and_the_batch_goes_on(tm
     assert pebble.common.CONSTS.sleep_unit == 0.1  # the finer tick of a batch's pools is put back
     jobs = by_id(summary)
     assert jobs["segfault"]["status"] == "crashed" and "SIGSEGV" in jobs["segfault"]["error"]
-    assert jobs["raises"]["status"] == "crashed" and jobs["raises"]["error"] == "RuntimeError: boom"
+    # The composition's own exception is its error, at its line (issue 26: it was a crash).
+    assert jobs["raises"]["status"] == "error" and "raises.py:" in jobs["raises"]["error"]
+    assert "raised RuntimeError: boom" in jobs["raises"]["error"]
+    assert jobs["corrupt"]["status"] == "crashed" and jobs["corrupt"]["error"].startswith("AttributeError")
     assert jobs["hangs"]["status"] == "timeout"
     assert {jobs[k]["status"] for k in ("alpha", "beta", "arm/arm", "pendulum")} == {"ok"}
     assert summary["totals"]["by_outcome"] == {
         "ok": 4,
         "validation-failed": 0,
-        "error": 0,
+        "error": 1,
         "crashed": 2,
         "timeout": 1,
         "not-run": 0,
@@ -331,7 +335,7 @@ def _tree(root: Path) -> dict[str, bytes]:
 def test_ray_gives_the_same_summary_and_bytes_as_the_local_pool(tmp_path: Path) -> None:
     pytest.importorskip("ray")
     robots = make_collection(tmp_path)
-    python_robot(robots / "raises.py", "raises", body="raise RuntimeError('boom')")
+    python_robot(robots / "raises.py", "raises", after=CORRUPT_IR)
     common = ("-t", "usd", "-j", "2", "--run-python")
     code_local, local = batch(str(robots), "-o", str(tmp_path / "local"), *common)
     code_ray, on_ray = batch(str(robots), "-o", str(tmp_path / "ray"), *common, "--executor", "ray")

@@ -161,3 +161,53 @@ def test_validation_rows_name_the_output_not_its_staged_copy(
     assert code == 0
     text = capsys.readouterr()
     assert ".robodesc-" not in text.out + text.err
+
+
+def test_a_composition_whose_build_raises_is_an_input_error_at_its_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """build() raising an ordinary exception was a traceback-class exit 3 ("robodesc bug")."""
+    script = tmp_path / "raises.py"
+    script.write_text(
+        "import robodesc\n\n\ndef helper():\n    return {}['missing']\n\n\ndef build():\n    return helper()\n"
+    )
+    assert main(["compile", str(script), "-o", str(tmp_path / "x.urdf")]) == 2
+    err = capsys.readouterr().err
+    assert "raises.py:5:" in err and "raised KeyError" in err and "robodesc bug" not in err
+    assert not (tmp_path / "x.urdf").exists()
+    broken = tmp_path / "syntax.py"
+    broken.write_text("import robodesc\n\ndef build(:\n    pass\n")
+    assert main(["compile", str(broken), "-o", str(tmp_path / "x.urdf")]) == 2
+    assert "syntax.py:3:" in capsys.readouterr().err
+    # In a batch it is that job's error, not a crash.
+    out = tmp_path / "out"
+    assert main(["batch", str(script), "-o", str(out), "-q", "-j", "1"]) == 2
+    import json
+
+    (job,) = json.loads((out / "summary.json").read_text())["jobs"]
+    assert job["status"] == "error" and "raises.py:5" in job["error"]
+
+
+def test_a_composition_raising_keyboard_interrupt_ends_its_job_not_the_batch(tmp_path: Path) -> None:
+    """A KeyboardInterrupt from a job's own code made the whole batch exit 130 as if Ctrl-C."""
+    import json
+
+    script = tmp_path / "interrupts.py"
+    script.write_text("import robodesc\n\n\ndef build():\n    raise KeyboardInterrupt\n")
+    out = tmp_path / "out"
+    assert main(["batch", str(script), ARM, "-o", str(out), "-q", "-j", "1"]) == 2
+    jobs = {j["id"]: j for j in json.loads((out / "summary.json").read_text())["jobs"]}
+    assert jobs["interrupts"]["status"] == "error" and jobs["gripper_arm"]["status"] == "ok"
+
+
+@pytest.mark.parametrize("flag", ["--ros2", "--isaac-sim"])
+def test_folder_targets_name_files_after_the_input_not_the_robot(tmp_path: Path, flag: str) -> None:
+    """pybullet's humanoid (robot name 'dumpUrdf') gave a ROS 2 folder of dumpUrdf.* files."""
+    source = tmp_path / "humanoid.urdf"
+    source.write_text(Path(ARM).read_text().replace('name="gripper_arm"', 'name="dumpUrdf"', 1))
+    out = tmp_path / "out"
+    assert main(["compile", str(source), flag, "-o", str(out), "-q", "--no-validate", "--no-preview"]) == 0
+    names = sorted(p.name for p in out.iterdir())
+    assert "humanoid.urdf" in names and not [n for n in names if "dumpUrdf" in n]
+    expected = {"--ros2": "humanoid.launch.py", "--isaac-sim": "humanoid_isaaclab.py"}[flag]
+    assert expected in names

@@ -3,15 +3,26 @@
 Each case takes one seed input (URDF, xacro, YAML composition, ``.holo``) and its mesh, applies one
 to three mutations (extreme numbers, deleted/duplicated/swapped lines, renamed references, control
 characters, deep nesting, truncation, hostile xacro expressions, hostile mesh references, corrupted
-mesh bytes), and compiles it for one target through ``robodesc.cli.main`` in this process under a
-``SIGALRM`` time bound. A case passes when it ends in
+mesh bytes), and compiles it for one target (URDF, SDF, USD as ``.usda`` and ``.usdc``, MJCF, the
+ROS 2 and the Isaac folders) through ``robodesc.cli.main`` in this process under a ``SIGALRM``
+time bound. One case in ten is a batch folder instead (:func:`prepare_batch`): the mutated seed
+among other robots, named pipes, Python compositions that must not run without ``--run-python``,
+and symlinks in and out of the folder and out of the output folder, through ``robodesc batch``.
 
-- exit 0, and the output loads (URDF/SDF parse as XML with the right root, USD opens in usd-core), or
-- exit 1 or 2, with no traceback, and the output that existed before the run byte-identical;
+A case passes when it ends in
 
-and fails as ``crash`` (an exception escaped ``main``, a traceback was printed, another exit code),
-``hang`` (the time bound), ``bad-output`` (exit 0 but the output does not load) or ``partial-output``
-(a failed run changed the earlier output).
+- exit 0, and the output loads (URDF/SDF parse as XML with the right root, USD opens in usd-core,
+  MJCF loads in MuJoCo, a folder holds its files named after the input), or
+- exit 2, with no traceback, and the output that existed before the run byte-identical;
+
+and fails as ``crash`` (an exception escaped ``main``, a traceback was printed, exit 3 or another
+code, a batch job crashed), ``hang`` (the time bound, or a batch job's timeout), ``blame`` (exit 1,
+"robodesc's fault": on a mutated source this is either a source defect blamed on robodesc or a real
+robodesc bug, and both are to be fixed), ``bad-output`` (exit 0 but the output does not load),
+``partial-output`` (a failed run changed the earlier output), ``ran-python`` (a batch ran a Python
+file it was not told to) or ``escaped`` (a batch wrote outside its output folder).
+The test tier (``tests/fuzz/run.sh``) also runs each case in a child process, so that a signal
+(a segfault in native code) is a ``crash`` and a hang in native code is a ``hang``.
 """
 
 from __future__ import annotations
@@ -37,6 +48,8 @@ TARGETS: dict[str, tuple[list[str], str]] = {
     "usda": (["-t", "usd"], "out.usda"),
     "usdc": (["-t", "usd"], "out.usdc"),
     "isaac": (["--isaac-sim"], "out_isaac"),
+    "mjcf": (["-t", "mjcf"], "out_mjcf/robot.xml"),
+    "ros2": (["--ros2"], "out_ros2"),
 }
 TIME_LIMIT = 30  # seconds per case: far above any honest case (the slowest take ~2 s)
 SENTINEL = b"earlier output: a failed run must leave these bytes alone\n"
@@ -84,7 +97,7 @@ class Outcome:
     seed_file: str
     target: str
     mutations: list[str]
-    status: str  # ok | refused | crash | hang | bad-output | partial-output
+    status: str  # ok | refused | crash | hang | blame | bad-output | partial-output | ran-python | escaped
     exit_code: int | None
     detail: str = ""
     case_dir: str = ""
@@ -254,24 +267,25 @@ WEIGHTS = {"number": 5, "numbers": 2, "hostile-xacro": 2, "hostile-mesh": 2, "me
 # ---- one case ---------------------------------------------------------------------------------
 
 
-def prepare(case: int, seed: int, root: Path) -> tuple[Path, str, list[str], list[str]]:
-    """Write case ``case`` under ``root``: returns (input, target, CLI options, mutation names)."""
-    rng = random.Random(f"{seed}:{case}")
-    seed_file = rng.choice(SEED_FILES)
-    target = rng.choice(sorted(TARGETS))
-    case_dir = root / f"case{case}"
-    if case_dir.exists():
-        shutil.rmtree(case_dir)
-    (case_dir / "meshes").mkdir(parents=True)
-    shutil.copy(SEEDS / "meshes" / "finger.stl", case_dir / "meshes" / "finger.stl")
-    (case_dir / "meshes" / "broken.stl").write_bytes(b"solid x\nfacet normal 0 0 1\nouter loop\nvertex 1 2\n")
-    (case_dir / "meshes" / "finger.dae").write_bytes(b"<COLLADA><library_geometries/></COLLADA>")
-    (case_dir / "package.xml").write_text("<package><name>fuzzpkg</name></package>\n")
-    with contextlib.suppress(OSError):
-        os.mkfifo(case_dir / "meshes" / "pipe.stl")
-    with contextlib.suppress(OSError):
-        os.symlink("/etc/passwd", case_dir / "meshes" / "link_to_passwd.stl")
-    path = case_dir / seed_file
+BATCH_SHARE = 0.1  # one case in ten is a batch folder
+
+
+@dataclasses.dataclass(slots=True)
+class Case:
+    """One prepared case: the command line, and what the checks after the run need."""
+
+    argv: list[str]
+    input: Path  # the mutated seed
+    target: str
+    mutations: list[str]
+    out: Path
+    batch: bool = False
+    run_python: bool = False
+    marker: Path | None = None  # a Python file in a batch folder writes this when it runs
+    outside: Path | None = None  # a folder no batch may write into
+
+
+def _mutate(rng: random.Random, seed_file: str, path: Path) -> list[str]:
     text = (SEEDS / seed_file).read_text(encoding="utf-8")
     names = list(MUTATIONS)
     weights = [WEIGHTS.get(n, 1) for n in names]
@@ -281,11 +295,109 @@ def prepare(case: int, seed: int, root: Path) -> tuple[Path, str, list[str], lis
         text = MUTATIONS[name](rng, text, path)
         applied.append(name)
     path.write_text(text, encoding="utf-8", errors="surrogatepass")
-    options, _out = TARGETS[target]
+    return applied
+
+
+def _case_folder(case_dir: Path) -> None:
+    """The meshes and hostile files every case folder holds."""
+    (case_dir / "meshes").mkdir(parents=True)
+    shutil.copy(SEEDS / "meshes" / "finger.stl", case_dir / "meshes" / "finger.stl")
+    (case_dir / "meshes" / "broken.stl").write_bytes(b"solid x\nfacet normal 0 0 1\nouter loop\nvertex 1 2\n")
+    (case_dir / "meshes" / "finger.dae").write_bytes(b"<COLLADA><library_geometries/></COLLADA>")
+    (case_dir / "package.xml").write_text("<package><name>fuzzpkg</name></package>\n")
+    with contextlib.suppress(OSError):
+        os.mkfifo(case_dir / "meshes" / "pipe.stl")
+    with contextlib.suppress(OSError):
+        os.symlink("/etc/passwd", case_dir / "meshes" / "link_to_passwd.stl")
+
+
+def prepare(case: int, seed: int, root: Path) -> Case:
+    """Write case ``case`` under ``root``."""
+    rng = random.Random(f"{seed}:{case}")
+    seed_file = rng.choice(SEED_FILES)
+    target = rng.choice(sorted(TARGETS))
+    case_dir = root / f"case{case}"
+    if case_dir.exists():
+        shutil.rmtree(case_dir)
+    if rng.random() < BATCH_SHARE:
+        return prepare_batch(rng, case_dir, seed_file, target)
+    _case_folder(case_dir)
+    path = case_dir / seed_file
+    applied = _mutate(rng, seed_file, path)
+    options, out_name = TARGETS[target]
     extra = ["--no-validate"] if rng.random() < 0.85 else []  # validation is the slow part: one case in 7
     if rng.random() < 0.2:
         extra.append("--copy-meshes")
-    return path, target, [*options, *extra], applied
+    out = case_dir / out_name
+    argv = ["compile", str(path), *options, *extra, "-o", str(out), "-q"]
+    return Case(argv, path, target, applied, out)
+
+
+# A Python composition in a batch folder: it says that it ran (the marker), then its build() does
+# one of these. Without --run-python none of it may run.
+PYTHON_BODIES = (
+    "raise ValueError('a composition bug')",
+    "raise SystemExit(0)",
+    "return 42",
+    "return robodesc.frontends.compose.builder.RobotBuilder",
+    "import sys\n    sys.exit('exit from build')",
+    "raise KeyboardInterrupt",
+)
+
+
+def prepare_batch(rng: random.Random, case_dir: Path, seed_file: str, target: str) -> Case:
+    """A batch folder: the mutated seed and the other seeds, named pipes with robot suffixes, Python
+    compositions, symlinks inside the folder, out of it and in a loop; a folder beside it that no
+    run may write into, reached through symlinks from the inputs and from the output folder."""
+    robots = case_dir / "robots"
+    _case_folder(robots)
+    outside = case_dir / "outside"
+    outside.mkdir()
+    (outside / "victim.txt").write_text("outside the output folder\n")
+    shutil.copy(SEEDS / "arm.urdf", outside / "secret.urdf")
+    (outside / "meshes").mkdir()
+    shutil.copy(SEEDS / "meshes" / "finger.stl", outside / "meshes" / "finger.stl")
+    path = robots / seed_file
+    applied = _mutate(rng, seed_file, path)
+    for other in SEED_FILES:
+        if other != seed_file and rng.random() < 0.5:
+            shutil.copy(SEEDS / other, robots / other)
+    for name in ("pipe.urdf", "pipe.yaml", "pipe.holo", "pipe.urdf.xacro", "pipe.py"):
+        with contextlib.suppress(OSError):
+            os.mkfifo(robots / name)
+    marker = case_dir / "python_ran"
+    for k, body in enumerate(rng.sample(PYTHON_BODIES, 2)):
+        (robots / f"composition{k}.py").write_text(
+            f"import robodesc  # a robodesc composition\nimport pathlib\n"
+            f"pathlib.Path({str(marker)!r}).write_text('ran')\n\n\ndef build():\n    {body}\n"
+        )
+    links = {
+        "inside_link.urdf": seed_file if seed_file.endswith(".urdf") else "arm.urdf",
+        "outside_link.urdf": "../outside/secret.urdf",
+        "outside_dir": "../outside",
+        "loop": ".",
+        "dangling.urdf": "nowhere.urdf",
+        "passwd.urdf": "/etc/passwd",
+    }
+    for name, where in links.items():
+        if rng.random() < 0.7:
+            os.symlink(where, robots / name)
+    out = case_dir / "out"
+    extra = ["--no-validate"] if rng.random() < 0.8 else []
+    if rng.random() < 0.4:
+        extra.append("--copy-meshes")
+        # An earlier output folder whose meshes/ leads outside: copying may not write through it.
+        for stem in ("arm", "four_bar", "inside_link", "outside_link"):
+            (out / stem).mkdir(parents=True, exist_ok=True)
+            os.symlink(str(outside / "meshes"), out / stem / "meshes")
+    run_python = rng.random() < 0.3
+    if run_python:
+        extra.append("--run-python")
+    options, _ = TARGETS[target]
+    if target == "usdc":
+        options = [*options, "--suffix", ".usdc"]
+    argv = ["batch", str(robots), *options, *extra, "-o", str(out), "-q", "-j", "1", "--timeout", "20"]
+    return Case(argv, path, target, ["batch", *applied], out, True, run_python, marker, outside)
 
 
 class _Timeout(BaseException):
@@ -320,7 +432,13 @@ def _plant_sentinel(out: Path) -> None:
         (out / "earlier.txt").write_bytes(SENTINEL)
 
 
-def check_output(target: str, out: Path) -> str | None:
+def input_stem(path: Path) -> str:
+    """``arm.urdf.xacro`` -> ``arm``: what a folder target names its files after."""
+    name = path.name.removesuffix(".xacro")
+    return name.rsplit(".", 1)[0]
+
+
+def check_output(target: str, out: Path, source: Path | None = None) -> str | None:
     """Why the output of a successful run does not load, or ``None``."""
     from lxml import etree
 
@@ -330,11 +448,28 @@ def check_output(target: str, out: Path) -> str | None:
             if root.tag != ("robot" if target == "urdf" else "sdf"):
                 return f"root element is <{root.tag}>"
             return None
+        if target == "mjcf":
+            import mujoco
+
+            mujoco.MjModel.from_xml_path(str(out))
+            return None
+        stem = input_stem(source) if source is not None else None
+        if target == "ros2":
+            urdfs = sorted(out.glob("*.urdf"))
+            if not urdfs:
+                return "no URDF in the ROS 2 folder"
+            if stem is not None and urdfs[0].name != f"{stem}.urdf":
+                return f"the ROS 2 folder's URDF is {urdfs[0].name}, not named after the input {source.name}"
+            if etree.parse(str(urdfs[0])).getroot().tag != "robot":
+                return "the ROS 2 URDF's root is not <robot>"
+            return None
         from pxr import Usd
 
         usd = out if target != "isaac" else next(iter(sorted(out.glob("*.usd*"))), None)
         if usd is None:
             return "no USD file in the Isaac folder"
+        if target == "isaac" and stem is not None and usd.name != f"{stem}.usda":
+            return f"the Isaac folder's USD is {usd.name}, not named after the input {source.name}"
         stage = Usd.Stage.Open(str(usd))
         if stage is None or not stage.GetDefaultPrim():
             return "usd-core opens no stage with a default prim"
@@ -343,16 +478,82 @@ def check_output(target: str, out: Path) -> str | None:
         return f"{type(exc).__name__}: {exc}"
 
 
+def _classify(case: Case, code: int, err: str, before: dict[str, bytes], outcome: Outcome) -> None:
+    outcome.exit_code = code
+    if "Traceback (most recent call last)" in err:
+        outcome.status, outcome.detail = "crash", err[-3000:]
+    elif code == 0:
+        problem = check_output(case.target, case.out, case.input)
+        if problem is not None:
+            outcome.status, outcome.detail = "bad-output", problem
+    elif code == 1:
+        outcome.status = "blame"
+        outcome.detail = err.strip().splitlines()[0] if err.strip() else ""
+    elif code == 2:
+        outcome.status = "refused"
+        outcome.detail = err.strip().splitlines()[0] if err.strip() else ""
+        if _snapshot(case.out) != before:
+            outcome.status = "partial-output"
+            outcome.detail = f"exit {code} changed the earlier output: {outcome.detail}"
+    else:
+        outcome.status, outcome.detail = "crash", f"exit code {code}: {err[-2000:]}"
+
+
+def _classify_batch(case: Case, code: int, err: str, outside: dict[str, bytes], outcome: Outcome) -> None:
+    """A batch's exit code follows its jobs (0 all ok, 1 a validation failed, 2 a job failed): the
+    jobs' outcomes in summary.json say which were crashes, timeouts and blames."""
+    import json
+
+    outcome.exit_code = code
+    jobs: list[dict[str, object]] = []
+    summary_file = case.out / "summary.json"
+    if summary_file.is_file():
+        jobs = json.loads(summary_file.read_text(encoding="utf-8"))["jobs"]
+    by_status = {str(j["status"]): j for j in jobs}
+    first = err.strip().splitlines()[0] if err.strip() else ""
+    if "Traceback (most recent call last)" in err:
+        outcome.status, outcome.detail = "crash", err[-3000:]
+    elif code not in (0, 1, 2):
+        outcome.status, outcome.detail = "crash", f"exit code {code}: {err[-2000:]}"
+    elif "crashed" in by_status:
+        outcome.status, outcome.detail = (
+            "crash",
+            f"job {by_status['crashed'].get('id')}: {by_status['crashed'].get('error')}",
+        )
+    elif "timeout" in by_status:
+        outcome.status, outcome.detail = "hang", f"job {by_status['timeout'].get('id')} timed out"
+    elif case.marker is not None and case.marker.exists() and not case.run_python:
+        outcome.status, outcome.detail = "ran-python", "a Python file in the folder ran without --run-python"
+    elif case.outside is not None and _snapshot(case.outside) != outside:
+        outcome.status, outcome.detail = "escaped", "the batch wrote into a folder outside its output"
+    elif code == 1 or "validation-failed" in by_status:
+        job = by_status.get("validation-failed", {})
+        outcome.status, outcome.detail = "blame", f"job {job.get('id')}: {job.get('error')} {first}"
+    elif not summary_file.is_file() and code != 2:
+        outcome.status, outcome.detail = "crash", f"exit {code} without summary.json: {first}"
+    else:
+        outcome.status = "ok" if code == 0 else "refused"
+        outcome.detail = first
+
+
 def run_case(case: int, seed: int, root: Path, time_limit: int = TIME_LIMIT) -> Outcome:
     from robodesc.cli import main
 
-    path, target, options, applied = prepare(case, seed, root)
-    out = path.parent / TARGETS[target][1]
-    _plant_sentinel(out)
-    before = _snapshot(out)
+    prepared = prepare(case, seed, root)
+    out = prepared.out
+    outcome = Outcome(
+        case, prepared.input.name, prepared.target, prepared.mutations, "ok", None, case_dir=str(out.parent)
+    )
+    if prepared.batch:
+        outcome.case_dir = str(prepared.input.parent.parent)
+        outcome.target = f"batch-{prepared.target}"
+        before = _snapshot(prepared.outside) if prepared.outside else {}
+    else:
+        out.parent.mkdir(parents=True, exist_ok=True)
+        _plant_sentinel(out)
+        before = _snapshot(out)
     stdout, stderr = io.StringIO(), io.StringIO()
-    argv = ["compile", str(path), *options, "-o", str(out), "-q"]
-    outcome = Outcome(case, path.name, target, applied, "ok", None, case_dir=str(path.parent))
+    argv = prepared.argv
     try:
         with _alarm(time_limit), contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
             code = main(argv)
@@ -363,24 +564,13 @@ def run_case(case: int, seed: int, root: Path, time_limit: int = TIME_LIMIT) -> 
         outcome.status = "crash"
         outcome.detail = "".join(traceback.format_exception(exc))[-3000:]
         return outcome
-    outcome.exit_code = code
     err = stderr.getvalue()
-    if "Traceback (most recent call last)" in err:
-        outcome.status, outcome.detail = "crash", err[-3000:]
-    elif code == 0:
-        problem = check_output(target, out)
-        if problem is not None:
-            outcome.status, outcome.detail = "bad-output", problem
-    elif code in (1, 2):
-        outcome.status = "refused"
-        outcome.detail = err.strip().splitlines()[0] if err.strip() else ""
-        if _snapshot(out) != before:
-            outcome.status = "partial-output"
-            outcome.detail = f"exit {code} changed the earlier output: {outcome.detail}"
+    if prepared.batch:
+        _classify_batch(prepared, code, err, before, outcome)
     else:
-        outcome.status, outcome.detail = "crash", f"exit code {code}: {err[-2000:]}"
+        _classify(prepared, code, err, before, outcome)
     if not outcome.failed:
-        shutil.rmtree(path.parent, ignore_errors=True)
+        shutil.rmtree(outcome.case_dir, ignore_errors=True)
     return outcome
 
 

@@ -1,7 +1,9 @@
 """The seeded mutation fuzzer (tests/fuzz/fuzzer.py) in the suite.
 
-CI runs ``ROBODESC_FUZZ_CASES`` cases (default 300, about a minute on two cores); the long mode is
-the same test with more cases, e.g. ``ROBODESC_FUZZ_CASES=5000 python -m pytest tests/fuzz -k fuzz``
+CI runs ``ROBODESC_FUZZ_CASES`` cases (default 300, about a minute on two cores); the test tier
+``tests/fuzz/run.sh`` runs 2,000 of the same sequence, each chunk in a child process so that a
+signal or a hang in native code is counted too. The long mode in process is the same test with more
+cases, e.g. ``ROBODESC_FUZZ_CASES=5000 python -m pytest tests/fuzz -k fuzz``
 (or ``python tests/fuzz/fuzzer.py 5000``). ``ROBODESC_FUZZ_SEED`` picks another sequence; a failing
 case is reproduced by its number and seed, and its folder is kept (the failure message names it).
 """
@@ -29,6 +31,17 @@ def test_fuzz_no_crash_hang_or_bad_output(outcomes: list[Outcome]) -> None:
     assert not bad, summary(bad)
 
 
+def test_fuzz_no_blame_for_a_source_defect(outcomes: list[Outcome]) -> None:
+    # Exit 1 says "robodesc's fault"; on a mutated source that is a false blame (or a real bug).
+    blamed = [o for o in outcomes if o.status == "blame"]
+    assert not blamed, summary(blamed)
+
+
+def test_fuzz_batches_run_no_python_and_write_only_inside_their_output(outcomes: list[Outcome]) -> None:
+    bad = [o for o in outcomes if o.status in ("ran-python", "escaped")]
+    assert not bad, summary(bad)
+
+
 def test_fuzz_failed_runs_leave_earlier_output(outcomes: list[Outcome]) -> None:
     # Outputs are staged, validated there and moved only on success (docs/diagnostics.md).
     partial = [o for o in outcomes if o.status == "partial-output"]
@@ -36,6 +49,7 @@ def test_fuzz_failed_runs_leave_earlier_output(outcomes: list[Outcome]) -> None:
 
 
 def test_fuzz_reaches_every_target_and_seed(outcomes: list[Outcome]) -> None:
-    assert {o.target for o in outcomes} == {"urdf", "sdf", "usda", "usdc", "isaac"}
+    plain = {"urdf", "sdf", "usda", "usdc", "isaac", "mjcf", "ros2"}
+    assert {o.target for o in outcomes} == plain | {f"batch-{t}" for t in plain}
     assert len({o.seed_file for o in outcomes}) == 4
     assert any(o.status == "ok" for o in outcomes) and any(o.status == "refused" for o in outcomes)

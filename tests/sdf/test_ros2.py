@@ -8,6 +8,7 @@ import pytest
 import yaml
 from lxml import etree
 
+from robodesc.emit.common.naming import file_stem
 from robodesc.emit.ros2 import CommandInterface, ControllerKind, Ros2Options, build_ros2_package
 from robodesc.frontends.load import load_string
 from tests.sdf import fixtures as fx
@@ -25,7 +26,7 @@ def test_files_parse_and_name_actuated_joints(
     actuated = [j.name for j in robot.actuated_joints()]
     mimics = [j.name for j in robot.joints if j.mimic is not None]
     files = build_ros2_package(robot, Ros2Options(command_interface=command, controller=controller)).files
-    slug = robot.name
+    slug = file_stem(robot)  # the files are named after the input file
 
     controllers = yaml.safe_load(files["controllers.yaml"])
     manager = controllers["controller_manager"]["ros__parameters"]

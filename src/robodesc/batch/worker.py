@@ -184,6 +184,11 @@ def run_job(job: Job) -> JobResult:
         result.status = ERROR
         result.error = err.render()
         result.findings = _failure_findings(err)
+    except KeyboardInterrupt:
+        # Workers ignore SIGINT (init_worker): Ctrl-C reaches the driver alone. One raised here came
+        # from the job's own code (a Python composition), and ends that job, not the batch.
+        result.status = ERROR
+        result.error = f"{job.path}: the job's own code raised KeyboardInterrupt"
     except Exception as err:  # a bug in robodesc or a consumer: this job's result, not the batch's end
         result.status = CRASHED
         result.error = f"{type(err).__name__}: {err}"

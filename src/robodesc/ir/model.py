@@ -385,6 +385,14 @@ class Robot:
             raise ValueError(f"robot {self.name!r} has {len(roots)} root links")
         return roots[0]
 
+    def tree_depth(self) -> int:
+        """The number of joints on the longest path from a root link (consumers that nest bodies,
+        MuJoCo and sdformat's frame graph, have limits or costs that grow with it)."""
+        depth: dict[str, int] = {}
+        for joint in self.topological_joints():  # parents before children
+            depth[joint.child] = depth.get(joint.parent, 0) + 1
+        return max(depth.values(), default=0)
+
     def topological_joints(self) -> list[Joint]:
         """Joints ordered so every joint's parent link is reached before its child (breadth first)."""
         by_parent = self.child_joints()

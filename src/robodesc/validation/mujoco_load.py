@@ -273,10 +273,7 @@ MUJOCO_MAX_DEPTH = 1023
 
 def tree_depth(robot: Robot) -> int:
     """The number of joints on the longest path from a root link."""
-    depth: dict[str, int] = {}
-    for joint in robot.topological_joints():  # parents before children
-        depth[joint.child] = depth.get(joint.parent, 0) + 1
-    return max(depth.values(), default=0)
+    return robot.tree_depth()
 
 
 def load_urdf_in_mujoco(

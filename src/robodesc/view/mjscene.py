@@ -1,7 +1,7 @@
 """A MuJoCo model built straight from the IR with ``mujoco.MjSpec``, for pictures only.
 
-Every link is a body welded to the world at its home-pose frame (no joints: a picture needs
-positions, not dynamics), every visual and collider a geom that collides with nothing. Meshes go
+Every visual and collider is a geom of the world body at its home-pose frame, colliding with
+nothing (no bodies or joints: a picture needs positions, not dynamics). Meshes go
 in as vertex and face arrays from robodesc's own readers, so no mesh file is converted and no
 MJCF is written. Visuals are geom group 1, colliders group 3: the renderer picks one or the other.
 """
@@ -15,7 +15,7 @@ import numpy as np
 
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Material, Mesh, Pose, Sphere
 from robodesc.ir.model import Robot
-from robodesc.ir.rigid import link_frames, pose_frame
+from robodesc.ir.rigid import Frame, link_frames, pose_frame
 from robodesc.meshes.buffers import MeshReadError
 from robodesc.meshes.data import MeshCache
 from robodesc.view.scene import COLLIDER_RGBA, DEFAULT_RGBA, home
@@ -88,9 +88,11 @@ class _Builder:
             self.mesh_names[key] = name
         return self.mesh_names[key]
 
-    def geom(self, body: Any, geometry: Geometry, origin: Pose | None, rgba: list[float], group: int) -> bool:
+    def geom(
+        self, body: Any, geometry: Geometry, origin: Pose | None, rgba: list[float], group: int, link: Frame
+    ) -> bool:
         g = self.mj.mjtGeom
-        frame = pose_frame(origin)
+        frame = link @ pose_frame(origin)
         kw: dict[str, Any] = {
             "pos": list(frame.translation),
             "quat": list(frame.quat()),
@@ -142,11 +144,14 @@ def _build(mujoco: Any, robot: Robot, size: tuple[int, int], visual: bool) -> Bu
         frame = frames.get(link.name)
         if frame is None:  # not reachable from a root: the verifier refused such robots already
             continue
-        body = builder.spec.worldbody.add_body(name=link.name, pos=list(frame.translation), quat=list(frame.quat()))
+        # Every geom on the world body at its home-pose frame: MuJoCo's mjSpec walks every body
+        # each time a geom is added (mjCModel::MakeTreeLists), so a body per link made a
+        # 50,000-link picture quadratic; the picture needs no bodies.
+        body = builder.spec.worldbody
         for v in link.visuals if visual else ():
-            visuals += builder.geom(body, v.geometry, v.origin, _rgba(v.material, named), VISUAL_GROUP)
+            visuals += builder.geom(body, v.geometry, v.origin, _rgba(v.material, named), VISUAL_GROUP, frame)
         for c in () if visual else link.collisions:
-            collisions += builder.geom(body, c.geometry, c.origin, [*COLLIDER_RGBA[:3], 1.0], COLLISION_GROUP)
+            collisions += builder.geom(body, c.geometry, c.origin, [*COLLIDER_RGBA[:3], 1.0], COLLISION_GROUP, frame)
     model = _compile(builder)
     return BuiltModel(model=model, visuals=visuals, collisions=collisions, skipped=builder.skipped)
 

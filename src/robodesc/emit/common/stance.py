@@ -70,7 +70,8 @@ def complete(robot: Robot, given: Mapping[str, float]) -> dict[str, float]:
     """Every 1-DOF joint's position: ``given`` clamped into the limits, 0 (clamped) otherwise,
     mimic followers from their leaders."""
     actuated = {j.name: clamp(j, given.get(j.name, 0.0)) for j in robot.actuated_joints() if j.type.dof == 1}
-    return {k: v for k, v in resolve_mimic(robot, actuated).items() if k in robot.joint_map()}
+    joints = robot.joint_map()  # once: asked per joint, it made a 50,000-joint chain quadratic
+    return {k: v for k, v in resolve_mimic(robot, actuated).items() if k in joints}
 
 
 def choose_stance(robot: Robot, given: Mapping[str, float] | None) -> Stance:

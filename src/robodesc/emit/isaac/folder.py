@@ -19,6 +19,7 @@ from collections.abc import Mapping
 
 from robodesc._files import staged_folder, write_files
 from robodesc._version import __version__
+from robodesc.emit.common.naming import file_stem
 from robodesc.emit.common.paths import PathMode
 from robodesc.emit.isaac.lab import isaac_lab_module
 from robodesc.emit.isaac.settings import IsaacSettings, importer_settings_json
@@ -50,11 +51,13 @@ def usd_options(settings: IsaacSettings, initial: Mapping[str, float] | None = N
 
 
 def isaac_file_names(robot: Robot) -> dict[str, str]:
+    """Named after the input file (``emit/common/naming.py``), not the robot's name attribute."""
+    stem = file_stem(robot)
     return {
-        "usd": f"{robot.name}.usda",
-        "urdf": f"{robot.name}.urdf",
+        "usd": f"{stem}.usda",
+        "urdf": f"{stem}.urdf",
         "importer_settings": "importer_settings.json",
-        "isaaclab": f"{robot.name}_isaaclab.py",
+        "isaaclab": f"{stem}_isaaclab.py",
     }
 
 

@@ -57,11 +57,22 @@ class BodyWriter:
         return world
 
     def _fill(self, body: ET.Element, link: Link, moving: bool) -> None:
-        self.ctx.bodies[link.name] = body
-        self._inertial(body, link, moving)
-        self._geoms(body, link)
-        for joint in self.children.get(link.name, []):
-            self._child(body, joint, moving_parent=moving)
+        """The body's own content, then every body below it, depth first in the links' order: a
+        loop over an explicit stack, since a chain may be hundreds of bodies deep (one Python
+        frame per level would reach the recursion limit before MuJoCo's own depth limit)."""
+        todo: list[tuple[ET.Element | None, Joint | None, ET.Element, Link, bool]] = [(None, None, body, link, moving)]
+        while todo:
+            parent, joint, body_el, link_, moving_ = todo.pop()
+            if joint is not None and parent is not None:
+                body_el = ET.SubElement(parent, "body", name=link_.name)
+                set_pose(body_el, joint.origin)
+                self._joint(body_el, joint)
+            self.ctx.bodies[link_.name] = body_el
+            self._inertial(body_el, link_, moving_)
+            self._geoms(body_el, link_)
+            for child in reversed(self.children.get(link_.name, [])):
+                moved = moving_ or child.type is not JointType.FIXED
+                todo.append((body_el, child, body_el, self.ctx.robot.link(child.child), moved))
 
     def _child(self, parent: ET.Element, joint: Joint, moving_parent: bool) -> None:
         link = self.ctx.robot.link(joint.child)

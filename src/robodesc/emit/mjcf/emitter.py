@@ -17,10 +17,33 @@ from robodesc.emit.mjcf.keyframe import home_keyframe
 from robodesc.emit.mjcf.options import MjcfOptions
 from robodesc.emit.mjcf.scene import scene_name, scene_text
 from robodesc.emit.mjcf.sensors import sites_and_sensors
+<<<<<<< HEAD
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.geometry import Mesh
+=======
+from robodesc.ir.diagnostics import Findings, UnsupportedError
+>>>>>>> i-fuzz
 from robodesc.ir.model import Collision, Robot, Visual
 from robodesc.ir.rigid import Frame, link_frames, pose_frame
+
+# MuJoCo reads MJCF with tinyxml2, which refuses an element nested 500 deep
+# (XML_ELEMENT_DEPTH_EXCEEDED): <mujoco>, <worldbody>, the nested bodies and a body's <joint> or
+# <geom> leave room for 496 nested bodies (measured with MuJoCo 4.0: 496 load, 497 do not).
+MAX_BODY_DEPTH = 496
+
+
+def check_depth(robot: Robot) -> None:
+    """Refuse, before anything is written, a tree MuJoCo cannot read: one body per link, nested as
+    the links are (the world link is MuJoCo's own world body, not nested)."""
+    depth = robot.tree_depth() + (0 if robot.root.name == "world" else 1)
+    if depth > MAX_BODY_DEPTH:
+        raise UnsupportedError(
+            f"the kinematic tree is {depth} bodies deep; MuJoCo reads MJCF with tinyxml2, which refuses "
+            f"elements nested 500 deep, so an MJCF file holds at most {MAX_BODY_DEPTH} nested bodies. "
+            "Nothing was written; -t urdf, sdf and usd take any depth (docs/mjcf.md#limits)",
+            element=f"robot {robot.name!r}",
+            loc=robot.src,
+        )
 
 
 def build_mjcf(
@@ -33,6 +56,7 @@ def build_mjcf(
 ) -> tuple[str, dict[str, str]]:
     """robot.xml's text and the files written for it (converted meshes), by role."""
     options.check()
+    check_depth(robot)
     ctx = MjcfContext(robot, options, findings, out_dir, mesh_paths, given)
     floating = not options.fix_base and robot.root.name != "world"
     root = ET.Element("mujoco", model=robot.name)

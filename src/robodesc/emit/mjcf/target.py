@@ -23,9 +23,10 @@ STAGE = "emit:mjcf"
 
 
 def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
-    from robodesc.emit.mjcf.emitter import emit_mjcf  # numpy and the writer: only when writing
+    from robodesc.emit.mjcf.emitter import check_depth, emit_mjcf  # numpy and the writer: only when writing
 
     out = request.output("MJCF is written to a file: give one with -o OUT/robot.xml")
+    check_depth(robot)  # before the derived gains, which take a while on a tree MuJoCo cannot read
     request.default("fix_base", robot.fixed_base)
     request.default("init_pos", robot.placement.xyz if robot.placement is not None else None)
     stance = _default_base_and_pose(robot, request, findings)

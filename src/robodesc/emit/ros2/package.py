@@ -15,12 +15,12 @@ Only actuated joints (``robot.actuated_joints()``) are named; mimic joints are n
 from __future__ import annotations
 
 import json
-import re
 from dataclasses import dataclass
 
 import yaml
 from lxml import etree
 
+from robodesc.emit.common.naming import file_stem
 from robodesc.emit.common.numbers import fmt
 from robodesc.emit.ros2.control import CONTROLLERS_PLACEHOLDER, emit_ros2_urdf
 from robodesc.emit.ros2.options import CommandInterface, ControllerKind, Ros2Options
@@ -57,10 +57,6 @@ _CONTROLLER = {
 class Ros2Package:
     files: dict[str, str]
     findings: Findings
-
-
-def _slug(name: str) -> str:
-    return re.sub(r"[^A-Za-z0-9_]", "_", name) or "robot"
 
 
 def commanded_joints(robot: Robot) -> list[str]:
@@ -219,7 +215,7 @@ def build_ros2_package(robot: Robot, options: Ros2Options | None = None) -> Ros2
     # What urdfdom loads: capsules and spherical joints lowered (emit/urdf/ros.py); every file of
     # the folder names the joints of this robot, so controllers match the URDF.
     robot = ros_equivalent(robot, opts.capsules, findings)
-    slug = _slug(robot.name)
+    slug = file_stem(robot)  # the input file's name, not the robot's (emit/common/naming.py)
     urdf_file = f"{slug}.urdf"
     urdf_options = UrdfOptions(
         path_mode=opts.path_mode,

@@ -11,8 +11,24 @@ import sys
 
 from robodesc.frontends.contract import Frontend
 from robodesc.frontends.options import LoadOptions
-from robodesc.ir.diagnostics import Findings, ParseError, SourceLoc
+from robodesc.ir.diagnostics import Findings, ParseError, RobodescError, SourceLoc
 from robodesc.ir.model import Robot
+
+_PACKAGE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def _raised_at(exc: BaseException, path: str) -> SourceLoc:
+    """Where the composition's own code raised ``exc``: the innermost frame outside robodesc (a
+    syntax error: its line), else the file itself."""
+    import traceback
+
+    if isinstance(exc, SyntaxError) and exc.filename:
+        return SourceLoc(exc.filename, exc.lineno, exc.offset)
+    frames = [f for f in traceback.extract_tb(exc.__traceback__) if not f.filename.startswith(_PACKAGE + os.sep)]
+    frames = [f for f in frames if not f.filename.startswith("<frozen ")]
+    if frames:
+        return SourceLoc(frames[-1].filename, frames[-1].lineno)
+    return SourceLoc(path)
 
 
 def read_python(path: str, options: LoadOptions, findings: Findings) -> Robot:
@@ -31,6 +47,15 @@ def read_python(path: str, options: LoadOptions, findings: Findings) -> Robot:
         raise ParseError(
             f"the composition called exit({exc.code!r}) instead of returning a Robot", loc=SourceLoc(path)
         ) from None
+    except RobodescError:
+        raise  # the builder's own messages already name the place
+    except Exception as exc:
+        # The composition's code failed (its bug, a bad value): an input error at its own line, not
+        # a robodesc bug. --debug is not needed to find it: the message says where.
+        loc = _raised_at(exc, path)
+        what = "has a syntax error" if isinstance(exc, SyntaxError) else f"raised {type(exc).__name__}"
+        detail = exc.msg if isinstance(exc, SyntaxError) else str(exc)
+        raise ParseError(f"the composition {what}: {detail}".rstrip(": "), loc=loc) from None
     finally:
         sys.path.remove(here)
     if not callable(build):
