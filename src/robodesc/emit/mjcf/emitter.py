@@ -17,12 +17,8 @@ from robodesc.emit.mjcf.keyframe import home_keyframe
 from robodesc.emit.mjcf.options import MjcfOptions
 from robodesc.emit.mjcf.scene import scene_name, scene_text
 from robodesc.emit.mjcf.sensors import sites_and_sensors
-<<<<<<< HEAD
-from robodesc.ir.diagnostics import Findings
-from robodesc.ir.geometry import Mesh
-=======
 from robodesc.ir.diagnostics import Findings, UnsupportedError
->>>>>>> i-fuzz
+from robodesc.ir.geometry import Mesh
 from robodesc.ir.model import Collision, Robot, Visual
 from robodesc.ir.rigid import Frame, link_frames, pose_frame
 

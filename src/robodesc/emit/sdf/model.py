@@ -87,11 +87,8 @@ class SdfModelEmitter:
         self.names = Namespace()
         self.materials = {m.name: m for m in robot.materials}
         self.fix_base_name = FIX_BASE_JOINT
-<<<<<<< HEAD
         self._decomposer: Decomposer | None = None
-=======
         self.pose_frames = options.pose_frames
->>>>>>> i-fuzz
 
     # ---- the model -----------------------------------------------------------------------
     def model(
