@@ -459,7 +459,9 @@ def check_mjcf(args: argparse.Namespace) -> dict:
         mm.joint_type.numpy().tolist(),
         list(mm.body_label),
     )
-    ju.pop("world", None)
+    if "world" not in bodies_m:  # the URDF's world link is the MJCF's world
+        ju.pop("world", None)
+        ju = {b: (j, t, "" if p == "world" else p) for b, (j, t, p) in ju.items()}
     common = [b for b in bodies_m if b in ju and b in jm]
     bad_types = [b for b in common if ju[b][1] != jm[b][1] or ju[b][2] != jm[b][2]]
     rep.add(
