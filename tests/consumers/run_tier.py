@@ -222,14 +222,14 @@ def run_robot_mjcf(robot: CorpusRobot, envs: str, work: str) -> dict[str, object
     except json.JSONDecodeError:
         summary = {}
     codes = {str(f.get("code", "")) for f in summary.get("findings", []) if isinstance(f, dict)}
-    own_urdf = os.path.join(wdir, f"{slug}.robodesc-repaired.urdf")
-    repair = ["--invalid-inertia", "repair"]
-    _run([*py, "compile", source, "-t", "urdf", "-o", own_urdf, "-q", "--no-validate", *flags, *repair], 300, log)
     # The mjcf preset's repairs (inertia-repaired, mass-repaired, ...) change the robot: the
-    # reference is then robodesc's URDF with the same repair.
+    # reference is then robodesc's URDF through the same preset (the same passes, URDF written).
     repaired = any(c.endswith("-repaired") or c == "inertia-from-geometry" for c in codes)
+    own_urdf = os.path.join(wdir, f"{slug}.robodesc-mjcf-preset.urdf")
+    preset = ["--preset", "mjcf"]
+    _run([*py, "compile", source, "-t", "urdf", "-o", own_urdf, "-q", "--no-validate", *flags, *preset], 300, log)
     if repaired:
-        reference = own_urdf  # the same repair the MJCF preset made, on the URDF side
+        reference = own_urdf
     elif source.endswith(".urdf"):
         reference = source
     else:
@@ -275,7 +275,7 @@ def run_robot_mjcf(robot: CorpusRobot, envs: str, work: str) -> dict[str, object
     if res and res.get("reference", "source URDF") != "source URDF":
         out["newton_mjcf_reference"] = res["reference"]
     elif repaired:
-        out["newton_mjcf_reference"] = "robodesc's URDF with the inertia repair the mjcf preset made"
+        out["newton_mjcf_reference"] = "robodesc's URDF through the mjcf preset (it repaired the source's inertia)"
     return out
 
 
@@ -349,6 +349,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--robots", default=None, help="comma list of robot names (substring match); default all")
     ap.add_argument("--resume", action="store_true", help="keep results already in the JSON")
     ap.add_argument("--reverse", action="store_true", help="last robot first (a second worker)")
+    ap.add_argument("--shard", default=None, help="K/N: only every N-th robot from the K-th (parallel workers)")
     ap.add_argument("--simready-only", action="store_true", help="only add the SimReady column to --out")
     ap.add_argument("--merge", action="append", default=[], help="also take robots from this results JSON")
     ap.add_argument(
@@ -370,6 +371,9 @@ def main(argv: list[str] | None = None) -> int:
         robots = [r for r in robots if any(w in r.name for w in wanted)]
     if args.reverse:
         robots.reverse()
+    if args.shard:
+        k, n = (int(x) for x in args.shard.split("/"))
+        robots = robots[k::n]
     results: dict[str, dict[str, object]] = {}
     if (args.resume or args.simready_only) and os.path.isfile(args.out):
         with open(args.out, encoding="utf-8") as f:
