@@ -215,12 +215,13 @@ def run_robot_mjcf(robot: CorpusRobot, envs: str, work: str) -> dict[str, object
     proc = _run(
         [*py, "compile", source, "-t", "mjcf", "-o", xml, "--no-validate", "--json", *flags, *MJCF_GAINS], 300, log
     )
-    if proc.returncode != 0:
-        return {"newton_mjcf": f"not converted: {_last_error(proc)}"}
     try:
         summary = json.loads(proc.stdout)
     except json.JSONDecodeError:
         summary = {}
+    if proc.returncode != 0:
+        errors = [e.get("message", "") for e in summary.get("errors", []) if isinstance(e, dict)]
+        return {"newton_mjcf": f"not converted: {errors[0][:300] if errors else _last_error(proc)}"}
     codes = {str(f.get("code", "")) for f in summary.get("findings", []) if isinstance(f, dict)}
     # The mjcf preset's repairs (inertia-repaired, mass-repaired, ...) change the robot: the
     # reference is then robodesc's URDF through the same preset (the same passes, URDF written).
