@@ -45,12 +45,11 @@ def _lowest(geometry: Geometry, at: Frame) -> float | None:
     if isinstance(geometry, Sphere):
         return z - geometry.radius
     if isinstance(geometry, Box):
-        half = [s / 2 for s in geometry.size]
-        return min(_corners_z(at, [(-h, h) for h in half]))
+        return min(_corners_z(at, [(-s / 2, s / 2) for s in geometry.size]))
     if isinstance(geometry, (Cylinder, Capsule)):
         # The axis ends, lowered by the radius (exact for a capsule, a bound for a cylinder).
-        half = geometry.length / 2
-        ends = [z + apply(at.rotation, (0.0, 0.0, s))[2] for s in (-half, half)]
+        length = geometry.length / 2
+        ends = [z + apply(at.rotation, (0.0, 0.0, s))[2] for s in (-length, length)]
         return min(ends) - geometry.radius
     if isinstance(geometry, Mesh):
         if geometry.path is None:
