@@ -3,6 +3,7 @@
 #
 #   tests/consumers/run.sh                      # build what is missing, run every corpus robot
 #   tests/consumers/run.sh --robots panda,a1    # a subset (substring match on corpus names)
+#   tests/consumers/run.sh --kinds newton_mjcf  # only robodesc's MJCF through Newton's add_mjcf (other columns kept)
 #   ROBODESC_CONSUMERS_ISAACLAB=1 tests/consumers/run.sh   # also build Isaac Lab 3.0 (~8 GB, torch)
 #
 # Environments live outside the repository, in $ROBODESC_CONSUMERS_DIR (default

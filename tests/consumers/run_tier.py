@@ -12,11 +12,17 @@ robot of the corpus (``robodesc.validation.corpora``) it compiles, with this che
 - ``newton_isaac``: the same for the Isaac folder's USD against the folder's own URDF;
 - ``isaac_importer``: Isaac Sim 6.2's URDF importer imports the folder's URDF with the folder's
   ``importer_settings.json``, and Newton compares the imported asset (``physx`` variant) with
-  that URDF.
+  that URDF;
+- ``newton_mjcf`` (only with ``--kinds newton_mjcf``): ``-t mjcf`` with ``--stiffness 100 --damping
+  1`` and the base flag, Newton 1.8's ``add_mjcf`` loads robot.xml and newton_check.py compares it
+  with ``add_urdf`` of the source (masses, inertias, joints, limits, actuator gains and force
+  ranges, armature, damping, friction, mimic, FK, a 200-step SolverMuJoCo run). Where the MJCF
+  preset repaired an inertia, the reference is robodesc's URDF with the same repair.
 
 Each engine has its own environment under ``--envs`` (``newton/``, ``isaacsim/``). Results:
-``benchmarks/results/consumers.json`` (robot -> {"newton", "newton_isaac", "isaac_importer"}:
-"pass" or "fail: why") and ``consumers.md``; per-robot details in ``--work``.
+``benchmarks/results/consumers.json`` (robot -> {"newton", "newton_isaac", "isaac_importer",
+"newton_mjcf"}: "pass" or "fail: why") and ``consumers.md``; per-robot details in ``--work``.
+A run with ``--kinds`` updates only those columns and keeps the rest of the JSON.
 """
 
 from __future__ import annotations
@@ -45,6 +51,11 @@ FLOATING = re.compile(
     re.IGNORECASE,
 )
 KINDS = ("newton", "newton_isaac", "isaac_importer")
+# newton_mjcf: robodesc's robot.xml through Newton's add_mjcf (--kinds newton_mjcf; docs/mjcf.md).
+ALL_KINDS = (*KINDS, "newton_mjcf")
+# The MJCF is compiled with the gains the reference URDF is given (newton_check.py's defaults),
+# so actuator kp/kv are compared with what was asked, in SI per radian.
+MJCF_GAINS = ["--stiffness", "100", "--damping", "1"]
 # NVIDIA's SimReady physics rules that run on CPU (usd_validation_nvidia, from isacsim's env).
 SIMREADY_RULES = ("MassChecker", "RigidBodyChecker", "PhysicsJointChecker", "ArticulationChecker")
 
@@ -188,6 +199,89 @@ def run_robot(robot: CorpusRobot, envs: str, work: str) -> dict[str, object]:
     return out
 
 
+def run_robot_mjcf(robot: CorpusRobot, envs: str, work: str) -> dict[str, object]:
+    """The ``newton_mjcf`` column: robot.xml through Newton's add_mjcf against the reference URDF."""
+    name = str(robot.name)
+    slug = re.sub(r"[^A-Za-z0-9_.-]+", "_", name)
+    wdir = os.path.join(work, slug)
+    os.makedirs(wdir, exist_ok=True)
+    log = os.path.join(wdir, "log_mjcf.txt")
+    open(log, "w").close()
+    source = str(robot.path)
+    floating = bool(FLOATING.search(name))
+    py = [sys.executable, "-m", "robodesc"]
+    flags = _compile_flags(robot) + (["--no-fix-base"] if floating else ["--fix-base"])
+    xml = os.path.join(wdir, "mjcf", "robot.xml")
+    proc = _run(
+        [*py, "compile", source, "-t", "mjcf", "-o", xml, "--no-validate", "--json", *flags, *MJCF_GAINS], 300, log
+    )
+    try:
+        summary = json.loads(proc.stdout)
+    except json.JSONDecodeError:
+        summary = {}
+    if proc.returncode != 0:
+        errors = [e.get("message", "") for e in summary.get("errors", []) if isinstance(e, dict)]
+        return {"newton_mjcf": f"not converted: {errors[0][:300] if errors else _last_error(proc)}"}
+    codes = {str(f.get("code", "")) for f in summary.get("findings", []) if isinstance(f, dict)}
+    # The mjcf preset's repairs (inertia-repaired, mass-repaired, ...) change the robot: the
+    # reference is then robodesc's URDF through the same preset (the same passes, URDF written).
+    repaired = any(c.endswith("-repaired") or c == "inertia-from-geometry" for c in codes)
+    own_urdf = os.path.join(wdir, f"{slug}.robodesc-mjcf-preset.urdf")
+    preset = ["--preset", "mjcf"]
+    _run([*py, "compile", source, "-t", "urdf", "-o", own_urdf, "-q", "--no-validate", *flags, *preset], 300, log)
+    if repaired:
+        reference = own_urdf
+    elif source.endswith(".urdf"):
+        reference = source
+    else:
+        reference = os.path.join(wdir, f"{slug}.source.urdf")
+        exp = _run([*py, "expand", source, *_compile_flags(robot)], 300, log)
+        with open(reference, "w", encoding="utf-8") as f:
+            f.write(exp.stdout)
+    package_dirs = sorted({os.path.dirname(os.path.abspath(p)) for p in robot.packages.values()})
+    case = {
+        "name": "newton_mjcf",
+        "urdf": reference,
+        "mjcf": xml,
+        "floating": floating,
+        "package_dir": package_dirs,
+        "fallback_urdf": own_urdf,
+    }
+    cases_path = os.path.join(wdir, "cases_mjcf.json")
+    with open(cases_path, "w", encoding="utf-8") as f:
+        json.dump([case], f, indent=1)
+    result_path = os.path.join(wdir, "newton_mjcf.json")
+    newton = _run(
+        [
+            os.path.join(envs, "newton", "bin", "python"),
+            os.path.join(HERE, "newton_check.py"),
+            "--cases",
+            cases_path,
+            "--out",
+            result_path,
+        ],
+        1800,
+        log,
+    )
+    res = (_read_json(result_path) or {}).get("newton_mjcf")
+    out: dict[str, object] = {"newton_mjcf": res["status"] if res else f"fail: Newton crashed ({_last_error(newton)})"}
+    if res and res.get("checks"):
+        out["newton_mjcf_loads"] = any(c["name"] == "loads" and c["ok"] for c in res["checks"])
+        # Numbers alone (the run, and SolverMuJoCo's build of Newton's model for it, compare two
+        # importers' dynamics, not what was written).
+        bad = [c for c in res["checks"] if not c["ok"] and not c["name"].startswith(("trajectory", "mujoco build"))]
+        out["newton_mjcf_numbers"] = (
+            "pass"
+            if not bad
+            else "fail: " + "; ".join(c["name"] + (f" ({c['where']})" if c["where"] else "") for c in bad[:3])
+        )
+    if res and res.get("reference", "source URDF") != "source URDF":
+        out["newton_mjcf_reference"] = res["reference"]
+    elif repaired:
+        out["newton_mjcf_reference"] = "robodesc's URDF through the mjcf preset (it repaired the source's inertia)"
+    return out
+
+
 def simready(usd: str, envs: str, log: str) -> str:
     """``nvidia_usd_validate`` with the physics rules: "pass" or "fail: <rule> at <prims>"."""
     csv_path = usd + ".simready.csv"
@@ -216,25 +310,38 @@ def add_simready(results: dict[str, dict[str, object]], envs: str, work: str) ->
 
 def markdown(results: dict[str, dict[str, object]]) -> str:
     lines = [
-        "# Consumer tier: robodesc's USD in Newton 1.8 and Isaac Sim 6.2's URDF importer",
+        "# Consumer tier: robodesc's USD and MJCF in Newton 1.8 and Isaac Sim 6.2's URDF importer",
         "",
         "Written by `tests/consumers/run_tier.py` (see docs/usd.md, 'Consumer tier'). `newton`: the",
         "`-t usd` output against the source URDF, both loaded by Newton; `newton_isaac`: the `--isaac-sim`",
         "folder's USD against the folder's URDF; `isaac_importer`: Isaac Sim 6.2's importer on the",
-        "folder's URDF, its `physx` variant loaded by Newton and compared with that URDF.",
+        "folder's URDF, its `physx` variant loaded by Newton and compared with that URDF. `newton_mjcf`",
+        "(`--kinds newton_mjcf`): `-t mjcf` loaded by Newton's `add_mjcf` and compared with `add_urdf` of the",
+        "source (`newton_mjcf_numbers`: the same without the 200-step trajectory; docs/mjcf.md, Consumers).",
         "",
     ]
-    counts = {k: sum(1 for r in results.values() if r.get(k) == "pass") for k in KINDS}
+    counts = {k: sum(1 for r in results.values() if r.get(k) == "pass") for k in ALL_KINDS}
     lines.append(f"{len(results)} robots; pass: " + ", ".join(f"{k} {counts[k]}" for k in KINDS) + ".")
+    ran = [r for r in results.values() if "newton_mjcf" in r]
+    if ran:
+        loads = sum(1 for r in ran if r.get("newton_mjcf_loads"))
+        numbers = sum(1 for r in ran if r.get("newton_mjcf_numbers") == "pass")
+        lines.append(
+            f"`newton_mjcf` (robodesc's MJCF through Newton's `add_mjcf`): {len(ran)} robots run, {loads} load, "
+            f"{numbers} with every number equal, {counts['newton_mjcf']} of them also within tolerance over the "
+            "200-step run."
+        )
     simready_pass = sum(1 for r in results.values() if r.get("simready") == "pass")
     lines.append(f"SimReady physics rules ({', '.join(SIMREADY_RULES)}) on the `-t usd` output: {simready_pass} pass.")
     lines += [
         "",
-        "| robot | base | newton | newton_isaac | isaac_importer | simready |",
-        "|---|---|---|---|---|---|",
+        "| robot | base | newton | newton_isaac | isaac_importer | simready | newton_mjcf |",
+        "|---|---|---|---|---|---|---|",
     ]
     for name, r in results.items():
-        cells = [str(r.get(k, "not run")).replace("|", "\\|").replace("\n", " ") for k in (*KINDS, "simready")]
+        cells = [
+            str(r.get(k, "not run")).replace("|", "\\|").replace("\n", " ") for k in (*KINDS, "simready", "newton_mjcf")
+        ]
         base = "floating" if r.get("floating") else "fixed"
         if r.get("repaired"):
             base += ", inertia repaired"
@@ -249,8 +356,15 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--robots", default=None, help="comma list of robot names (substring match); default all")
     ap.add_argument("--resume", action="store_true", help="keep results already in the JSON")
     ap.add_argument("--reverse", action="store_true", help="last robot first (a second worker)")
+    ap.add_argument("--shard", default=None, help="K/N: only every N-th robot from the K-th (parallel workers)")
     ap.add_argument("--simready-only", action="store_true", help="only add the SimReady column to --out")
     ap.add_argument("--merge", action="append", default=[], help="also take robots from this results JSON")
+    ap.add_argument(
+        "--kinds",
+        default=None,
+        help=f"comma list of columns to (re)run, of {', '.join(ALL_KINDS)}; the others are kept from --out "
+        "(default: the USD columns, robots already in --out skipped with --resume)",
+    )
     ap.add_argument("--out", default=os.path.join(ROOT, "benchmarks", "results", "consumers.json"))
     args = ap.parse_args(argv)
     sys.path.insert(0, os.path.join(ROOT, "src"))
@@ -264,6 +378,9 @@ def main(argv: list[str] | None = None) -> int:
         robots = [r for r in robots if any(w in r.name for w in wanted)]
     if args.reverse:
         robots.reverse()
+    if args.shard:
+        k, n = (int(x) for x in args.shard.split("/"))
+        robots = robots[k::n]
     results: dict[str, dict[str, object]] = {}
     if (args.resume or args.simready_only) and os.path.isfile(args.out):
         with open(args.out, encoding="utf-8") as f:
@@ -276,6 +393,26 @@ def main(argv: list[str] | None = None) -> int:
         if args.simready_only:
             add_simready(results, args.envs, work)
         _write(results, args.out)
+        return 0
+    if args.kinds:
+        kinds = args.kinds.split(",")
+        unknown = sorted(set(kinds) - set(ALL_KINDS))
+        if unknown:
+            ap.error(f"unknown kinds {unknown}; known: {', '.join(ALL_KINDS)}")
+        if os.path.isfile(args.out):  # the other columns are kept
+            with open(args.out, encoding="utf-8") as f:
+                results = {**json.load(f), **results}
+        for robot in robots:
+            row = results.setdefault(robot.name, {"floating": bool(FLOATING.search(robot.name))})
+            if args.resume and all(k in row for k in kinds):
+                continue
+            start = time.perf_counter()
+            if "newton_mjcf" in kinds:
+                row.update(run_robot_mjcf(robot, args.envs, work))
+            if set(kinds) & set(KINDS):
+                row.update({k: v for k, v in run_robot(robot, args.envs, work).items() if k in kinds or k not in KINDS})
+            print(f"{robot.name}: {time.perf_counter() - start:.0f} s  " + json.dumps(row), flush=True)
+            _write(results, args.out)
         return 0
     for robot in robots:
         if robot.name in results:

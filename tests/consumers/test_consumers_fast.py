@@ -70,6 +70,22 @@ def test_newton_reads_the_usd_as_it_reads_the_urdf(source: Path, floating: bool,
     assert result["status"] == "pass", failed or result
 
 
+@pytest.mark.parametrize("floating", [False, True], ids=["fixed", "floating"])
+def test_newton_reads_the_mjcf_as_it_reads_the_urdf(floating: bool, tmp_path: Path) -> None:
+    """Newton's add_mjcf of robodesc's robot.xml against its add_urdf of the source: masses, inertias,
+    joints, limits, actuator kp/kv (SI per radian), force ranges, damping, friction, mimic, FK and
+    200 MuJoCo steps (the tier's newton_mjcf column on the example)."""
+    source = EXAMPLES / "urdf" / "gripper_arm.urdf"
+    xml = tmp_path / "mjcf" / "robot.xml"
+    base = "--no-fix-base" if floating else "--fix-base"
+    argv = ["compile", str(source), "-t", "mjcf", "-o", str(xml), "-q", "--no-validate", base]
+    assert main([*argv, "--stiffness", "100", "--damping", "1"]) == 0
+    case = {"name": "mjcf", "urdf": str(source), "mjcf": str(xml), "floating": floating}
+    result = _newton([case], tmp_path)["mjcf"]
+    failed = [c for c in result["checks"] if not c["ok"]]  # type: ignore[union-attr]
+    assert result["status"] == "pass", failed or result
+
+
 def test_newton_reads_the_isaac_folder(tmp_path: Path) -> None:
     out = tmp_path / "isaac"
     source = EXAMPLES / "urdf" / "gripper_arm.urdf"

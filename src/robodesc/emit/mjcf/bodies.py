@@ -171,6 +171,11 @@ class BodyWriter:
                 ET.SubElement(
                     body, "inertial", pos="0 0 0", mass=num(STUB_MASS), diaginertia=fmt_vec([STUB_INERTIA] * 3)
                 )
+            elif body.find("joint") is not None or body.find("freejoint") is not None:
+                # Mass carried by welded children: MuJoCo takes it as the moving body's own, but
+                # MJCF with inertiafromgeom="false" asks every jointed body for an <inertial>, and
+                # readers that hold to that (Newton's add_mjcf) refuse the body without one.
+                ET.SubElement(body, "inertial", pos="0 0 0", mass="0", diaginertia="0 0 0")
             return
         assert inertial is not None
         el = ET.SubElement(body, "inertial")

@@ -13,6 +13,7 @@ from robodesc.emit.mjcf.bodies import BodyWriter, bounding_radius
 from robodesc.emit.mjcf.constraints import contact, equality
 from robodesc.emit.mjcf.context import MjcfContext
 from robodesc.emit.mjcf.defaults import defaults
+from robodesc.emit.mjcf.floor import floor_height
 from robodesc.emit.mjcf.keyframe import home_keyframe
 from robodesc.emit.mjcf.options import MjcfOptions
 from robodesc.emit.mjcf.scene import scene_name, scene_text
@@ -54,7 +55,7 @@ def build_mjcf(
     options.check()
     check_depth(robot)
     ctx = MjcfContext(robot, options, findings, out_dir, mesh_paths, given)
-    floating = not options.fix_base and robot.root.name != "world"
+    floating = _floating(robot, options)
     root = ET.Element("mujoco", model=robot.name)
     ET.SubElement(root, "compiler", angle="radian", autolimits="true", inertiafromgeom="false")
     ET.SubElement(root, "option", integrator=options.integrator)
@@ -127,7 +128,7 @@ def emit_mjcf(
     if options.scene:
         name = final_name or os.path.basename(out)
         scene = os.path.join(out_dir, scene_name(name))
-        data = scene_text(name).encode()
+        data = scene_text(name, _scene_floor(robot, options, findings)).encode()
         if not (os.path.isfile(scene) and _read(scene) == data):
             write_atomic(scene, data)
         files["scene"] = scene
@@ -137,6 +138,26 @@ def emit_mjcf(
 def _read(path: str) -> bytes:
     with open(path, "rb") as handle:
         return handle.read()
+
+
+def _floating(robot: Robot, options: MjcfOptions) -> bool:
+    return not options.fix_base and robot.root.name != "world"
+
+
+def _scene_floor(robot: Robot, options: MjcfOptions, findings: Findings) -> float:
+    """The floor's height in the scene: under the lowest collider of a welded robot (floor.py)."""
+    if _floating(robot, options):
+        return 0.0
+    height = floor_height(robot, _root_pose(robot, options, False))
+    if height:
+        findings.info(
+            "mjcf-floor-lowered",
+            f"the robot is welded and has colliders below z = 0: the scene's floor is at z = {height:.4g} m, "
+            "under them, so it does not cut through the robot",
+            element="scene floor",
+            stage="emit:mjcf",
+        )
+    return height
 
 
 def _root_pose(robot: Robot, options: MjcfOptions, floating: bool) -> Frame:

@@ -61,6 +61,16 @@ class MeshAssets:
         el = ET.Element("mesh")
         if ext == ".stl" and not 0 < _stl_faces(mesh.path) <= STL_FACE_LIMIT:
             ext = ".stl-unreadable"  # ASCII or over the limit: converted below
+        if ext == ".obj" and obj_layout_mixed(mesh.path):
+            ctx.warn(
+                "mjcf-obj-layout",
+                f"mesh {mesh.uri!r} mixes faces with and without normals or texture coordinates "
+                "(`f 1/1/1 ...` and `f 1 2 3`), which MuJoCo refuses or misreads: converted to a plain OBJ "
+                "(points and faces)",
+                element,
+                mesh.src,
+            )
+            ext = ".obj-mixed"  # converted below
         if ext in READABLE:
             file = _reference(ctx, mesh)
             scale = mesh.scale
@@ -188,6 +198,28 @@ def _stl_faces(path: str) -> int:
     count = int.from_bytes(head[80:84], "little")
     # Binary when the size says so (binary headers often start with "solid" too).
     return count if os.path.getsize(path) == 84 + 50 * count else 0
+
+
+def obj_layout_mixed(path: str) -> bool:
+    """Whether the OBJ's face corners use more than one layout (``v``, ``v/t``, ``v//n``, ``v/t/n``).
+
+    MuJoCo indexes one normal (and texture) table per mesh: with some corners giving a normal index
+    and others not, it reads past the table ("mesh_facenormal normal index out of bounds") or pairs
+    the wrong normals. pybullet_data's table_square.obj is such a file."""
+    layouts: set[tuple[bool, bool]] = set()
+    try:
+        with open(path, "rb") as handle:
+            for line in handle:
+                if not line.startswith(b"f ") and not line.startswith(b"f\t"):
+                    continue
+                for corner in line.split()[1:]:
+                    parts = corner.split(b"/")
+                    layouts.add((len(parts) > 1 and bool(parts[1]), len(parts) > 2 and bool(parts[2])))
+                    if len(layouts) > 1:
+                        return True
+    except OSError:
+        return False
+    return False
 
 
 def _safe(name: str) -> str:

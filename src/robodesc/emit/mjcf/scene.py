@@ -1,11 +1,14 @@
 """``scene.xml``: the robot, a floor, a light and a sky, as mujoco_menagerie's scenes are written.
 
-Its text depends only on the robot file's name, so writing it again for the same output is
-byte-identical: it can be written in place before validation (see docs/mjcf.md, Outputs)."""
+Its text depends only on the robot file's name and the floor's height (floor.py: under the lowest
+collider of a welded robot), so writing it again for the same output is byte-identical: it can be
+written in place before validation (see docs/mjcf.md, Outputs)."""
 
 from __future__ import annotations
 
 import os
+
+from robodesc.emit.common.numbers import fmt
 
 SCENE = """<mujoco model="{stem} scene">
   <include file="{robot}"/>
@@ -21,7 +24,7 @@ SCENE = """<mujoco model="{stem} scene">
   </asset>
   <worldbody>
     <light pos="0 0 1.5" dir="0 0 -1" directional="true"/>
-    <geom name="floor" size="0 0 0.05" type="plane" material="groundplane"/>
+    <geom name="floor"{floor_pos} size="0 0 0.05" type="plane" material="groundplane"/>
   </worldbody>
 </mujoco>
 """
@@ -34,6 +37,8 @@ def scene_name(robot_file: str) -> str:
     return "scene.xml" if stem == "robot" else f"{stem}_scene.xml"
 
 
-def scene_text(robot_file: str) -> str:
+def scene_text(robot_file: str, floor: float = 0.0) -> str:
+    """The scene for ``robot_file``, its floor at height ``floor`` (m)."""
     base = os.path.basename(robot_file)
-    return SCENE.format(stem=os.path.splitext(base)[0], robot=base)
+    floor_pos = f' pos="0 0 {fmt(floor)}"' if floor else ""
+    return SCENE.format(stem=os.path.splitext(base)[0], robot=base, floor_pos=floor_pos)
