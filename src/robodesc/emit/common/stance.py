@@ -5,7 +5,9 @@ straight (or, clamped into their limits, bent the wrong way) and it tips over. W
 no initial joint positions, the pose is chosen in this order:
 
 1. a pose the source names (:mod:`robodesc.emit.common.named_pose`: SRDF ``group_state``,
-   ros2_control ``initial_value``);
+   ros2_control ``initial_value``), when it is a stance (:func:`stance_defect`): the feet the robot
+   has at zero are its lowest points there too, and a biped's soles are as level as at zero (iCub's
+   ``half_sitting`` pitches them 3.6°, and it tipped over from it where its zero pose stands);
 2. the legged heuristic (:func:`legged_pose`): legs are found as chains from the root to the lowest
    links; in each, the first two joints that pitch about the robot's lateral axis (hip, knee) are
    bent so that the foot sits straight under the hip at 75 % of the leg's reach, a third pitch joint
@@ -37,6 +39,10 @@ CLEARANCE = 0.005  # m between the lowest collision point and the ground at spaw
 # A joint pitches when its axis lies within this angle of the robot's lateral (y) axis.
 _PITCH_COS = math.cos(math.radians(30.0))
 _KNEE_SAMPLES = 181
+# A named pose is a stance when every foot's lowest point is within this of the robot's lowest point
+FOOT_BAND = 0.01  # m
+# and, on two legs, each sole is within this of its tilt at zero (where URDF soles are flat).
+SOLE_TILT = math.radians(1.0)
 
 
 @dataclass(slots=True, frozen=True)
@@ -52,6 +58,7 @@ class Stance:
     source: str  # what chose it: "init_joint_pos", "SRDF group_state ...", "legged heuristic", "zeros"
     legs: list[Leg] = field(default_factory=list)
     lowest_z: float | None = None  # lowest collision point, in the root frame, at this pose
+    skipped: str | None = None  # a named pose not used, and why (for the finding)
 
 
 def limits(joint: Joint) -> tuple[float, float]:
@@ -76,18 +83,51 @@ def complete(robot: Robot, given: Mapping[str, float]) -> dict[str, float]:
 def choose_stance(robot: Robot, given: Mapping[str, float] | None) -> Stance:
     """The pose of a floating robot: the user's, else the source's, else the heuristic's, else zeros."""
     meshes = MeshCache()
+    pose = None if given else named_pose(robot)
+    skipped = None
+    if pose is not None and (why := stance_defect(robot, complete(robot, pose.positions), meshes)) is not None:
+        skipped, pose = f"{pose.source}: {why}", None
     if given:
         stance = Stance(complete(robot, given), "init_joint_pos")
-    elif (pose := named_pose(robot)) is not None:
+    elif pose is not None:
         stance = Stance(complete(robot, pose.positions), pose.source)
     elif (found := legged_pose(robot, meshes)) is not None:
         stance = Stance(complete(robot, found[0]), "legged heuristic", legs=found[1])
     else:
         stance = Stance(complete(robot, {}), "zeros")
+    stance.skipped = skipped
     if not stance.legs:
         stance.legs = find_legs(robot, stance.positions, meshes)
     stance.lowest_z = lowest_point(robot, stance.positions, meshes)
     return stance
+
+
+def stance_defect(robot: Robot, q: Mapping[str, float], meshes: MeshCache | None = None) -> str | None:
+    """Why the robot cannot stand in pose ``q`` (a named pose), judged by the feet it has at zero;
+    None when it can, or when it has no legs to judge by (a floating arm keeps its named pose).
+
+    The feet found at zero must be the lowest points at ``q`` too (within :data:`FOOT_BAND`), and on
+    two legs each sole must be as level as at zero (within :data:`SOLE_TILT`): a biped stands on
+    its soles' faces, a robot with three legs or more on foot points whose tilt does not matter."""
+    meshes = meshes or MeshCache()
+    zero = complete(robot, {})
+    legs = find_legs(robot, zero, meshes)
+    if not legs:
+        return None
+    frames = link_frames(robot, q)
+    lowest = lowest_point(robot, q, meshes)
+    for leg in legs:
+        z = _link_lowest(robot.link(leg.foot), frames[leg.foot], meshes, exact=True)
+        if z is None or lowest is None or z > lowest + FOOT_BAND:
+            return f"foot {leg.foot!r} is not among the lowest points (it is {(z or 0.0) - (lowest or 0.0):.3f} m up)"
+    if len(legs) == 2:
+        frames0 = link_frames(robot, zero)
+        for leg in legs:
+            up, up0 = frames[leg.foot].rotation[2], frames0[leg.foot].rotation[2]
+            tilt = math.acos(max(-1.0, min(1.0, _dot(up, up0))))
+            if tilt > SOLE_TILT:
+                return f"sole {leg.foot!r} is tilted {math.degrees(tilt):.1f}° from its zero pose (a biped stands on level soles)"
+    return None
 
 
 # ---- legs ------------------------------------------------------------------------------------
