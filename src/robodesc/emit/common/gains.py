@@ -17,8 +17,12 @@ with ``f`` = 4 Hz, ``zeta`` = 1 (critically damped: the robot settles without ro
 ``E_SAT`` = 0.2 rad. A revolute joint's kp is also at least ``g·sum(m·d) / HOLD_ERROR``: the most
 gravity torque the moved links can put on it, held within ``HOLD_ERROR`` = 0.05 rad (a finger's
 inertia is tiny next to the lever arm of a hand held out; without this floor fixed hands and small
-arms sagged ~0.2 rad in Newton). The effort cap still wins: a motor cannot give more. Prismatic joints use the moved mass and N/m. docs/isaac.md shows the numbers for
-Spirit and Go2.
+arms sagged ~0.2 rad in Newton). That floor is not bound by the ``E_SAT`` cap (it exists to hold
+the pose, not to limit transients) but by the effort: at most ``effort / HOLD_ERROR``, the stiffness
+that gives the whole effort at the hold error. A joint whose worst gravity torque exceeds its effort
+cannot hold its links out whatever the gains: it is flagged (``weak``) and reported
+(``default-gains-weak``). Prismatic joints use the moved mass and N/m. docs/isaac.md shows the
+numbers for Spirit and Go2.
 """
 
 from __future__ import annotations
@@ -49,6 +53,8 @@ class JointGains:
     damping: float
     inertia: float  # I_eff, kg·m² (kg for a prismatic joint)
     capped: bool  # the effort limit bounded the stiffness
+    gravity_torque: float = 0.0  # g·Σm·d, N·m: the most gravity can load the joint with (revolute)
+    weak: bool = False  # gravity_torque exceeds the effort limit: the joint cannot hold its links out
 
 
 def derived_gains(
@@ -75,19 +81,22 @@ def derived_gains(
             share = total / len(stance.legs)
             inertia += share * (_distance_sq(point, jf.translation) if joint.type.is_angular else 1.0)
         inertia += joint.armature or 0.0
+        torque = 0.0
+        if joint.type.is_angular:
+            torque = GRAVITY * _moved_moment(joint, jf.translation, frames, children, links)
+        effort = joint.limit.effort if joint.limit is not None and joint.limit.effort else None
+        weak = effort is not None and effort > 0 and torque > effort
         if stiffness is not None and joint.name in stiffness:
             kp, capped = stiffness[joint.name], False
         else:
             kp = inertia * omega * omega
-            if joint.type.is_angular:
-                lever = _moved_moment(joint, jf.translation, frames, children, links)
-                kp = max(kp, GRAVITY * lever / HOLD_ERROR)
-            effort = joint.limit.effort if joint.limit is not None else None
             capped = effort is not None and effort > 0 and kp > effort / E_SAT
             if capped:
                 kp = float(effort) / E_SAT  # type: ignore[arg-type]
+            # The gravity floor, bounded by what the motor can give at the hold error.
+            kp = max(kp, (min(torque, effort) if weak and effort else torque) / HOLD_ERROR)
         kd = 2.0 * DAMPING_RATIO * math.sqrt(max(kp, 0.0) * inertia)
-        out[joint.name] = JointGains(kp, kd, inertia, capped)
+        out[joint.name] = JointGains(kp, kd, inertia, capped, torque, weak)
     return out
 
 
@@ -124,6 +133,23 @@ def fill_default_gains(
         element=f"robot {robot.name!r}",
         stage=stage,
     )
+    weak = {n: g for n, g in gains.items() if g.weak}
+    if weak:
+        listed = ", ".join(
+            f"{n} (gravity up to {g.gravity_torque:.3g} N·m, effort {_effort(robot, n):.3g} N·m)" for n, g in weak.items()
+        )
+        findings.warn(
+            "default-gains-weak",
+            f"joints whose effort limit is below the gravity torque of the links they move, at their worst: "
+            f"the default stiffness is capped at effort/{HOLD_ERROR:g} rad and they may sag: {listed}",
+            element=f"robot {robot.name!r}",
+            stage=stage,
+        )
+
+
+def _effort(robot: Robot, name: str) -> float:
+    limit = robot.joint(name).limit
+    return float(limit.effort) if limit is not None and limit.effort is not None else math.inf
 
 
 def sig4(value: float) -> float:
