@@ -3,6 +3,11 @@
 
 - A revolute joint without limit gets [-π, π], a prismatic one [-1, 1] m; effort and velocity get
   ``DEFAULT_EFFORT``/``DEFAULT_VELOCITY`` when missing. Continuous joints stay continuous.
+- A range with no width (``lower >= upper``) gets the same placeholder range: CAD exporters write
+  ``<limit lower="0" upper="0" effort="0" velocity="0"/>`` for "not set" (SolidWorks, on the double
+  pendulums and Stretch's gripper fingers), MuJoCo reads such a range as no limit, and Newton's
+  MuJoCo backend refuses the file ("range[0] should be smaller than range[1]"). When effort and
+  velocity are 0 too, the whole element is the exporter's placeholder and they get the defaults.
 - An empty root link gets a tiny inertial (0.001 kg, 1e-6 kg·m² diagonal at its origin).
 Each change is a finding.
 """
@@ -37,6 +42,20 @@ def isaac_limits(robot: Robot, ctx: PassContext) -> Robot:
                 loc=joint.src,
             )
             continue
+        lim = joint.limit
+        if lim.lower is not None and lim.upper is not None and lim.lower >= lim.upper:
+            unset = not lim.effort and not lim.velocity
+            ctx.warn(
+                "limit-widened",
+                f"range [{lim.lower:g}, {lim.upper:g}] has no width (an exporter's 'not set'; MuJoCo reads it "
+                f"as no limit, Newton's MuJoCo backend refuses it): given [{-span:g}, {span:g}]"
+                + (f", effort {DEFAULT_EFFORT:g}, velocity {DEFAULT_VELOCITY:g} (both were 0)" if unset else ""),
+                element=label,
+                loc=lim.src,
+            )
+            lim.lower, lim.upper = -span, span
+            if unset:
+                lim.effort, lim.velocity = DEFAULT_EFFORT, DEFAULT_VELOCITY
         added = []
         if joint.limit.effort is None:
             joint.limit.effort = DEFAULT_EFFORT

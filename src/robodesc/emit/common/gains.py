@@ -136,7 +136,8 @@ def fill_default_gains(
     weak = {n: g for n, g in gains.items() if g.weak}
     if weak:
         listed = ", ".join(
-            f"{n} (gravity up to {g.gravity_torque:.3g} N·m, effort {_effort(robot, n):.3g} N·m)" for n, g in weak.items()
+            f"{n} (gravity up to {g.gravity_torque:.3g} N·m, effort {_effort(robot, n):.3g} N·m)"
+            for n, g in weak.items()
         )
         findings.warn(
             "default-gains-weak",
