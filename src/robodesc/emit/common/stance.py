@@ -10,7 +10,7 @@ no initial joint positions, the pose is chosen in this order:
    ``half_sitting`` pitches them 3.6°, and it tipped over from it where its zero pose stands);
 2. the legged heuristic (:func:`legged_pose`): legs are found as chains from the root to the lowest
    links; in each, the first two joints that pitch about the robot's lateral axis (hip, knee) are
-   bent so that the foot sits straight under the hip at 75 % of the leg's reach, a third pitch joint
+   bent so that the foot (where it stands: :func:`_foot_point`) sits straight under the hip at 75 % of the leg's reach, a third pitch joint
    (ankle) keeps the sole as it was at zero, every other joint stays at zero. Robots with three legs
    or more only: a biped's balance depends on where its centre of mass is, which this does not model;
 3. zeros, with a warning.
@@ -26,8 +26,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from robodesc.emit.common.named_pose import named_pose
-from robodesc.ir.geometry import Box, Capsule, Cylinder, Mesh, Sphere, Vec3
-from robodesc.ir.model import Joint, JointType, Link, Robot
+from robodesc.ir.geometry import Box, Capsule, Cylinder, Mesh, Pose, Sphere, Vec3
+from robodesc.ir.model import Collision, Joint, JointType, Link, Robot
 from robodesc.ir.rigid import Frame, apply, joint_motion, link_frames, pose_frame, resolve_mimic
 from robodesc.meshes.buffers import MeshReadError
 from robodesc.meshes.data import MeshCache
@@ -179,7 +179,7 @@ def find_legs(robot: Robot, q: Mapping[str, float], meshes: MeshCache | None = N
         names = tuple(j.name for j in chain)
         # Two colliders at the end of one chain (a shin and its toe) are one leg: the lower one.
         if names not in legs and len(_pitch_joints(chain, frames, robot)) >= 2:
-            legs[names] = Leg(foot, names, _foot_point(robot.link(foot)))
+            legs[names] = Leg(foot, names, _foot_point(robot.link(foot), frames[foot], meshes))
     found = sorted(legs.values(), key=lambda leg: leg.foot)
     return found if len(found) >= 2 else []
 
@@ -200,11 +200,36 @@ def _pitch_joints(chain: list[Joint], frames: Mapping[str, Frame], robot: Robot)
     return out
 
 
-def _foot_point(link: Link) -> Vec3:
-    """The centre of the link's first collider: where a point or sphere foot touches, and the sole's
-    middle for a box foot."""
-    origin = link.collisions[0].origin if link.collisions else None
-    return origin.xyz if origin is not None else (0.0, 0.0, 0.0)
+def _foot_point(link: Link, frame: Frame, meshes: MeshCache) -> Vec3:
+    """Where the foot stands, in its link's frame: the centre of a sphere or box (a point foot
+    rolls about its centre; a sole's middle), the lower end of a capsule's or cylinder's axis (a
+    shin that ends on the ground: its middle is not under the hip), the lowest vertex of a mesh; at
+    the pose ``frame`` was taken at. Of the link's lowest collider (a shin's sphere toe, not the
+    shin's box)."""
+    if not link.collisions:
+        return (0.0, 0.0, 0.0)
+
+    def low(c: Collision) -> float:
+        z = _shape_lowest(c.geometry, frame @ pose_frame(c.origin), False, meshes)
+        return math.inf if z is None else z
+
+    collision = min(link.collisions, key=low)
+    local = pose_frame(collision.origin)
+    geometry = collision.geometry
+    if isinstance(geometry, Capsule | Cylinder):
+        ends = [local @ pose_frame(Pose(xyz=(0.0, 0.0, s * geometry.length / 2))) for s in (-1.0, 1.0)]
+        return min(ends, key=lambda end: (frame @ end).translation[2]).translation
+    if isinstance(geometry, Mesh) and geometry.path:
+        try:
+            data = meshes.get(str(geometry.path), geometry.scale)
+        except (MeshReadError, OSError):
+            return local.translation
+        f = frame @ local
+        a, b, c = f.rotation[2]
+        pts = data.points
+        i = min(range(0, len(pts), 3), key=lambda k: a * pts[k] + b * pts[k + 1] + c * pts[k + 2])
+        return (local @ pose_frame(Pose(xyz=(pts[i], pts[i + 1], pts[i + 2])))).translation
+    return local.translation
 
 
 # ---- the legged heuristic ------------------------------------------------------------------------
