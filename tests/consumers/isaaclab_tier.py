@@ -133,8 +133,10 @@ def main(argv: list[str] | None = None) -> int:
     from robodesc.validation.corpora import all_robots
 
     robots = all_robots(os.path.join(os.path.dirname(ROOT), "shared", "corpus"))
-    if args.robots:
-        robots = [r for r in robots if any(w in r.name for w in args.robots.split(","))]
+    if args.robots:  # a full name matches itself only; any other word, every name containing it
+        words = args.robots.split(",")
+        names = {r.name for r in robots}
+        robots = [r for r in robots if r.name in words or any(w in r.name for w in words if w not in names)]
     work = os.path.join(args.envs, "work_isaaclab", args.label)
     os.makedirs(work, exist_ok=True)
     with ThreadPoolExecutor(args.jobs) as pool:
