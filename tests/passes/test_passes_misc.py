@@ -198,17 +198,19 @@ def test_isaac_limits_widens_a_range_with_no_width() -> None:
     """SolidWorks' all-zero <limit> (double_pendulum, Stretch's gripper fingers) is 'not set': a
     placeholder range and the default effort and velocity; a zero-width range with a real effort
     keeps its effort."""
-    robot = chain("root", "a", "b", joint_names=["rev", "pri"])
+    robot = chain("root", "a", "b", "c", joint_names=["rev", "pri", "cont"])
     robot.joints[0].limit = Limit(lower=0.0, upper=0.0, effort=0.0, velocity=0.0)
     robot.joints[1].type = JointType.PRISMATIC
     robot.joints[1].limit = Limit(lower=0.2, upper=0.1, effort=5.0, velocity=1.0)
+    robot.joints[2].type = JointType.CONTINUOUS  # double_pendulum_continuous: a [0, 0] force range
+    robot.joints[2].limit = Limit(effort=0.0, velocity=0.0)
     c = ctx(isaac_limits=True)
     isaac_limits(robot, c)
-    rev, pri = robot.joint("rev").limit, robot.joint("pri").limit
+    rev, pri, cont = robot.joint("rev").limit, robot.joint("pri").limit, robot.joint("cont").limit
     assert rev is not None and (rev.lower, rev.upper, rev.effort, rev.velocity) == (-math.pi, math.pi, 1000.0, 100.0)
     assert pri is not None and (pri.lower, pri.upper, pri.effort, pri.velocity) == (-1.0, 1.0, 5.0, 1.0)
-    assert codes(c) == ["limit-widened", "limit-widened"]
-    assert "effort 1000" in c.findings.items[0].message and "effort" not in c.findings.items[1].message.split(":")[-1]
+    assert cont is not None and (cont.lower, cont.upper, cont.effort, cont.velocity) == (None, None, 1000.0, 100.0)
+    assert codes(c) == ["limit-completed", "limit-widened", "limit-widened", "limit-completed"]
 
 
 def test_flat_collision_mesh_becomes_a_thin_box(tmp_path: Path) -> None:
