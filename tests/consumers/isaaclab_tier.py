@@ -34,12 +34,18 @@ RESULTS = os.path.join(ROOT, "benchmarks", "results", "isaaclab_corpus.json")
 STEPS = 200  # 1 s at 200 Hz
 
 
-def check_all(envs: str, cases: list[dict[str, Any]], work: str) -> dict[str, Any]:
+def check_all(envs: str, cases: list[dict[str, Any]], work: str, resume: bool = False) -> dict[str, Any]:
     """isaaclab_check.py over ``cases`` in as few processes as it takes: a process that dies (a
-    segfault in a solver) loses only the robot it was on, which is recorded, and the rest go on."""
+    segfault in a solver) loses only the robot it was on, which is recorded, and the rest go on.
+    Results accumulate in ``work/isaaclab_done.json``; ``resume`` keeps those and runs the rest.
+    Floating robots run first: they are what the tier is for."""
     python = os.path.join(envs, "isaaclab", "bin", "python")
+    done_path = os.path.join(work, "isaaclab_done.json")
     done: dict[str, Any] = {}
-    todo = list(cases)
+    if resume and os.path.isfile(done_path):
+        with open(done_path, encoding="utf-8") as f:
+            done = json.load(f)
+    todo = sorted((c for c in cases if c["name"] not in done), key=lambda c: not c.get("floating", False))
     while todo:
         cases_path = os.path.join(work, "isaaclab_cases.json")
         out = os.path.join(work, "isaaclab_part.json")
@@ -63,7 +69,9 @@ def check_all(envs: str, cases: list[dict[str, Any]], work: str) -> dict[str, An
         if todo:  # the first one left is the one the process died on
             crashed = todo.pop(0)
             done[crashed["name"]] = {"status": f"fail: Isaac Lab process died ({tail.strip().splitlines()[-1:]})"}
-    return done
+        with open(done_path, "w", encoding="utf-8") as f:
+            json.dump(done, f)
+    return {c["name"]: done[c["name"]] for c in cases if c["name"] in done}
 
 
 def _compiled(robot: Any, src: str, work: str, reuse: bool) -> dict[str, Any]:
@@ -128,6 +136,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--out", default=RESULTS)
     ap.add_argument("--compile-only", action="store_true", help="compile the folders, check nothing")
     ap.add_argument("--reuse", action="store_true", help="keep folders an earlier run of this label compiled")
+    ap.add_argument("--resume", action="store_true", help="keep results an earlier run of this label checked")
     args = ap.parse_args(argv)
     sys.path.insert(0, os.path.join(ROOT, "src"))
     from robodesc.validation.corpora import all_robots
@@ -143,8 +152,8 @@ def main(argv: list[str] | None = None) -> int:
         compiled = list(pool.map(lambda r: _compiled(r, os.path.abspath(args.src), work, args.reuse), robots))
     if args.compile_only:
         return 0
-    cases = [{"name": c["name"], "folder": c["folder"]} for c in compiled if c["rc"] == 0]
-    checked = check_all(args.envs, cases, work)
+    cases = [{"name": c["name"], "folder": c["folder"], "floating": c["floating"]} for c in compiled if c["rc"] == 0]
+    checked = check_all(args.envs, cases, work, args.resume)
     results: dict[str, Any] = {}
     for c in compiled:
         why = (c["error"].strip().splitlines() or [""])[-1]
