@@ -105,3 +105,23 @@ def test_gravity_floor_under_the_effort_is_kept() -> None:
         assert not g.weak
         if g.gravity_torque:
             assert g.stiffness >= g.gravity_torque / HOLD_ERROR * (1 - 1e-9) or g.capped
+
+
+def test_a_shins_own_collider_link_is_not_a_leg(tmp_path: Path) -> None:
+    """Romeo (laas_small) hangs a collider link off each knee: its chain is the foot's chain cut
+    short, so the robot has two legs, not four (and a biped gets no heuristic)."""
+    source = biped(tmp_path, None)
+    text = source.read_text()
+    shins = "".join(
+        f'<joint name="{s}_shin_shape" type="fixed"><parent link="{s}_shin"/><child link="{s}_shin_collision"/></joint>'
+        f'<link name="{s}_shin_collision"><collision><origin xyz="0 0 -0.15"/>'
+        '<geometry><cylinder radius="0.03" length="0.28"/></geometry></collision></link>'
+        for s in "lr"
+    )
+    source.write_text(text.replace("</robot>", shins + "</robot>"))
+    robot = robodesc.load(str(source))
+    from robodesc.emit.common.stance import complete, find_legs
+
+    legs = find_legs(robot, complete(robot, {}))
+    assert [leg.foot for leg in legs] == ["l_foot", "r_foot"]
+    assert choose_stance(robot, None).source == "zeros"

@@ -16,8 +16,8 @@ distance rather than the axis make it the most the joint can meet as the joints 
 with ``f`` = 4 Hz, ``zeta`` = 1 (critically damped: the robot settles without rocking) and
 ``E_SAT`` = 0.2 rad. A revolute joint's kp is also at least ``g·sum(m·d) / HOLD_ERROR``: the most
 gravity torque the moved links can put on it, held within ``HOLD_ERROR`` = 0.05 rad; a leg joint of
-a floating robot adds the body's share standing on its foot, ``(M / legs)·g·h`` with ``h`` the foot's
-horizontal distance from the joint at the stance (the example quadruped's knees sagged 0.3 rad and
+a floating robot adds the body's share standing on its foot, ``(M / legs)·g`` pushing up at the
+foot: ``(M / legs)·g·|((foot - joint) × z)·axis|`` at the stance (nothing about a yaw axis) (the example quadruped's knees sagged 0.3 rad and
 it tilted 9° from its heuristic stance without it) (a finger's
 inertia is tiny next to the lever arm of a hand held out; without this floor fixed hands and small
 arms sagged ~0.2 rad in Newton). That floor is not bound by the ``E_SAT`` cap (it exists to hold
@@ -87,9 +87,12 @@ def derived_gains(
             share = total / len(stance.legs)
             inertia += share * (_distance_sq(point, jf.translation) if joint.type.is_angular else 1.0)
             if joint.type.is_angular:
-                # The body's share stands on the foot: the ground pushes it up there, a torque of
-                # share·g times the foot's horizontal distance from the joint at the stance.
-                torque += GRAVITY * share * math.hypot(point[0] - jf.translation[0], point[1] - jf.translation[1])
+                # The body's share stands on the foot: the ground pushes it up there with share·g,
+                # a torque about the joint's axis of ((foot - joint) × z)·axis (none about a yaw axis).
+                r = (point[0] - jf.translation[0], point[1] - jf.translation[1])
+                ax = apply(jf.rotation, joint.effective_axis)
+                norm = math.sqrt(ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]) or 1.0
+                torque += GRAVITY * share * abs(r[1] * ax[0] - r[0] * ax[1]) / norm
         inertia += joint.armature or 0.0
         effort = joint.limit.effort if joint.limit is not None and joint.limit.effort else None
         weak = effort is not None and effort > 0 and torque > effort

@@ -180,7 +180,12 @@ def find_legs(robot: Robot, q: Mapping[str, float], meshes: MeshCache | None = N
         # Two colliders at the end of one chain (a shin and its toe) are one leg: the lower one.
         if names not in legs and len(_pitch_joints(chain, frames, robot)) >= 2:
             legs[names] = Leg(foot, names, _foot_point(robot.link(foot), frames[foot], meshes))
-    found = sorted(legs.values(), key=lambda leg: leg.foot)
+    # A chain that another leg's chain continues is that leg's (a shin's own collider link hanging
+    # off the knee: Romeo's KneePitchCollision_shape), not a leg of its own.
+    found = sorted(
+        (leg for names, leg in legs.items() if not any(len(o) > len(names) and o[: len(names)] == names for o in legs)),
+        key=lambda leg: leg.foot,
+    )
     return found if len(found) >= 2 else []
 
 
