@@ -28,6 +28,7 @@ from typing import Any
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
+from isaaclab_check import THROUGH_GROUND  # noqa: E402
 from stand_tier import compile_one  # noqa: E402
 
 RESULTS = os.path.join(ROOT, "benchmarks", "results", "isaaclab_corpus.json")
@@ -85,6 +86,17 @@ def _compiled(robot: Any, src: str, work: str, reuse: bool) -> dict[str, Any]:
     with open(record, "w", encoding="utf-8") as f:
         json.dump(result, f)
     return result
+
+
+def rejudge(result: dict[str, Any]) -> dict[str, Any]:
+    """A result checked with the first rule for a fall through the ground (root below 0 m, which
+    failed Tiago's base_footprint resting at -0.000 m), judged with today's (below -0.25 m)."""
+    status = str(result.get("status", ""))
+    z = (result.get("checks", {}).get("root_pos") or [0.0, 0.0, 0.0])[2]
+    if not status.startswith("fail: ") or z < THROUGH_GROUND:
+        return result
+    problems = [p for p in status[len("fail: ") :].split("; ") if not p.startswith("fell through the ground")]
+    return {**result, "status": "fail: " + "; ".join(problems) if problems else "pass"}
 
 
 def markdown(everything: dict[str, dict[str, Any]]) -> str:
@@ -159,7 +171,7 @@ def main(argv: list[str] | None = None) -> int:
         why = (c["error"].strip().splitlines() or [""])[-1]
         r = checked.get(c["name"], {"status": f"fail: not converted ({why})"})
         r.pop("traceback", None)
-        results[c["name"]] = {"floating": c["floating"], **r}
+        results[c["name"]] = rejudge({"floating": c["floating"], **r})
     everything: dict[str, Any] = {}
     if os.path.isfile(args.out):
         with open(args.out, encoding="utf-8") as f:
