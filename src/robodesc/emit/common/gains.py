@@ -87,12 +87,15 @@ def derived_gains(
             share = total / len(stance.legs)
             inertia += share * (_distance_sq(point, jf.translation) if joint.type.is_angular else 1.0)
             if joint.type.is_angular:
-                # The body's share stands on the foot: the ground pushes it up there with share·g,
-                # a torque about the joint's axis of ((foot - joint) × z)·axis (none about a yaw axis).
+                # A leg in its stance does not swing its links out: its load is the robot's share
+                # (M / legs, the leg's own links included) standing on the foot, the ground pushing
+                # up there with share·g: ((foot - joint) × z)·axis of torque, none about a yaw axis.
+                # The worst case over the joints beyond (arms) made Romeo's legs "weak" and 4x
+                # stiffer, and it tipped over.
                 r = (point[0] - jf.translation[0], point[1] - jf.translation[1])
                 ax = apply(jf.rotation, joint.effective_axis)
                 norm = math.sqrt(ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]) or 1.0
-                torque += GRAVITY * share * abs(r[1] * ax[0] - r[0] * ax[1]) / norm
+                torque = GRAVITY * share * abs(r[1] * ax[0] - r[0] * ax[1]) / norm
         inertia += joint.armature or 0.0
         effort = joint.limit.effort if joint.limit is not None and joint.limit.effort else None
         weak = effort is not None and effort > 0 and torque > effort

@@ -43,6 +43,7 @@ _KNEE_SAMPLES = 181
 FOOT_BAND = 0.01  # m
 # and, on two legs, each sole is within this of its tilt at zero (where URDF soles are flat).
 SOLE_TILT = math.radians(1.0)
+SOLE_BAND = 0.002  # m: a mesh foot's vertices this close to its lowest one are its sole
 
 
 @dataclass(slots=True, frozen=True)
@@ -208,8 +209,8 @@ def _pitch_joints(chain: list[Joint], frames: Mapping[str, Frame], robot: Robot)
 def _foot_point(link: Link, frame: Frame, meshes: MeshCache) -> Vec3:
     """Where the foot stands, in its link's frame: the centre of a sphere or box (a point foot
     rolls about its centre; a sole's middle), the lower end of a capsule's or cylinder's axis (a
-    shin that ends on the ground: its middle is not under the hip), the lowest vertex of a mesh; at
-    the pose ``frame`` was taken at. Of the link's lowest collider (a shin's sphere toe, not the
+    shin that ends on the ground: its middle is not under the hip), the sole of a mesh; at
+    the pose ``frame`` was taken at (a mesh: the middle of its vertices within ``SOLE_BAND`` of the lowest). Of the link's lowest collider (a shin's sphere toe, not the
     shin's box)."""
     if not link.collisions:
         return (0.0, 0.0, 0.0)
@@ -232,8 +233,13 @@ def _foot_point(link: Link, frame: Frame, meshes: MeshCache) -> Vec3:
         f = frame @ local
         a, b, c = f.rotation[2]
         pts = data.points
-        i = min(range(0, len(pts), 3), key=lambda k: a * pts[k] + b * pts[k + 1] + c * pts[k + 2])
-        return (local @ pose_frame(Pose(xyz=(pts[i], pts[i + 1], pts[i + 2])))).translation
+        heights = [a * pts[k] + b * pts[k + 1] + c * pts[k + 2] for k in range(0, len(pts), 3)]
+        # The middle of what touches: every vertex within SOLE_BAND of the lowest (a flat sole's
+        # corners average to its centre; a pointed foot has one vertex there).
+        low = min(heights)
+        near = [3 * i for i, h in enumerate(heights) if h <= low + SOLE_BAND]
+        mid = tuple(sum(pts[k + axis] for k in near) / len(near) for axis in range(3))
+        return (local @ pose_frame(Pose(xyz=(mid[0], mid[1], mid[2])))).translation
     return local.translation
 
 
