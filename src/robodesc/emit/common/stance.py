@@ -236,8 +236,8 @@ def _foot_point(link: Link, frame: Frame, meshes: MeshCache) -> Vec3:
         heights = [a * pts[k] + b * pts[k + 1] + c * pts[k + 2] for k in range(0, len(pts), 3)]
         # The middle of what touches: every vertex within SOLE_BAND of the lowest (a flat sole's
         # corners average to its centre; a pointed foot has one vertex there).
-        low = min(heights)
-        near = [3 * i for i, h in enumerate(heights) if h <= low + SOLE_BAND]
+        lowest = min(heights)
+        near = [3 * i for i, h in enumerate(heights) if h <= lowest + SOLE_BAND]
         mid = tuple(sum(pts[k + axis] for k in near) / len(near) for axis in range(3))
         return (local @ pose_frame(Pose(xyz=(mid[0], mid[1], mid[2])))).translation
     return local.translation
