@@ -125,3 +125,22 @@ def test_a_shins_own_collider_link_is_not_a_leg(tmp_path: Path) -> None:
     legs = find_legs(robot, complete(robot, {}))
     assert [leg.foot for leg in legs] == ["l_foot", "r_foot"]
     assert choose_stance(robot, None).source == "zeros"
+
+
+def test_a_robot_without_moving_joints_names_no_joint_pattern(tmp_path: Path) -> None:
+    """iris_simple (rotors on fixed joints): Isaac Lab refused the module's ``joint_vel`` pattern
+    ``.*``, which matched no joint."""
+    import runpy
+
+    urdf = tmp_path / "rigid.urdf"
+    urdf.write_text(
+        '<robot name="rigid"><link name="body"><inertial><mass value="1"/>'
+        '<inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'
+        '<collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision></link>'
+        '<joint name="rotor_joint" type="fixed"><parent link="body"/><child link="rotor"/></joint>'
+        '<link name="rotor"><inertial><mass value="0.1"/>'
+        '<inertia ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>'
+    )
+    robodesc.compile_for_isaac_sim(str(urdf), tmp_path / "out", fix_base=False)
+    module = runpy.run_path(str(next((tmp_path / "out").glob("*_isaaclab.py"))))["ROBOT"]
+    assert module["init_state"]["joint_pos"] == {} and module["init_state"]["joint_vel"] == {}
