@@ -122,7 +122,10 @@ def markdown(everything: dict[str, dict[str, Any]]) -> str:
         "within 0.1 rad of its start; gains read back (relative 1e-4).",
         "",
     ]
-    labels = list(everything)
+    described = everything.get("_labels", {})
+    labels = [la for la in everything if not la.startswith("_")]
+    lines += [f"- `{la}`: {described[la]}" for la in labels if la in described]
+    lines += [""] if described else []
     for label in labels:
         results = everything[label]
         for kind, word in ((True, "floating robots upright for 1 s"), (False, "fixed robots within 0.1 rad")):
@@ -164,6 +167,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--reuse", action="store_true", help="keep folders an earlier run of this label compiled")
     ap.add_argument("--resume", action="store_true", help="keep results an earlier run of this label checked")
     ap.add_argument("--collect", action="store_true", help="write what a (stopped) run of this label checked")
+    ap.add_argument("--describe", default=None, help="what this label's robodesc is, for the table")
     args = ap.parse_args(argv)
     sys.path.insert(0, os.path.join(ROOT, "src"))
     from robodesc.validation.corpora import all_robots
@@ -198,6 +202,8 @@ def main(argv: list[str] | None = None) -> int:
             everything = json.load(f)
     # A subset run updates its robots and keeps the rest of the label's results.
     everything[args.label] = {**everything.get(args.label, {}), **results} if args.robots else results
+    if args.describe:
+        everything.setdefault("_labels", {})[args.label] = args.describe
     with open(args.out, "w", encoding="utf-8") as f:
         json.dump(everything, f, indent=1, default=str)
         f.write("\n")
