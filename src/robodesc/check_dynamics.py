@@ -5,12 +5,19 @@ Driver code: it knows targets only through the table. Each engine reads some tar
 checked target get their target compiled beside it in the same scratch folder, with the input and
 pass options and only the target options their class declares. Newton runs only when asked
 (``engines``) or when the checked target is the one it reads: its first import costs seconds.
+
+Where the caller gives no pose or gains, the scenarios start from the Isaac folder's defaults
+(docs/isaac.md, "Defaults that stand"; :func:`default_stance`): a robot whose root is free gets the
+pose a floating robot stands in, and every driven joint the gains derived from its inertia, effort
+and gravity load, so engines are compared from a stance the robot can keep.
 """
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import os
+import re
 from collections.abc import Callable, Mapping
 from typing import Any
 
@@ -68,7 +75,58 @@ def run_for(
         files[name] = path
     opts = dataclasses.replace(opts, engines=engines)
     robot = _source_robot(source, options) or robot
+    opts = default_stance(robot, opts)
     return run_dynamics(robot, files, opts, source_urdf=_source_file(source, robot, folder, options))
+
+
+def default_stance(robot: Robot, opts: DynamicsOptions) -> DynamicsOptions:
+    """``opts`` with the Isaac folder's default pose and derived gains where it has none: the pose
+    ``--isaac-sim --no-fix-base`` spawns the robot in when its root is free (``world`` welds it:
+    zeros, as a fixed Isaac robot), and per-joint gains from the same formula (emit/common/gains.py).
+    Computed on a copy lowered as the Isaac preset lowers it (inertia filled and repaired, limits
+    completed), so the numbers are the folder's; joint names are the source's."""
+    from robodesc.emit.common.gains import derived_gains
+    from robodesc.emit.common.stance import Stance, choose_stance, complete
+    from robodesc.ir.rules import lookup
+    from robodesc.passes.options import PassOptions, RepairPolicy
+    from robodesc.passes.pipeline import run_passes
+
+    if opts.pose is not None and opts.stiffness is not None and opts.damping is not None:
+        return opts
+    lowered = copy.deepcopy(robot)
+    try:
+        run_passes(
+            lowered,
+            options=PassOptions(fill_inertia=True, repair_inertia=RepairPolicy.GEOMETRY, isaac_limits=True),
+        )
+    except RobodescError:
+        lowered = copy.deepcopy(robot)
+    roots = lowered.root_links()
+    floating = bool(roots) and roots[0].name != "world"
+    driven = [j for j in lowered.actuated_joints() if j.type.dof == 1]
+    wanted = {}
+    if opts.pose is not None:
+        wanted = {j.name: v for j in driven if (v := lookup(opts.pose, j.name, "pose")) is not None}
+    if floating:
+        stance = choose_stance(lowered, wanted or None)
+    else:
+        stance = Stance(complete(lowered, wanted), "pose" if wanted else "zeros")
+    user_kp = None
+    if opts.stiffness is not None:
+        user_kp = {j.name: lookup(opts.stiffness, j.name, "stiffness") or 0.0 for j in driven}
+    gains = derived_gains(lowered, stance, floating, user_kp)
+    out = dataclasses.replace(opts)
+    if opts.pose is None:
+        out.pose = {re.escape(j.name): stance.positions.get(j.name, 0.0) for j in driven}
+    if opts.stiffness is None:
+        out.stiffness = {re.escape(n): g.stiffness for n, g in gains.items()}
+    if opts.damping is None:
+        out.damping = {re.escape(n): g.damping for n, g in gains.items()}
+    given = "given" if opts.pose is not None else stance.source
+    out.defaults = f"pose: {given}; gains: " + (
+        "given" if opts.stiffness is not None and opts.damping is not None else "derived (docs/isaac.md)"
+    )
+    return out
 
 
 def _source_robot(source: Any, options: Mapping[str, Any]) -> Robot | None:

@@ -5,6 +5,8 @@
 #   tests/consumers/run.sh --robots panda,a1    # a subset (substring match on corpus names)
 #   tests/consumers/run.sh --kinds newton_mjcf  # only robodesc's MJCF through Newton's add_mjcf (other columns kept)
 #   ROBODESC_CONSUMERS_ISAACLAB=1 tests/consumers/run.sh   # also build Isaac Lab 3.0 (~8 GB, torch)
+#                                   and spawn the corpus in it (isaaclab_tier.py; ROBODESC_ISAACLAB_ARGS
+#                                   passes it more, e.g. "--robots go1,icub --label after")
 #
 # Environments live outside the repository, in $ROBODESC_CONSUMERS_DIR (default
 # ~/.cache/robodesc-consumers), one virtualenv per engine:
@@ -44,3 +46,7 @@ if [ "${ROBODESC_CONSUMERS_ISAACLAB:-0}" = "1" ]; then
 fi
 
 "$PYTHON" tests/consumers/run_tier.py --envs "$ENVS" "$@"
+if [ "${ROBODESC_CONSUMERS_ISAACLAB:-0}" = "1" ]; then
+  # shellcheck disable=SC2086  # the extra arguments are words on purpose
+  "$PYTHON" tests/consumers/isaaclab_tier.py --envs "$ENVS" ${ROBODESC_ISAACLAB_ARGS:-}
+fi

@@ -47,13 +47,19 @@ def test_arm_holds_and_behaves_as_its_source_in_mujoco() -> None:
 
 
 def test_quadruped_drops_and_stands_in_mujoco() -> None:
+    """From the Isaac folder's default stance (the legged heuristic: knees bent, feet under the hips)
+    and its derived gains, as ``--isaac-sim --no-fix-base`` spawns it."""
     dyn = robodesc.check(QUAD, "urdf", dynamics=MUJOCO).dynamics
     assert dyn is not None and dyn.ok, dyn.to_text()
+    assert dyn.info["pose_note"] == "pose: legged heuristic; gains: derived (docs/isaac.md)"
     drop = next(r for r in dyn.runs if r.scenario == "drop")  # it stands on four feet: the drop runs
     assert drop.ok and drop.tilt is not None and drop.tilt < math.radians(5)
     robot = robodesc.load(QUAD)
+    pose = dyn.info["setup"]["pose"]
+    assert pose["FL_knee"] < -1.0 and pose["RR_hip_flex"] > 0.5
     # It settles near the height the scenario computed from the colliders (contact softness apart).
-    assert drop.height == pytest.approx(stand_height(robot, home_pose(robot)), abs=0.02)
+    assert drop.height == pytest.approx(stand_height(robot, pose), abs=0.02)
+    assert drop.drift is not None and drop.drift < 0.1  # the knees hold the body's share
 
 
 def test_an_output_unlike_its_source_fails(tmp_path: Path) -> None:
@@ -205,3 +211,34 @@ def test_an_engine_reading_the_source_differently_is_a_warning() -> None:
     report = DynamicsReport("r", runs=[crashed])
     judge(report, _setup(), Thresholds())
     assert _rows(report, "run") == [Status.FAIL]
+
+
+def test_scenarios_start_from_the_isaac_modules_pose_and_gains(tmp_path: Path) -> None:
+    """Issue 29: hold and drop start where ``--isaac-sim --no-fix-base`` spawns the robot, with the
+    same per-joint gains (the module rounds them to four digits)."""
+    import runpy
+
+    from robodesc.check_dynamics import default_stance
+
+    robodesc.compile_for_isaac_sim(QUAD, tmp_path / "q", fix_base=False)
+    module = runpy.run_path(str(next((tmp_path / "q").glob("*_isaaclab.py"))))["ROBOT"]
+    opts = default_stance(robodesc.load(QUAD), DynamicsOptions())
+    assert opts.pose is not None and opts.stiffness is not None and opts.damping is not None
+    pose = {k.replace("\\", ""): v for k, v in opts.pose.items()}
+    assert pose == pytest.approx(module["init_state"]["joint_pos"])
+    for group in module["actuators"].values():
+        for expr in group["joint_names_expr"]:
+            assert opts.stiffness[expr] == pytest.approx(group["stiffness"], rel=1e-3)  # type: ignore[index]
+            assert opts.damping[expr] == pytest.approx(group["damping"], rel=1e-3)  # type: ignore[index]
+
+
+def test_given_pose_and_gains_win_over_the_defaults() -> None:
+    from robodesc.check_dynamics import default_stance
+
+    robot = robodesc.load(QUAD)
+    opts = default_stance(robot, DynamicsOptions(pose={".*": 0.0}, stiffness=50.0))
+    assert set(opts.pose.values()) == {0.0}  # type: ignore[union-attr]
+    assert opts.stiffness == 50.0
+    # The damping is derived from the given stiffness: kd = 2·sqrt(kp·I_eff).
+    assert isinstance(opts.damping, dict) and all(v > 0 for v in opts.damping.values())
+    assert opts.defaults == "pose: given; gains: derived (docs/isaac.md)"

@@ -134,9 +134,12 @@ def test_derived_gains_follow_the_formula() -> None:
     omega = 2 * math.pi * 4.0
     for name, g in gains.items():
         effort = robot.joint(name).limit.effort  # type: ignore[union-attr]
-        assert g.stiffness == pytest.approx(min(g.inertia * omega**2, effort / 0.2))
+        # I_eff ω² under the effort cap, and at least the gravity floor (bounded by the effort).
+        floor = min(g.gravity_torque, effort) / 0.05
+        assert g.stiffness == pytest.approx(max(min(g.inertia * omega**2, effort / 0.2), floor))
         assert g.damping == pytest.approx(2 * math.sqrt(g.stiffness * g.inertia))
         assert g.capped == (g.inertia * omega**2 > effort / 0.2)
+        assert g.gravity_torque > 0 and not g.weak
 
 
 def test_explicit_gains_and_pose_win(tmp_path: Path) -> None:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import hashlib
 import math
+from pathlib import Path
 
 import pytest
 
@@ -191,6 +192,53 @@ def test_isaac_limits() -> None:
     world = robot.link("world").inertial
     assert world is not None and world.mass == 0.001 and world.inertia == Inertia(1e-6, 1e-6, 1e-6)
     assert codes(c) == ["limit-added", "limit-completed", "empty-root-link"]
+
+
+def test_isaac_limits_widens_a_range_with_no_width() -> None:
+    """SolidWorks' all-zero <limit> (double_pendulum, Stretch's gripper fingers) is 'not set': a
+    placeholder range and the default effort and velocity; a zero-width range with a real effort
+    keeps its effort."""
+    robot = chain("root", "a", "b", "c", joint_names=["rev", "pri", "cont"])
+    robot.joints[0].limit = Limit(lower=0.0, upper=0.0, effort=0.0, velocity=0.0)
+    robot.joints[1].type = JointType.PRISMATIC
+    robot.joints[1].limit = Limit(lower=0.2, upper=0.1, effort=5.0, velocity=1.0)
+    robot.joints[2].type = JointType.CONTINUOUS  # double_pendulum_continuous: a [0, 0] force range
+    robot.joints[2].limit = Limit(effort=0.0, velocity=0.0)
+    c = ctx(isaac_limits=True)
+    isaac_limits(robot, c)
+    rev, pri, cont = robot.joint("rev").limit, robot.joint("pri").limit, robot.joint("cont").limit
+    assert rev is not None and (rev.lower, rev.upper, rev.effort, rev.velocity) == (-math.pi, math.pi, 1000.0, 100.0)
+    assert pri is not None and (pri.lower, pri.upper, pri.effort, pri.velocity) == (-1.0, 1.0, 5.0, 1.0)
+    assert cont is not None and (cont.lower, cont.upper, cont.effort, cont.velocity) == (None, None, 1000.0, 100.0)
+    assert codes(c) == ["limit-completed", "limit-widened", "limit-widened", "limit-completed"]
+
+
+def test_flat_collision_mesh_becomes_a_thin_box(tmp_path: Path) -> None:
+    """Stretch's ArUco plates: a planar mesh has no hull for PhysX or Newton's MuJoCo backend."""
+    from robodesc.ir.geometry import Box, Mesh, Pose
+    from robodesc.ir.model import Collision
+    from robodesc.passes.flat_colliders import THICKNESS, flat_colliders
+
+    flat = tmp_path / "plate.obj"  # a 4 x 2 cm plate in the plane z = 0.01, centred at (0.02, 0, 0.01)
+    flat.write_text("v 0 -0.01 0.01\nv 0.04 -0.01 0.01\nv 0.04 0.01 0.01\nv 0 0.01 0.01\nf 1 2 3\nf 1 3 4\n")
+    solid = tmp_path / "tet.obj"
+    solid.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    robot = chain("a", "b")
+    origin = Pose(xyz=(1.0, 0.0, 0.0), rpy=(0.0, 0.0, math.pi / 2))
+    robot.links[1].collisions = [
+        Collision(Mesh("plate.obj", path=str(flat)), origin=origin),
+        Collision(Mesh("tet.obj", path=str(solid))),
+    ]
+    c = ctx()
+    flat_colliders(robot, c)
+    box, kept = robot.links[1].collisions
+    assert isinstance(box.geometry, Box) and isinstance(kept.geometry, Mesh)
+    assert box.geometry.size == pytest.approx((0.04, 0.02, THICKNESS))
+    assert box.origin is not None
+    # The plate's centre (0.02, 0, 0.01) turned a quarter about z, then moved by the origin.
+    assert box.origin.xyz == pytest.approx((1.0, 0.02, 0.01))
+    assert box.origin.rpy == pytest.approx((0.0, 0.0, math.pi / 2))
+    assert codes(c) == ["flat-collider"]
 
 
 def test_zero_pose_outside_limits() -> None:

@@ -29,6 +29,7 @@ def test_pipeline_reads_like_a_table_of_contents() -> None:
         "armature",
         "explicit_damping",
         "isaac_limits",
+        "flat_colliders",
         "keep_bodies",
         "zero_pose",
     ]

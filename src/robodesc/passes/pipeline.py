@@ -47,6 +47,8 @@ PASSES: tuple[Pass, ...] = (
     Pass("armature", lambda o: bool(o.armature or o.armature_by_robot)),
     Pass("explicit_damping", lambda o: o.explicit_damping),
     Pass("isaac_limits", lambda o: o.isaac_limits),
+    # Isaac lowering too: a flat collision mesh has no hull for PhysX or Newton.
+    Pass("flat_colliders", lambda o: o.isaac_limits),
     Pass("keep_bodies", lambda o: o.keep_bodies),
     Pass("zero_pose", lambda o: o.zero_pose_check),
 )

@@ -113,6 +113,7 @@ PRESETS: dict[str, tuple[str, ...]] = {
         "repair_inertia",
         "strip_tags",
         "isaac_limits",
+        "flat_colliders",
         "keep_bodies",
         "zero_pose",
     ),

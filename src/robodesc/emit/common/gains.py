@@ -49,6 +49,8 @@ class JointGains:
     damping: float
     inertia: float  # I_eff, kg·m² (kg for a prismatic joint)
     capped: bool  # the effort limit bounded the stiffness
+    gravity_torque: float = 0.0  # g·Σm·d, N·m: the most gravity can load the joint with (revolute)
+    weak: bool = False  # gravity_torque exceeds the effort limit: the joint cannot hold its links out
 
 
 def derived_gains(
@@ -68,25 +70,38 @@ def derived_gains(
         jf = frames[joint.parent] @ pose_frame(joint.origin)
         inertia = moved.inertia(joint, jf.translation)
         leg = leg_of.get(joint.name)
+        torque = 0.0
+        if joint.type.is_angular:
+            torque = GRAVITY * moved.moment(joint.child, jf.translation)
         if leg is not None and stance.legs:
             foot = frames[leg.foot]
             point = _add(foot.translation, apply(foot.rotation, leg.foot_point))
             share = total / len(stance.legs)
             inertia += share * (_distance_sq(point, jf.translation) if joint.type.is_angular else 1.0)
+            if joint.type.is_angular:
+                # A leg in its stance does not swing its links out: its load is the robot's share
+                # (M / legs, the leg's own links included) standing on the foot, the ground pushing
+                # up there with share·g: ((foot - joint) × z)·axis of torque, none about a yaw axis.
+                # The worst case over the joints beyond (arms) made Romeo's legs "weak" and 4x
+                # stiffer, and it tipped over.
+                r = (point[0] - jf.translation[0], point[1] - jf.translation[1])
+                ax = apply(jf.rotation, joint.effective_axis)
+                norm = math.sqrt(ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]) or 1.0
+                torque = GRAVITY * share * abs(r[1] * ax[0] - r[0] * ax[1]) / norm
         inertia += joint.armature or 0.0
+        effort = joint.limit.effort if joint.limit is not None and joint.limit.effort else None
+        weak = effort is not None and effort > 0 and torque > effort
         if stiffness is not None and joint.name in stiffness:
             kp, capped = stiffness[joint.name], False
         else:
             kp = inertia * omega * omega
-            if joint.type.is_angular:
-                lever = moved.moment(joint.child, jf.translation)
-                kp = max(kp, GRAVITY * lever / HOLD_ERROR)
-            effort = joint.limit.effort if joint.limit is not None else None
             capped = effort is not None and effort > 0 and kp > effort / E_SAT
             if capped:
                 kp = float(effort) / E_SAT  # type: ignore[arg-type]
+            # The gravity floor, bounded by what the motor can give at the hold error.
+            kp = max(kp, (min(torque, effort) if weak and effort else torque) / HOLD_ERROR)
         kd = 2.0 * DAMPING_RATIO * math.sqrt(max(kp, 0.0) * inertia)
-        out[joint.name] = JointGains(kp, kd, inertia, capped)
+        out[joint.name] = JointGains(kp, kd, inertia, capped, torque, weak)
     return out
 
 
@@ -123,6 +138,24 @@ def fill_default_gains(
         element=f"robot {robot.name!r}",
         stage=stage,
     )
+    weak = {n: g for n, g in gains.items() if g.weak}
+    if weak:
+        listed = ", ".join(
+            f"{n} (gravity up to {g.gravity_torque:.3g} N·m, effort {_effort(robot, n):.3g} N·m)"
+            for n, g in weak.items()
+        )
+        findings.warn(
+            "default-gains-weak",
+            f"joints whose effort limit is below the gravity torque of the links they move, at their worst: "
+            f"the default stiffness is capped at effort/{HOLD_ERROR:g} rad and they may sag: {listed}",
+            element=f"robot {robot.name!r}",
+            stage=stage,
+        )
+
+
+def _effort(robot: Robot, name: str) -> float:
+    limit = robot.joint(name).limit
+    return float(limit.effort) if limit is not None and limit.effort is not None else math.inf
 
 
 def sig4(value: float) -> float:

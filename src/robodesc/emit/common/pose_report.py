@@ -18,6 +18,13 @@ def report_pose(robot: Robot, stance: Stance, findings: Findings, stage: str) ->
     bent = {k: v for k, v in actuated_positions(robot, stance).items() if v != 0.0}
     shown = ", ".join(f"{k} {v:.3g}" for k, v in list(bent.items())[:12]) + (" ..." if len(bent) > 12 else "")
     height = "" if stance.lowest_z is None else f"; lowest collision point {-stance.lowest_z:.3f} m below the root"
+    if stance.skipped:
+        findings.warn(
+            "default-pose-not-stance",
+            f"the named pose {stance.skipped}; not used as the default pose, which comes from {stance.source}",
+            element=element,
+            stage=stage,
+        )
     if stance.source == "zeros":
         findings.warn(
             "default-pose-zeros",

@@ -5,10 +5,12 @@ straight (or, clamped into their limits, bent the wrong way) and it tips over. W
 no initial joint positions, the pose is chosen in this order:
 
 1. a pose the source names (:mod:`robodesc.emit.common.named_pose`: SRDF ``group_state``,
-   ros2_control ``initial_value``);
+   ros2_control ``initial_value``), when it is a stance (:func:`stance_defect`): the feet the robot
+   has at zero are its lowest points there too, and a biped's soles are as level as at zero (iCub's
+   ``half_sitting`` pitches them 3.6°, and it tipped over from it where its zero pose stands);
 2. the legged heuristic (:func:`legged_pose`): legs are found as chains from the root to the lowest
    links; in each, the first two joints that pitch about the robot's lateral axis (hip, knee) are
-   bent so that the foot sits straight under the hip at 75 % of the leg's reach, a third pitch joint
+   bent so that the foot (where it stands: :func:`_foot_point`) sits straight under the hip at 75 % of the leg's reach, a third pitch joint
    (ankle) keeps the sole as it was at zero, every other joint stays at zero. Robots with three legs
    or more only: a biped's balance depends on where its centre of mass is, which this does not model;
 3. zeros, with a warning.
@@ -24,8 +26,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from robodesc.emit.common.named_pose import named_pose
-from robodesc.ir.geometry import Box, Capsule, Cylinder, Mesh, Sphere, Vec3
-from robodesc.ir.model import Joint, JointType, Link, Robot
+from robodesc.ir.geometry import Box, Capsule, Cylinder, Mesh, Pose, Sphere, Vec3
+from robodesc.ir.model import Collision, Joint, JointType, Link, Robot
 from robodesc.ir.rigid import Frame, apply, joint_motion, link_frames, pose_frame, resolve_mimic
 from robodesc.meshes.buffers import MeshReadError
 from robodesc.meshes.data import MeshCache
@@ -37,6 +39,11 @@ CLEARANCE = 0.005  # m between the lowest collision point and the ground at spaw
 # A joint pitches when its axis lies within this angle of the robot's lateral (y) axis.
 _PITCH_COS = math.cos(math.radians(30.0))
 _KNEE_SAMPLES = 181
+# A named pose is a stance when every foot's lowest point is within this of the robot's lowest point
+FOOT_BAND = 0.01  # m
+# and, on two legs, each sole is within this of its tilt at zero (where URDF soles are flat).
+SOLE_TILT = math.radians(1.0)
+SOLE_BAND = 0.002  # m: a mesh foot's vertices this close to its lowest one are its sole
 
 
 @dataclass(slots=True, frozen=True)
@@ -52,6 +59,7 @@ class Stance:
     source: str  # what chose it: "init_joint_pos", "SRDF group_state ...", "legged heuristic", "zeros"
     legs: list[Leg] = field(default_factory=list)
     lowest_z: float | None = None  # lowest collision point, in the root frame, at this pose
+    skipped: str | None = None  # a named pose not used, and why (for the finding)
 
 
 def limits(joint: Joint) -> tuple[float, float]:
@@ -77,18 +85,51 @@ def complete(robot: Robot, given: Mapping[str, float]) -> dict[str, float]:
 def choose_stance(robot: Robot, given: Mapping[str, float] | None) -> Stance:
     """The pose of a floating robot: the user's, else the source's, else the heuristic's, else zeros."""
     meshes = MeshCache()
+    pose = None if given else named_pose(robot)
+    skipped = None
+    if pose is not None and (why := stance_defect(robot, complete(robot, pose.positions), meshes)) is not None:
+        skipped, pose = f"{pose.source}: {why}", None
     if given:
         stance = Stance(complete(robot, given), "init_joint_pos")
-    elif (pose := named_pose(robot)) is not None:
+    elif pose is not None:
         stance = Stance(complete(robot, pose.positions), pose.source)
     elif (found := legged_pose(robot, meshes)) is not None:
         stance = Stance(complete(robot, found[0]), "legged heuristic", legs=found[1])
     else:
         stance = Stance(complete(robot, {}), "zeros")
+    stance.skipped = skipped
     if not stance.legs:
         stance.legs = find_legs(robot, stance.positions, meshes)
     stance.lowest_z = lowest_point(robot, stance.positions, meshes)
     return stance
+
+
+def stance_defect(robot: Robot, q: Mapping[str, float], meshes: MeshCache | None = None) -> str | None:
+    """Why the robot cannot stand in pose ``q`` (a named pose), judged by the feet it has at zero;
+    None when it can, or when it has no legs to judge by (a floating arm keeps its named pose).
+
+    The feet found at zero must be the lowest points at ``q`` too (within :data:`FOOT_BAND`), and on
+    two legs each sole must be as level as at zero (within :data:`SOLE_TILT`): a biped stands on
+    its soles' faces, a robot with three legs or more on foot points whose tilt does not matter."""
+    meshes = meshes or MeshCache()
+    zero = complete(robot, {})
+    legs = find_legs(robot, zero, meshes)
+    if not legs:
+        return None
+    frames = link_frames(robot, q)
+    lowest = lowest_point(robot, q, meshes)
+    for leg in legs:
+        z = _link_lowest(robot.link(leg.foot), frames[leg.foot], meshes, exact=True)
+        if z is None or lowest is None or z > lowest + FOOT_BAND:
+            return f"foot {leg.foot!r} is not among the lowest points (it is {(z or 0.0) - (lowest or 0.0):.3f} m up)"
+    if len(legs) == 2:
+        frames0 = link_frames(robot, zero)
+        for leg in legs:
+            up, up0 = frames[leg.foot].rotation[2], frames0[leg.foot].rotation[2]
+            tilt = math.acos(max(-1.0, min(1.0, _dot(up, up0))))
+            if tilt > SOLE_TILT:
+                return f"sole {leg.foot!r} is tilted {math.degrees(tilt):.1f}° from its zero pose (a biped stands on level soles)"
+    return None
 
 
 # ---- legs ------------------------------------------------------------------------------------
@@ -140,8 +181,13 @@ def find_legs(robot: Robot, q: Mapping[str, float], meshes: MeshCache | None = N
         names = tuple(j.name for j in chain)
         # Two colliders at the end of one chain (a shin and its toe) are one leg: the lower one.
         if names not in legs and len(_pitch_joints(chain, frames, robot)) >= 2:
-            legs[names] = Leg(foot, names, _foot_point(robot.link(foot)))
-    found = sorted(legs.values(), key=lambda leg: leg.foot)
+            legs[names] = Leg(foot, names, _foot_point(robot.link(foot), frames[foot], meshes))
+    # A chain that another leg's chain continues is that leg's (a shin's own collider link hanging
+    # off the knee: Romeo's KneePitchCollision_shape), not a leg of its own.
+    found = sorted(
+        (leg for names, leg in legs.items() if not any(len(o) > len(names) and o[: len(names)] == names for o in legs)),
+        key=lambda leg: leg.foot,
+    )
     return found if len(found) >= 2 else []
 
 
@@ -161,11 +207,41 @@ def _pitch_joints(chain: list[Joint], frames: Mapping[str, Frame], robot: Robot)
     return out
 
 
-def _foot_point(link: Link) -> Vec3:
-    """The centre of the link's first collider: where a point or sphere foot touches, and the sole's
-    middle for a box foot."""
-    origin = link.collisions[0].origin if link.collisions else None
-    return origin.xyz if origin is not None else (0.0, 0.0, 0.0)
+def _foot_point(link: Link, frame: Frame, meshes: MeshCache) -> Vec3:
+    """Where the foot stands, in its link's frame: the centre of a sphere or box (a point foot
+    rolls about its centre; a sole's middle), the lower end of a capsule's or cylinder's axis (a
+    shin that ends on the ground: its middle is not under the hip), the sole of a mesh; at
+    the pose ``frame`` was taken at (a mesh: the middle of its vertices within ``SOLE_BAND`` of the lowest). Of the link's lowest collider (a shin's sphere toe, not the
+    shin's box)."""
+    if not link.collisions:
+        return (0.0, 0.0, 0.0)
+
+    def low(c: Collision) -> float:
+        z = _shape_lowest(c.geometry, frame @ pose_frame(c.origin), False, meshes)
+        return math.inf if z is None else z
+
+    collision = min(link.collisions, key=low)
+    local = pose_frame(collision.origin)
+    geometry = collision.geometry
+    if isinstance(geometry, Capsule | Cylinder):
+        ends = [local @ pose_frame(Pose(xyz=(0.0, 0.0, s * geometry.length / 2))) for s in (-1.0, 1.0)]
+        return min(ends, key=lambda end: (frame @ end).translation[2]).translation
+    if isinstance(geometry, Mesh) and geometry.path:
+        try:
+            data = meshes.get(str(geometry.path), geometry.scale)
+        except (MeshReadError, OSError):
+            return local.translation
+        f = frame @ local
+        a, b, c = f.rotation[2]
+        pts = data.points
+        heights = [a * pts[k] + b * pts[k + 1] + c * pts[k + 2] for k in range(0, len(pts), 3)]
+        # The middle of what touches: every vertex within SOLE_BAND of the lowest (a flat sole's
+        # corners average to its centre; a pointed foot has one vertex there).
+        lowest = min(heights)
+        near = [3 * i for i, h in enumerate(heights) if h <= lowest + SOLE_BAND]
+        mid = tuple(sum(pts[k + axis] for k in near) / len(near) for axis in range(3))
+        return (local @ pose_frame(Pose(xyz=(mid[0], mid[1], mid[2])))).translation
+    return local.translation
 
 
 # ---- the legged heuristic ------------------------------------------------------------------------

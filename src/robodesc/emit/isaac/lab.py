@@ -217,7 +217,9 @@ def isaac_lab_module(
             "pos": tuple(float(x) for x in settings.init_pos),
             "rot": IDENTITY[settings.isaac_lab_version],
             "joint_pos": joint_pos,
-            "joint_vel": {".*": 0.0},
+            # A robot with no moving joint (iris_simple: rotors on fixed joints) gets none: Isaac
+            # Lab refuses a pattern that matches no joint ("Not all regular expressions are matched").
+            "joint_vel": {".*": 0.0} if joint_pos else {},
         },
         "articulation": {
             "enabled_self_collisions": settings.self_collision,

@@ -55,7 +55,7 @@ def run_dynamics(
     opts = options or DynamicsOptions()
     setup = make_setup(robot, opts)
     report = DynamicsReport(robot=robot.name)
-    report.info["pose_note"] = "pose from the given table, else 0 clamped into limits"
+    report.info["pose_note"] = opts.defaults or "pose from the given table, else 0 clamped into limits"
     report.info["setup"] = setup.as_dict()
     started = time.perf_counter()
     wanted = set(opts.engines) or set(READERS.values())

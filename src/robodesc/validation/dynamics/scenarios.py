@@ -65,6 +65,9 @@ class DynamicsOptions:
     thresholds: Thresholds = field(default_factory=Thresholds)
     package_paths: Mapping[str, str] = field(default_factory=dict)
     newton_python: str | None = None  # the Newton venv's interpreter (default: the consumer tier's)
+    # What chose the pose and gains when the caller gave none (``validate --dynamics`` fills them
+    # with the Isaac folder's defaults, robodesc.check_dynamics.default_stance); shown in the report.
+    defaults: str | None = None
 
 
 @dataclass(slots=True)
