@@ -27,7 +27,8 @@ What trimesh computes for ``trimesh.load(path, force="mesh")`` then ``is_waterti
   and the tensor about the centre c = ∫(x, y, z) / V is ixx = ∫y² + ∫z² - V (cy² + cz²),
   ixy = -(∫xy - V cx cy), and so on. Sums only: no eigen-decomposition, so no BLAS-dependent bits.
 - **Open meshes**: the convex hull of the merged points (``scipy.spatial.ConvexHull`` with trimesh's
-  qhull options ``QbB Pp Qt``, imported only here), its faces wound outwards.
+  qhull options ``QbB Pp Qt``, imported only here), its faces wound outwards and its points merged
+  again as trimesh's hull mesh merges them.
 
 A surface wound inside out (negative volume) is turned over (trimesh's ``invert``).
 """
@@ -77,7 +78,7 @@ def merge_vertices(vertices: F64, faces: Ints) -> tuple[F64, Ints]:
     ``round(v * 1e8)``, each group kept as its first member, in order of first appearance."""
     if len(faces) and (faces.min() < 0 or faces.max() >= len(vertices)):
         raise MeshReadError("a face refers to a vertex that does not exist")
-    finite: NDArray[np.bool_] = np.isfinite(vertices).all(axis=1)
+    finite = np.asarray(np.isfinite(vertices).all(axis=1), dtype=bool)
     if not finite.all():  # trimesh's remove_infinite_values: such faces go
         faces = faces[finite[faces].all(axis=1)]
     used = np.zeros(len(vertices), dtype=bool)
@@ -158,7 +159,8 @@ def convex_hull(vertices: F64) -> tuple[F64, Ints]:
     crosses = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 1])
     inward = np.einsum("ij,ij->i", crosses, hull.equations[:, :3]) < 0.0
     faces[inward] = faces[inward][:, ::-1]
-    return points, faces
+    # trimesh makes the hull a processed Trimesh: its points merged again (at 1e-8, after the scale).
+    return merge_vertices(points, faces)
 
 
 def solid(vertices: F64, faces: Ints) -> Solid:
