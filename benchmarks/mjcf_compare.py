@@ -349,14 +349,23 @@ def speed_summary(rows: list[dict[str, Any]]) -> dict[str, Any]:
     return out
 
 
-def speed_markdown(summary: dict[str, Any], rows: list[dict[str, Any]], left_out: list[dict[str, Any]]) -> str:
+def speed_markdown(
+    summary: dict[str, Any], rows: list[dict[str, Any]], left_out: list[dict[str, Any]], selected: int, compiled: bool
+) -> str:
     tools = list(summary)
     lines = [
         "# URDF -> MJCF speed: robodesc and urdf-to-mjcf CLIs (issue 24)",
         "",
         "`python benchmarks/mjcf_compare.py --speed-only` (no output checks; see `mjcf_compare.md` for those).",
-        f"{len(rows)} robots ({len(left_out)} left out: robodesc could not prepare their plain URDF); one process",
-        "per robot and tool, the tools taking turns on each robot, so machine load hits them alike.",
+        f"{len(rows)} of {selected} robots timed ({len(left_out)} left out: robodesc could not prepare their plain",
+        "URDF); one process per robot and tool, the tools taking turns on each robot, so machine load hits them alike.",
+        "robodesc's source trees "
+        + (
+            "were byte-compiled first, as pip does at install."
+            if compiled
+            else "were not byte-compiled (--no-byte-compile)."
+        )
+        + " robodesc-base: the tree given by --base-src.",
         "Speed-up: urdf-to-mjcf's wall time over the tool's, per robot, median. x floor: the tool's wall time",
         "over MuJoCo's C++ compile of the same URDF in a warm process (best of 3), median.",
         f"Machine load at the end: {os.getloadavg()[0]:.1f} (1 min) on {os.cpu_count()} CPUs.",
@@ -386,19 +395,41 @@ def speed_markdown(summary: dict[str, Any], rows: list[dict[str, Any]], left_out
     return "\n".join(lines) + "\n"
 
 
+def byte_compile(src: str) -> None:
+    """Write robodesc's .pyc files, as pip does when it installs a package. Without them (a source
+    tree under PYTHONDONTWRITEBYTECODE=1, as on the shared machine) every run compiles every module
+    again, ~0.5 s that no installed tool pays."""
+    import compileall
+
+    compileall.compile_dir(src, quiet=1)
+
+
 def speed_main(args: argparse.Namespace) -> int:
     robots = select_robots(args.robots, args.limit)
-    rows = [speed_only_robot(entry, args, i) for i, entry in enumerate(robots)]
-    kept = [r for r in rows if "prepare_error" not in r]
-    left_out = [r for r in rows if "prepare_error" in r]
-    summary = speed_summary(kept)
+    trees = [SRC] + ([args.base_src] if args.base_src else [])
+    if not args.no_byte_compile:
+        for src in trees:
+            byte_compile(src)
     out = args.out if args.out != DEFAULT_OUT else os.path.join(HERE, "results", "mjcf_speed")
     os.makedirs(os.path.dirname(out), exist_ok=True)
-    with open(out + ".json", "w", encoding="utf-8") as handle:
-        json.dump({"summary": summary, "left_out": left_out, "rows": kept}, handle, indent=1)
-    text = speed_markdown(summary, kept, left_out)
-    with open(out + ".md", "w", encoding="utf-8") as handle:
-        handle.write(text)
+    rows: list[dict[str, Any]] = []
+    text = ""
+    for i, entry in enumerate(robots):
+        rows.append(speed_only_robot(entry, args, i))
+        # Written after every robot: a long run stopped early still leaves its numbers.
+        kept = [r for r in rows if "prepare_error" not in r]
+        left_out = [r for r in rows if "prepare_error" in r]
+        summary = speed_summary(kept)
+        with open(out + ".json", "w", encoding="utf-8") as handle:
+            meta = {
+                "byte_compiled": not args.no_byte_compile,
+                "robots_selected": len(robots),
+                "base_src": args.base_src,
+            }
+            json.dump({**meta, "summary": summary, "left_out": left_out, "rows": kept}, handle, indent=1)
+        text = speed_markdown(summary, kept, left_out, len(robots), not args.no_byte_compile)
+        with open(out + ".md", "w", encoding="utf-8") as handle:
+            handle.write(text)
     print(text.split("\n## Per robot")[0])
     return 0
 
@@ -621,6 +652,11 @@ def main() -> int:
         help="time robodesc and urdf-to-mjcf (and the floor) only, no checks: results/mjcf_speed.*",
     )
     parser.add_argument("--base-src", help="with --speed-only: another robodesc src/ to time as robodesc-base")
+    parser.add_argument(
+        "--no-byte-compile",
+        action="store_true",
+        help="with --speed-only: time robodesc's trees without writing their .pyc files first",
+    )
     parser.add_argument("--floor-worker", help=argparse.SUPPRESS)
     parser.add_argument("--mujoco-convert", nargs=2, metavar=("URDF", "OUT"), help=argparse.SUPPRESS)
     parser.add_argument("--check-worker", help=argparse.SUPPRESS)
