@@ -41,7 +41,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 from robodesc.meshes.buffers import MeshReadError
-from robodesc.meshes.readers import read_triangles
 
 try:
     from robodesc.meshes import _weld as _cweld
@@ -68,6 +67,9 @@ class Solid:
 def read_merged(path: str) -> tuple[F64, Ints]:
     """A mesh file's vertices (float64, file units) and faces ((n, 3) indices), vertices merged as
     trimesh merges them. Raises :class:`MeshReadError` for an unreadable file."""
+    # Imported here: a robot whose inertia comes from primitives alone needs no mesh reader.
+    from robodesc.meshes.readers import read_triangles
+
     vertices, indices, _ = read_triangles(path)
     faces = np.asarray(indices, dtype=np.int64).reshape(-1, 3)
     return merge_vertices(np.asarray(vertices, dtype=np.float64).reshape(-1, 3), faces)
