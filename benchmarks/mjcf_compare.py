@@ -30,6 +30,14 @@ and of each tool's time to MuJoCo's C++ URDF compile in a warm process (the floo
     PYTHONPATH=src python benchmarks/mjcf_compare.py --robots 'ur5|panda|solo'
 
 Writes benchmarks/results/mjcf_compare.json and .md.
+
+``--speed-only`` times robodesc's and urdf-to-mjcf's CLIs and MuJoCo's C++ compile floor, and checks
+nothing (benchmarks/results/mjcf_speed.json and .md). ``--base-src DIR`` adds another robodesc
+source tree (e.g. a detached worktree of main) as ``robodesc-base``, for a before/after in one run.
+On a shared, loaded machine the tools take turns on each robot (the order rotating from robot to
+robot), so load drifts hit them alike and the per-robot ratios stay fair:
+
+    PYTHONPATH=src python benchmarks/mjcf_compare.py --speed-only --base-src /tmp/base/src
 """
 
 from __future__ import annotations
@@ -51,6 +59,8 @@ ROOT = os.path.dirname(HERE)
 SRC = os.path.join(ROOT, "src")
 SHARED_CORPUS = os.path.join(ROOT, "..", "shared", "corpus")
 TOOLS = ("mujoco", "urdf2mjcf", "urdf-to-mjcf", "robodesc")
+SPEED_TOOLS = ("robodesc-base", "urdf-to-mjcf", "robodesc")  # --speed-only; the base with --base-src
+DEFAULT_OUT = os.path.join(HERE, "results", "mjcf_compare")
 BASELINE = "urdf-to-mjcf"
 CRITERIA = ("loads", "actuators", "mimic", "masses", "fk", "fk_1e-3", "menagerie")
 LOOSE_FK = 1e-3  # m and rad: a second FK bar, to tell rounding (4-digit quaternions) from wrong frames
@@ -297,6 +307,133 @@ def _fk_within(max_errors: dict[str, float], bound: float) -> bool:
     return all(e is not None and e <= bound for e in errors)
 
 
+def speed_only_robot(entry: Any, args: argparse.Namespace, index: int) -> dict[str, Any]:
+    """One robot: each CLI once (taking turns, the order rotated by ``index``), and the floor."""
+    work = tempfile.mkdtemp(prefix="mjcf-speed-")
+    name = f"{entry.corpus}/{entry.name}"
+    try:
+        urdf, err = prepare(entry, work, args.timeout)
+        if urdf is None:
+            print(f"{name}: robodesc cannot prepare the plain URDF ({err}); left out", flush=True)
+            return {"name": name, "prepare_error": err}
+        tools = [t for t in SPEED_TOOLS if t != "robodesc-base" or args.base_src]
+        shift = index % len(tools)
+        row: dict[str, Any] = {"name": name, "tools": {}}
+        for tool in tools[shift:] + tools[:shift]:
+            out_dir = os.path.join(work, tool)
+            os.makedirs(out_dir, exist_ok=True)
+            src = args.base_src if tool == "robodesc-base" else SRC
+            cmd = tool_command("robodesc" if tool.startswith("robodesc") else tool, args, entry, urdf, out_dir)
+            env = dict(os.environ, PYTHONPATH=src) if tool.startswith("robodesc") else None
+            ok, seconds, error = run(cmd, args.timeout, out_dir, env)
+            ok = ok and os.path.isfile(os.path.join(out_dir, "robot.xml"))
+            row["tools"][tool] = {"ok": ok, "seconds": seconds, "error": "" if ok else error}
+        ok, _, text = run(
+            [sys.executable, os.path.abspath(__file__), "--floor-worker", urdf], args.timeout, work, robodesc_env()
+        )
+        row["floor_s"] = float(text) if ok and text and text != "None" else None
+        cells = "  ".join(f"{t} {c['seconds']:.2f}s" if c["ok"] else f"{t} FAIL" for t, c in row["tools"].items())
+        print(f"{name}: {cells}  floor {_num(row['floor_s'], '.4f')}s", flush=True)
+        return row
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+def speed_summary(rows: list[dict[str, Any]]) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for tool in SPEED_TOOLS:
+        have = [r for r in rows if tool in r["tools"]]
+        if have:
+            out[tool] = {"robots": len(have), "converted": sum(1 for r in have if r["tools"][tool]["ok"])}
+            out[tool].update(speed(have, tool))
+    return out
+
+
+def speed_markdown(
+    summary: dict[str, Any], rows: list[dict[str, Any]], left_out: list[dict[str, Any]], selected: int, compiled: bool
+) -> str:
+    tools = list(summary)
+    lines = [
+        "# URDF -> MJCF speed: robodesc and urdf-to-mjcf CLIs (issue 24)",
+        "",
+        "`python benchmarks/mjcf_compare.py --speed-only` (no output checks; see `mjcf_compare.md` for those).",
+        f"{len(rows)} of {selected} robots timed ({len(left_out)} left out: robodesc could not prepare their plain",
+        "URDF); one process per robot and tool, the tools taking turns on each robot, so machine load hits them alike.",
+        "robodesc's source trees "
+        + (
+            "were byte-compiled first, as pip does at install."
+            if compiled
+            else "were not byte-compiled (--no-byte-compile)."
+        )
+        + " robodesc-base: the tree given by --base-src.",
+        "Speed-up: urdf-to-mjcf's wall time over the tool's, per robot, median. x floor: the tool's wall time",
+        "over MuJoCo's C++ compile of the same URDF in a warm process (best of 3), median.",
+        f"Machine load at the end: {os.getloadavg()[0]:.1f} (1 min) on {os.cpu_count()} CPUs.",
+        "",
+        "| tool | converted | median s | speed-up vs urdf-to-mjcf | x floor |",
+        "|---|---|---|---|---|",
+    ]
+    for tool in tools:
+        s = summary[tool]
+        lines.append(
+            f"| {tool} | {s['converted']}/{s['robots']} | {_num(s['median_s'], '.3f')} "
+            f"| {_num(s['median_speedup_vs_urdf_to_mjcf'], '.2f')} | {_num(s['median_x_floor'], '.1f')} |"
+        )
+    lines += [
+        "",
+        "## Per robot (seconds)",
+        "",
+        "| robot | " + " | ".join(tools) + " | floor |",
+        "|---" * (len(tools) + 2) + "|",
+    ]
+    for r in rows:
+        cells = [
+            (f"{r['tools'][t]['seconds']:.3f}" if r["tools"][t]["ok"] else "FAIL") if t in r["tools"] else "–"
+            for t in tools
+        ]
+        lines.append(f"| {r['name']} | " + " | ".join(cells) + f" | {_num(r.get('floor_s'), '.4f')} |")
+    return "\n".join(lines) + "\n"
+
+
+def byte_compile(src: str) -> None:
+    """Write robodesc's .pyc files, as pip does when it installs a package. Without them (a source
+    tree under PYTHONDONTWRITEBYTECODE=1, as on the shared machine) every run compiles every module
+    again, ~0.5 s that no installed tool pays."""
+    import compileall
+
+    compileall.compile_dir(src, quiet=1)
+
+
+def speed_main(args: argparse.Namespace) -> int:
+    robots = select_robots(args.robots, args.limit)
+    trees = [SRC] + ([args.base_src] if args.base_src else [])
+    if not args.no_byte_compile:
+        for src in trees:
+            byte_compile(src)
+    out = args.out if args.out != DEFAULT_OUT else os.path.join(HERE, "results", "mjcf_speed")
+    os.makedirs(os.path.dirname(out), exist_ok=True)
+    rows: list[dict[str, Any]] = []
+    text = ""
+    for i, entry in enumerate(robots):
+        rows.append(speed_only_robot(entry, args, i))
+        # Written after every robot: a long run stopped early still leaves its numbers.
+        kept = [r for r in rows if "prepare_error" not in r]
+        left_out = [r for r in rows if "prepare_error" in r]
+        summary = speed_summary(kept)
+        with open(out + ".json", "w", encoding="utf-8") as handle:
+            meta = {
+                "byte_compiled": not args.no_byte_compile,
+                "robots_selected": len(robots),
+                "base_src": args.base_src,
+            }
+            json.dump({**meta, "summary": summary, "left_out": left_out, "rows": kept}, handle, indent=1)
+        text = speed_markdown(summary, kept, left_out, len(robots), not args.no_byte_compile)
+        with open(out + ".md", "w", encoding="utf-8") as handle:
+            handle.write(text)
+    print(text.split("\n## Per robot")[0])
+    return 0
+
+
 def check(entry: Any, urdf: str, conversions: dict[str, Any], work: str, timeout: float) -> dict[str, Any]:
     job = {
         "source": entry.path,
@@ -508,7 +645,19 @@ def main() -> int:
         default="/tmp/venv-urdf-to-mjcf/bin/urdf-to-mjcf",
     )
     parser.add_argument("--timeout", type=float, default=300.0, help="seconds per tool and robot")
-    parser.add_argument("--out", default=os.path.join(HERE, "results", "mjcf_compare"))
+    parser.add_argument("--out", default=DEFAULT_OUT, help="results path without extension")
+    parser.add_argument(
+        "--speed-only",
+        action="store_true",
+        help="time robodesc and urdf-to-mjcf (and the floor) only, no checks: results/mjcf_speed.*",
+    )
+    parser.add_argument("--base-src", help="with --speed-only: another robodesc src/ to time as robodesc-base")
+    parser.add_argument(
+        "--no-byte-compile",
+        action="store_true",
+        help="with --speed-only: time robodesc's trees without writing their .pyc files first",
+    )
+    parser.add_argument("--floor-worker", help=argparse.SUPPRESS)
     parser.add_argument("--mujoco-convert", nargs=2, metavar=("URDF", "OUT"), help=argparse.SUPPRESS)
     parser.add_argument("--check-worker", help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -516,6 +665,11 @@ def main() -> int:
         return mujoco_convert(*args.mujoco_convert)
     if args.check_worker:
         return check_worker(args.check_worker)
+    if args.floor_worker:
+        print(floor_seconds(args.floor_worker))
+        return 0
+    if args.speed_only:
+        return speed_main(args)
 
     available = availability(args)
     robots = select_robots(args.robots, args.limit)

@@ -9,5 +9,6 @@ imports only :mod:`robodesc.ir`.
 - :mod:`.readers`: the numpy readers (broken STL, OBJ needing the line reader, no C compiler);
 - :mod:`.collada`: the COLLADA reader (lxml; node transforms and instancing);
 - :mod:`.text_numbers`: numbers in mesh text;
+- :mod:`.mass`: volume, centre and inertia tensor of a mesh (trimesh's numbers, without trimesh);
 - :mod:`.trimesh_io`: every other format, through trimesh.
 """

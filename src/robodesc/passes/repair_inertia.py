@@ -23,7 +23,6 @@ from robodesc.ir.model import Link, Robot
 from robodesc.ir.principal import below_engine_floor, engine_floor, inertia_problem, principal_moments, tensor_rows
 from robodesc.passes.context import PassContext
 from robodesc.passes.options import RepairPolicy
-from robodesc.passes.shape_inertia import inertial_from_props, link_props
 
 NAME = "repair_inertia"
 QUAD_SDK_MASS = 0.001  # kg
@@ -86,6 +85,9 @@ def _lift(link: Link, ctx: PassContext) -> None:
 
 
 def _missing(link: Link, policy: RepairPolicy, ctx: PassContext) -> None:
+    # shape_inertia brings numpy (~0.2 s): imported only when a link needs its shapes' inertia.
+    from robodesc.passes.shape_inertia import inertial_from_props, link_props
+
     label = f"link {link.name!r}"
     found = link_props(link) if policy is RepairPolicy.GEOMETRY else None
     if found is None:
@@ -148,6 +150,8 @@ def _geometry(link: Link, ctx: PassContext) -> None:
         assert problem is not None
         _retensor(link, problem, ctx, gap=False)
         return
+    from robodesc.passes.shape_inertia import inertial_from_props, link_props  # numpy: see _missing
+
     found = link_props(link)
     old = inertial.mass
     if found is None:
@@ -178,6 +182,8 @@ def _retensor(link: Link, problem: str, ctx: PassContext, *, gap: bool) -> None:
     assert inertial is not None and inertial.mass is not None
     label = f"link {link.name!r}"
     loc = inertial.src or link.src
+    from robodesc.passes.shape_inertia import inertial_from_props, link_props  # numpy: see _missing
+
     found = link_props(link)
     suffix = " (a gap Quad-SDK leaves open)" if gap else ""
     if found is None:

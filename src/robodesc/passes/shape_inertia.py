@@ -1,4 +1,5 @@
-"""Mass properties of shapes: closed forms for primitives, trimesh for meshes, composites.
+"""Mass properties of shapes: closed forms for primitives, :mod:`robodesc.meshes.mass` for meshes,
+composites.
 
 Everything here works at unit density: a :class:`MassProps` holds the volume, the centre of
 volume and the tensor about it for ρ = 1 kg/m³, so a given mass ``M`` scales it by ``M / volume``
@@ -15,7 +16,6 @@ import functools
 import math
 import os
 from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -25,7 +25,7 @@ from robodesc.ir.inertia import balance, from_tensor, parallel_axis, rotate
 from robodesc.ir.model import Link
 from robodesc.ir.transforms import rpy_to_matrix
 from robodesc.meshes.buffers import MeshReadError
-from robodesc.meshes.trimesh_io import load_trimesh
+from robodesc.meshes.mass import read_merged, solid
 
 Vec = NDArray[np.float64]
 
@@ -71,29 +71,18 @@ def _mesh_props_cached(
     path: str, mtime: float, scale: tuple[float, float, float]
 ) -> tuple[float, tuple[float, ...], tuple[float, ...], str | None]:
     try:
-        loaded = load_trimesh(path)
+        vertices, faces = read_merged(path)
     except MeshReadError as exc:
         raise ValueError(str(exc)) from None
-    if len(loaded.faces) == 0:
+    if len(faces) == 0:
         raise ValueError("no triangles")
-    mesh = loaded.copy()
-    mesh.apply_transform(np.diag([*scale, 1.0]))
-    with np.errstate(invalid="ignore", divide="ignore"):  # degenerate meshes: caught below
-        return _mass_properties(mesh, path)
-
-
-def _mass_properties(mesh: Any, path: str) -> tuple[float, tuple[float, ...], tuple[float, ...], str | None]:
-    note: str | None = None
-    if not mesh.is_watertight:
-        note = f"mesh {os.path.basename(path)!r} is not watertight: its convex hull was used"
-        mesh = mesh.convex_hull
-    if mesh.volume < 0:  # inside out (or mirrored by a negative scale)
-        mesh.invert()
-    if not mesh.volume > 1e-18 or not np.all(np.isfinite(mesh.center_mass)):
+    found = solid(vertices * np.asarray(scale, dtype=np.float64), faces)
+    if not found.volume > 1e-18 or not np.all(np.isfinite(found.com)):
         raise ValueError("zero volume")
-    mesh.density = 1.0
-    tensor = np.asarray(mesh.moment_inertia, dtype=float)
-    return float(mesh.volume), tuple(float(x) for x in mesh.center_mass), tuple(tensor.ravel()), note
+    note = None
+    if not found.watertight:
+        note = f"mesh {os.path.basename(path)!r} is not watertight: its convex hull was used"
+    return found.volume, tuple(float(x) for x in found.com), tuple(float(x) for x in found.tensor.ravel()), note
 
 
 def mesh_props(mesh: Mesh) -> MassProps:
@@ -108,7 +97,7 @@ def mesh_props(mesh: Mesh) -> MassProps:
         volume, com, tensor, note = _mesh_props_cached(mesh.path, os.path.getmtime(mesh.path), scale)
     except ValueError as exc:
         raise ValueError(f"mesh {mesh.path!r}: {exc}") from None
-    except Exception as exc:  # trimesh raises many types on unreadable files
+    except Exception as exc:  # readers (and trimesh, for other formats) raise many types on bad files
         raise ValueError(f"mesh {mesh.path!r} could not be read: {exc}") from None
     return MassProps(volume, np.array(com), np.array(tensor).reshape(3, 3), [note] if note else [])
 
