@@ -28,6 +28,19 @@ import numpy as np
 SIM_DT = 0.002
 
 
+def compare_limits(rep, lo_pairs, hi_pairs):
+    """Lower and upper limits, leaving out continuous joints: Newton's add_urdf leaves one at
+    lower = upper = 0, or keeps the <limit> a continuous joint may carry (URDF says to ignore it;
+    kinova's +-2 pi), where the other importer has +-1e10."""
+    unlimited = {
+        n
+        for (n, a, b), (_, c, d) in zip(lo_pairs, hi_pairs, strict=True)
+        if b <= -1e9 and d >= 1e9 and ((a == c == 0.0) or (a <= -6.283 and c >= 6.283))
+    }
+    rep.compare("limits lower", [p for p in lo_pairs if p[0] not in unlimited], 2e-6, 1e-6)
+    rep.compare("limits upper", [p for p in hi_pairs if p[0] not in unlimited], 2e-6, 1e-6)
+
+
 def _short(label: str) -> str:
     """``panda/panda_link1`` and ``/panda/panda_link1`` and ``/panda/joints/j`` -> the last name."""
     return label.rstrip("/").split("/")[-1]
@@ -266,15 +279,7 @@ def check(args: argparse.Namespace) -> dict:
 
     # Limits: degrees in float32 on the USD side.
     lo_pairs, hi_pairs = pairs("joint_limit_lower"), pairs("joint_limit_upper")
-    # A continuous joint: Newton's add_urdf leaves it at lower = upper = 0, or keeps the <limit> a
-    # continuous joint may carry (URDF says to ignore it; kinova's +-2 pi), where add_usd has +-1e10.
-    unlimited = {
-        n
-        for (n, a, b), (_, c, d) in zip(lo_pairs, hi_pairs, strict=True)
-        if b <= -1e9 and d >= 1e9 and ((a == c == 0.0) or (a <= -6.283 and c >= 6.283))
-    }
-    rep.compare("limits lower", [p for p in lo_pairs if p[0] not in unlimited], 2e-6, 1e-6)
-    rep.compare("limits upper", [p for p in hi_pairs if p[0] not in unlimited], 2e-6, 1e-6)
+    compare_limits(rep, lo_pairs, hi_pairs)
     driven = lambda n: n not in mimic_u  # noqa: E731
     rep.compare("drive stiffness", pairs("joint_target_ke", only=driven), 1e-5, 1e-9)
     rep.compare("drive damping", pairs("joint_target_kd", only=driven), 1e-5, 1e-9)
@@ -564,13 +569,7 @@ def check_mjcf(args: argparse.Namespace) -> dict:
         return pairs(getattr(mu, attr).numpy(), getattr(mm, attr).numpy(), only)
 
     lo_pairs, hi_pairs = attr_pairs("joint_limit_lower"), attr_pairs("joint_limit_upper")
-    unlimited = {
-        n
-        for (n, a, b), (_, c, d) in zip(lo_pairs, hi_pairs, strict=True)
-        if b <= -1e9 and d >= 1e9 and ((a == c == 0.0) or (a <= -6.283 and c >= 6.283))
-    }
-    rep.compare("limits lower", [p for p in lo_pairs if p[0] not in unlimited], 2e-6, 1e-6)
-    rep.compare("limits upper", [p for p in hi_pairs if p[0] not in unlimited], 2e-6, 1e-6)
+    compare_limits(rep, lo_pairs, hi_pairs)
     driven = lambda n: n not in mimic_u  # noqa: E731
     rep.compare("actuator kp", attr_pairs("joint_target_ke", only=driven), 1e-6, 1e-9)
     rep.compare("actuator kv", attr_pairs("joint_target_kd", only=driven), 1e-6, 1e-9)
