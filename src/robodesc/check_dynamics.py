@@ -61,6 +61,11 @@ def run_for(
     files: dict[str, str] = {}
     if target in READERS:
         files[target] = out
+    robot = _source_robot(source, options) or robot
+    # The checked file's drives are what its target wrote: a target that writes its options'
+    # constant gains (-t usd: 100 / 1) is simulated with them everywhere, not with derived ones
+    # Newton would not read from that file. Then the pose and the gains the others lack.
+    opts = default_stance(robot, _written_gains(target, opts))
     for engine in engines:
         if any(READERS.get(kind) == engine for kind in files):
             continue
@@ -69,13 +74,12 @@ def run_for(
             continue
         path = target_spec(name).output_name(os.path.join(folder, "dynamics-robot"))
         try:
-            compile_to(source, name, path, **_options_for(target, name, options), validate=False)
+            side = {**_options_for(target, name, options), **_gains_for(name, opts, options)}
+            compile_to(source, name, path, **side, validate=False)
         except RobodescError:
             continue  # the checked target's validation reports what is wrong with the robot
         files[name] = path
     opts = dataclasses.replace(opts, engines=engines)
-    robot = _source_robot(source, options) or robot
-    opts = default_stance(robot, opts)
     return run_dynamics(robot, files, opts, source_urdf=_source_file(source, robot, folder, options))
 
 
@@ -143,6 +147,31 @@ def _source_robot(source: Any, options: Mapping[str, Any]) -> Robot | None:
         return load_source(source, opts.load, Findings())
     except RobodescError:
         return None
+
+
+def _written_gains(target: str, opts: DynamicsOptions) -> DynamicsOptions:
+    spec = target_spec(target)
+    if spec.derives_gains or spec.options is None:
+        return opts
+    defaults = {f.name: f.default for f in dataclasses.fields(spec.options)}
+    out = dataclasses.replace(opts)
+    if out.stiffness is None and isinstance(defaults.get("stiffness"), int | float):
+        out.stiffness = float(defaults["stiffness"])  # type: ignore[arg-type]
+    if out.damping is None and isinstance(defaults.get("damping"), int | float):
+        out.damping = float(defaults["damping"])  # type: ignore[arg-type]
+    return out
+
+
+def _gains_for(name: str, opts: DynamicsOptions, options: Mapping[str, Any]) -> dict[str, Any]:
+    """The simulated gains for a file compiled for another engine, where its target takes them, so
+    every engine drives the robot alike."""
+    spec = target_spec(name)
+    fields = {f.name for f in dataclasses.fields(spec.options)} if spec.options else set()
+    return {
+        k: getattr(opts, k)
+        for k in ("stiffness", "damping")
+        if k in fields and k not in options and getattr(opts, k) is not None
+    }
 
 
 def _engine_of(target: str) -> tuple[str, ...]:

@@ -242,3 +242,14 @@ def test_given_pose_and_gains_win_over_the_defaults() -> None:
     # The damping is derived from the given stiffness: kd = 2·sqrt(kp·I_eff).
     assert isinstance(opts.damping, dict) and all(v > 0 for v in opts.damping.values())
     assert opts.defaults == "pose: given; gains: derived (docs/isaac.md)"
+
+
+def test_a_file_with_constant_drives_is_simulated_with_them() -> None:
+    """-t usd writes its options' constant gains (100 / 1), and Newton reads them from the file: the
+    other engines get the same, not derived ones (the engine tier's arm had drifted 2.5x more in
+    Newton). A target that derives its gains (MJCF) keeps the derived ones."""
+    usd = robodesc.check(ARM, "usd", dynamics=MUJOCO).dynamics
+    assert usd is not None and usd.info["setup"]["gains"]
+    assert {tuple(g) for g in usd.info["setup"]["gains"].values()} == {(100.0, 1.0)}
+    mjcf = robodesc.check(ARM, "mjcf", dynamics=MUJOCO).dynamics
+    assert mjcf is not None and {tuple(g) for g in mjcf.info["setup"]["gains"].values()} != {(100.0, 1.0)}

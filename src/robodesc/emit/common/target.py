@@ -109,6 +109,9 @@ class Target:
     owned: OwnedFunction | None = None
     # The title of the target's group of options in --help.
     options_title: str = ""
+    # The target derives per-joint drive gains where the user gives none (emit/common/gains.py); a
+    # target with gain options that does not writes its options' constants.
+    derives_gains: bool = False
 
     def output_name(self, stem: str, suffix: str | None = None) -> str:
         """The output path for ``stem`` (a folder for folder targets), with ``suffix`` or the default."""

@@ -51,5 +51,6 @@ TARGET = Target(
     preset="isaac_sim",
     check=check_urdf,
     finish=finish,
+    derives_gains=True,
     options_title="USD and Isaac Sim (-t usd, --isaac-sim; see docs/usd.md, docs/isaac.md)",
 )

@@ -135,5 +135,6 @@ TARGET = Target(
     check=check_mjcf,
     # scene.xml is rewritten with each robot.xml: the earlier one is restored if the run fails.
     owned=lambda options, out: (scene_name(out),) if options.scene else (),
+    derives_gains=True,
     options_title="MJCF (-t mjcf; docs/mjcf.md)",
 )
