@@ -89,8 +89,8 @@ def default_stance(robot: Robot, opts: DynamicsOptions) -> DynamicsOptions:
     zeros, as a fixed Isaac robot), and per-joint gains from the same formula (emit/common/gains.py).
     Computed on a copy lowered as the Isaac preset lowers it (inertia filled and repaired, limits
     completed), so the numbers are the folder's; joint names are the source's."""
+    from robodesc.emit.common.default_pose import default_pose
     from robodesc.emit.common.gains import derived_gains
-    from robodesc.emit.common.stance import Stance, choose_stance, complete
     from robodesc.ir.rules import lookup
     from robodesc.passes.options import PassOptions, RepairPolicy
     from robodesc.passes.pipeline import run_passes
@@ -111,10 +111,8 @@ def default_stance(robot: Robot, opts: DynamicsOptions) -> DynamicsOptions:
     wanted = {}
     if opts.pose is not None:
         wanted = {j.name: v for j in driven if (v := lookup(opts.pose, j.name, "pose")) is not None}
-    if floating:
-        stance = choose_stance(lowered, wanted or None)
-    else:
-        stance = Stance(complete(lowered, wanted), "pose" if wanted else "zeros")
+    # The Isaac folder's choice; its findings are the compile's business, not this check's.
+    stance = default_pose(lowered, wanted, floating, Findings(), "dynamics")
     user_kp = None
     if opts.stiffness is not None:
         user_kp = {j.name: lookup(opts.stiffness, j.name, "stiffness") or 0.0 for j in driven}

@@ -10,16 +10,13 @@ importer settings and the Isaac Lab module all carry the same numbers.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Collection
 
-from robodesc.emit.common.gains import fill_default_gains, sig4
-from robodesc.emit.common.pose_report import actuated_positions, report_pose
-from robodesc.emit.common.stance import CLEARANCE, Stance, choose_stance, complete
+from robodesc.emit.common.default_pose import default_pose, given_positions, pose_table, spawn_height
+from robodesc.emit.common.gains import fill_default_gains
 from robodesc.emit.isaac.settings import IsaacSettings
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
-from robodesc.ir.rules import lookup
 
 STAGE = "emit:isaac_defaults"
 
@@ -29,26 +26,15 @@ def apply_defaults(
 ) -> dict[str, float]:
     """Fill the pose, spawn height and gains the user did not give; return the initial position of
     every 1-DOF joint (rad or m), which the USD's joint state and drive targets start from."""
-    wanted = {
-        j.name: value
-        for j in robot.joints
-        if j.type.dof == 1
-        and settings.init_joint_pos
-        and (value := lookup(settings.init_joint_pos, j.name, "init_joint_pos")) is not None
-    }
+    wanted = given_positions(robot, settings.init_joint_pos)
     floating = not settings.fix_base
+    stance = default_pose(robot, wanted, floating, findings, STAGE)
     if floating:
-        stance = choose_stance(robot, wanted or None)
-        report_pose(robot, stance, findings, STAGE)
         if "init_joint_pos" not in given and not wanted:
-            settings.init_joint_pos = {
-                re.escape(name): value for name, value in actuated_positions(robot, stance).items()
-            }
-        if "init_pos" not in given and robot.placement is None and stance.lowest_z is not None:
+            settings.init_joint_pos = pose_table(robot, stance)
+        if "init_pos" not in given and robot.placement is None and (height := spawn_height(stance)) is not None:
             x, y, _ = settings.init_pos
-            settings.init_pos = (x, y, sig4(CLEARANCE - stance.lowest_z))
-    else:
-        stance = Stance(complete(robot, wanted), "init_joint_pos" if wanted else "zeros")
+            settings.init_pos = (x, y, height)
     if settings.target_type != "none" and not ("stiffness" in given and "damping" in given):
         fill_default_gains(robot, settings, given, stance, floating, findings, STAGE)
     return stance.positions

@@ -4,7 +4,6 @@ its scene and converted meshes beside the file (docs/mjcf.md, Outputs)."""
 from __future__ import annotations
 
 import os
-import re
 from typing import TYPE_CHECKING
 
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
@@ -52,12 +51,10 @@ def _default_base_and_pose(robot: Robot, request: EmitRequest, findings: Finding
     The body itself stays at the zero pose's height: at qpos0 its straight legs must not start in the floor.
     """
     # Loaded here, not at import: building the CLI's parser imports this module, and these read meshes.
-    from robodesc.emit.common.gains import sig4
-    from robodesc.emit.common.pose_report import report_pose
-    from robodesc.emit.common.stance import CLEARANCE, Stance, choose_stance, complete, find_legs
+    from robodesc.emit.common.default_pose import default_pose, given_positions, pose_table, spawn_height
+    from robodesc.emit.common.stance import complete, find_legs
 
     options: MjcfOptions = request.options
-    element = f"robot {robot.name!r}"
     if "fix_base" not in request.given and robot.fixed_base is None and robot.root.name != "world":
         legs = find_legs(robot, complete(robot, {}))
         if len(legs) >= 3:
@@ -66,31 +63,18 @@ def _default_base_and_pose(robot: Robot, request: EmitRequest, findings: Finding
                 "mjcf-floating-base",
                 f"{len(legs)} legs ({', '.join(leg.foot for leg in legs)}): the root floats (a <freejoint/>) so "
                 "the robot stands on them in scene.xml; --fix-base welds it to the world",
-                element=element,
+                element=f"robot {robot.name!r}",
                 stage=STAGE,
             )
-    if options.fix_base or robot.root.name == "world":
-        return Stance(complete(robot, dict(_given_pose(robot, options))), "zeros")
-    wanted = dict(_given_pose(robot, options))
-    stance = choose_stance(robot, wanted or None)
-    report_pose(robot, stance, findings, STAGE)
-    if not wanted:
-        options.init_joint_pos = {
-            re.escape(j.name): stance.positions[j.name] for j in robot.actuated_joints() if j.name in stance.positions
-        }
-    if options.init_pos is None and stance.lowest_z is not None:
-        options.home_height = sig4(CLEARANCE - stance.lowest_z)
+    wanted = given_positions(robot, options.init_joint_pos)
+    floating = not options.fix_base and robot.root.name != "world"
+    stance = default_pose(robot, wanted, floating, findings, STAGE)
+    if floating:
+        if not wanted:
+            options.init_joint_pos = pose_table(robot, stance)
+        if options.init_pos is None:
+            options.home_height = spawn_height(stance)
     return stance
-
-
-def _given_pose(robot: Robot, options: MjcfOptions) -> dict[str, float]:
-    return {
-        j.name: value
-        for j in robot.joints
-        if j.type.dof == 1
-        and options.init_joint_pos
-        and (value := lookup(dict(options.init_joint_pos), j.name, "init_joint_pos")) is not None
-    }
 
 
 def _default_gains(robot: Robot, request: EmitRequest, findings: Findings, stance: Stance) -> None:
