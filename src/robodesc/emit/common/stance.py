@@ -352,14 +352,23 @@ def _hip_angle(path: list[Joint], leg: Leg, q: Mapping[str, float], hip: Joint) 
 # ---- the lowest point -----------------------------------------------------------------------------
 
 
-def lowest_point(robot: Robot, q: Mapping[str, float], meshes: MeshCache | None = None) -> float | None:
-    """The lowest z of every collider at pose ``q``, in the root link's frame (meshes exactly)."""
+def lowest_point(
+    robot: Robot,
+    q: Mapping[str, float],
+    meshes: MeshCache | None = None,
+    *,
+    root: Frame | None = None,
+    exact: bool = True,
+) -> float | None:
+    """The lowest z of every collider at pose ``q``, in the root link's frame, or in the world with
+    the root placed at ``root``; meshes by their vertices, or by their bounding box (``exact=False``)."""
     frames = link_frames(robot, q)
     meshes = meshes or MeshCache()
     best: float | None = None
     for link in robot.links:
         if link.name in frames:
-            z = _link_lowest(link, frames[link.name], meshes, exact=True)
+            at = frames[link.name] if root is None else root @ frames[link.name]
+            z = _link_lowest(link, at, meshes, exact=exact)
             if z is not None and (best is None or z < best):
                 best = z
     return best
