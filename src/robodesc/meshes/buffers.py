@@ -33,6 +33,23 @@ class MeshData:
     uv: array[float] | None = None  # float32 u, v per point, when the file has texture coordinates
 
 
+# A mesh thinner than this (relative to its largest extent) has no convex hull: MuJoCo and PhysX
+# need one for every mesh collider, so the targets put a thin box over its extent instead.
+FLAT = 1e-9
+
+
+def flat_box(data: MeshData, thickness: float) -> tuple[Vec3, Vec3] | None:
+    """(size, centre in the mesh's frame) of a box of a flat mesh's extent, at least ``thickness``
+    across; None for a mesh with volume (or no extent at all)."""
+    lo, hi = data.extent
+    size = [h - low for low, h in zip(lo, hi, strict=True)]
+    if max(size) <= 0 or min(size) > FLAT * max(size):
+        return None
+    full = tuple(max(s, thickness) for s in size)
+    centre = tuple((low + h) / 2 for low, h in zip(lo, hi, strict=True))
+    return (full[0], full[1], full[2]), (centre[0], centre[1], centre[2])
+
+
 def finish(vertices: object, triangles: object, scale: Vec3 | None, uv: array[float] | None = None) -> MeshData:
     """:class:`MeshData` of float64 points and int32 triangles (C-contiguous buffers) through the C
     extension: scaled, the winding reversed by a mirroring scale, normals, float32 points, extent."""

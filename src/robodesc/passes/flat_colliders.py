@@ -16,12 +16,11 @@ import os
 from robodesc.ir.geometry import Box, Mesh, Pose
 from robodesc.ir.model import Robot
 from robodesc.ir.rigid import apply, pose_frame, rotation_rpy
-from robodesc.meshes.buffers import MeshReadError
+from robodesc.meshes.buffers import MeshReadError, flat_box
 from robodesc.meshes.data import build_mesh
 from robodesc.passes.context import PassContext
 
 NAME = "flat_colliders"
-FLAT = 1e-9  # relative: a mesh is flat when its thinnest extent is at most this of its largest
 THICKNESS = 1e-4  # m: the box across the flat axis (the MJCF target's 2 x 5e-5 m)
 
 
@@ -62,10 +61,4 @@ def _flat_box(mesh: Mesh) -> tuple[tuple[float, float, float], tuple[float, floa
         data = build_mesh(mesh.path, mesh.scale)
     except (MeshReadError, OSError, ValueError):
         return None
-    lo, hi = data.extent
-    size = [h - low for low, h in zip(lo, hi, strict=True)]
-    if max(size) <= 0 or min(size) > FLAT * max(size):
-        return None
-    thick = tuple(max(s, THICKNESS) for s in size)
-    centre = tuple((low + h) / 2 for low, h in zip(lo, hi, strict=True))
-    return (thick[0], thick[1], thick[2]), (centre[0], centre[1], centre[2])
+    return flat_box(data, THICKNESS)

@@ -18,16 +18,13 @@ from robodesc.emit.common.paths import PathMode, file_reference
 from robodesc.emit.mjcf.context import MjcfContext
 from robodesc.emit.mjcf.objsplit import split_by_material
 from robodesc.ir.geometry import RGBA, Mesh, Vec3
-from robodesc.meshes.buffers import MeshData, MeshReadError
+from robodesc.meshes.buffers import MeshData, MeshReadError, flat_box
 from robodesc.meshes.data import build_mesh
 
 READABLE = (".stl", ".obj")
 MESH_DIR = "meshes"
 # MuJoCo reads binary STL only, and refuses more faces than this: other STL files are converted to OBJ.
 STL_FACE_LIMIT = 200000
-# A mesh thinner than this (relative to its largest extent) has no convex hull, which MuJoCo needs
-# for every mesh: it is written as a thin box over its extent instead.
-FLAT = 1e-9
 # The thin box's half thickness, m.
 FLAT_HALF = 5e-5
 
@@ -121,9 +118,8 @@ class MeshAssets:
             data = build_mesh(mesh.path, mesh.scale)
         except MeshReadError:
             return None
-        lo, hi = data.extent
-        size = [h - low for low, h in zip(lo, hi, strict=True)]
-        if max(size) <= 0 or min(size) > FLAT * max(size):
+        box = flat_box(data, 2 * FLAT_HALF)
+        if box is None:
             return None
         self.ctx.warn(
             "mjcf-flat-mesh",
@@ -132,9 +128,8 @@ class MeshAssets:
             element,
             mesh.src,
         )
-        half = tuple(max(s / 2, FLAT_HALF) for s in size)
-        centre = tuple((low + h) / 2 for low, h in zip(lo, hi, strict=True))
-        return half, centre  # type: ignore[return-value]
+        size, centre = box
+        return (size[0] / 2, size[1] / 2, size[2] / 2), centre
 
     def visual_parts(self, mesh: Mesh) -> list[tuple[str, RGBA | None]] | None:
         """A multi-material OBJ visual as one asset per material, with that material's colour;
