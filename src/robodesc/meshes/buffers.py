@@ -7,6 +7,7 @@ Kept apart from the readers so that each reader (:mod:`.data`'s C path, :mod:`.r
 from __future__ import annotations
 
 from array import array
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 from robodesc.ir.geometry import Vec3
@@ -31,6 +32,17 @@ class MeshData:
     normals: array[float]  # float32 x, y, z per triangle: uniform, one per face
     extent: tuple[Vec3, Vec3]  # per-axis minimum and maximum of the (float32) points
     uv: array[float] | None = None  # float32 u, v per point, when the file has texture coordinates
+
+
+def obj_bytes(points: Sequence[float], indices: Sequence[int], comment: str) -> bytes:
+    """A Wavefront OBJ of flat xyz ``points`` and triangle ``indices`` (0-based). ``%.9g`` writes a
+    float32 exactly and keeps float64 to float32 precision and more; equal input, equal bytes."""
+    lines = [b"# %s\n" % comment.encode()]
+    for i in range(0, len(points), 3):
+        lines.append(b"v %.9g %.9g %.9g\n" % (points[i], points[i + 1], points[i + 2]))
+    for i in range(0, len(indices), 3):
+        lines.append(b"f %d %d %d\n" % (indices[i] + 1, indices[i + 1] + 1, indices[i + 2] + 1))
+    return b"".join(lines)
 
 
 # A mesh thinner than this (relative to its largest extent) has no convex hull: MuJoCo and PhysX

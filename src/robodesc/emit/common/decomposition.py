@@ -19,7 +19,7 @@ from robodesc._files import write_atomic
 from robodesc.emit.common.flags import flag
 from robodesc.ir.diagnostics import ConfigError
 from robodesc.ir.geometry import Mesh
-from robodesc.meshes.buffers import MeshReadError
+from robodesc.meshes.buffers import MeshReadError, obj_bytes
 
 if TYPE_CHECKING:
     from robodesc.meshes.decompose import Points, Triangles
@@ -167,13 +167,9 @@ def _arrays(mesh: Mesh) -> tuple[Points, Triangles]:
 
 
 def obj_text(points: object, triangles: object) -> bytes:
-    """A Wavefront OBJ of one part; ``%.9g`` keeps what CoACD computed to float32 precision and
-    more, and the same parts always give the same bytes."""
+    """A Wavefront OBJ of one part: the same parts always give the same bytes."""
     import numpy as np
 
-    pts = np.asarray(points, dtype=np.float64).reshape(-1, 3)
-    tris = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
-    lines = [b"# convex part written by robodesc (CoACD)\n"]
-    lines += [b"v %.9g %.9g %.9g\n" % (x, y, z) for x, y, z in pts.tolist()]
-    lines += [b"f %d %d %d\n" % (a + 1, b + 1, c + 1) for a, b, c in tris.tolist()]
-    return b"".join(lines)
+    flat = np.asarray(points, dtype=np.float64).ravel().tolist()
+    indices = np.asarray(triangles, dtype=np.int64).ravel().tolist()
+    return obj_bytes(flat, indices, "convex part written by robodesc (CoACD)")

@@ -18,7 +18,7 @@ from robodesc.emit.common.paths import PathMode, file_reference
 from robodesc.emit.mjcf.context import MjcfContext
 from robodesc.emit.mjcf.objsplit import split_by_material
 from robodesc.ir.geometry import RGBA, Mesh, Vec3
-from robodesc.meshes.buffers import MeshData, MeshReadError, flat_box
+from robodesc.meshes.buffers import MeshData, MeshReadError, flat_box, obj_bytes
 from robodesc.meshes.data import build_mesh
 
 READABLE = (".stl", ".obj")
@@ -229,13 +229,5 @@ def _reference(ctx: MjcfContext, mesh: Mesh) -> str:
 
 
 def obj_text(data: MeshData) -> bytes:
-    """A Wavefront OBJ of the mesh's points and triangles. The points are float32 (what the readers
-    give); ``%.9g`` writes every float32 exactly."""
-    pts = data.points
-    lines = [b"# written by robodesc\n"]
-    for i in range(0, len(pts), 3):
-        lines.append(b"v %.9g %.9g %.9g\n" % (pts[i], pts[i + 1], pts[i + 2]))
-    idx = data.face_vertex_indices
-    for i in range(0, len(idx), 3):
-        lines.append(b"f %d %d %d\n" % (idx[i] + 1, idx[i + 1] + 1, idx[i + 2] + 1))
-    return b"".join(lines)
+    """A Wavefront OBJ of the mesh's (float32) points and triangles."""
+    return obj_bytes(data.points, data.face_vertex_indices, "written by robodesc")
