@@ -75,6 +75,27 @@ def _last_error(proc: subprocess.CompletedProcess[str]) -> str:
     return (lines[0] if lines else f"exit {proc.returncode}")[:300]
 
 
+def _newton_check(
+    cases: list[dict[str, Any]], cases_path: str, result_path: str, envs: str, log: str
+) -> tuple[subprocess.CompletedProcess[str], dict[str, Any]]:
+    """Run newton_check.py in Newton's environment on ``cases``: (the process, its results by case)."""
+    with open(cases_path, "w", encoding="utf-8") as f:
+        json.dump(cases, f, indent=1)
+    newton = _run(
+        [
+            os.path.join(envs, "newton", "bin", "python"),
+            os.path.join(HERE, "newton_check.py"),
+            "--cases",
+            cases_path,
+            "--out",
+            result_path,
+        ],
+        1800,
+        log,
+    )
+    return newton, _read_json(result_path) or {}
+
+
 def _read_json(path: str) -> dict[str, Any] | None:
     if not os.path.isfile(path):
         return None
@@ -172,23 +193,9 @@ def run_robot(robot: CorpusRobot, envs: str, work: str) -> dict[str, object]:
                     "fallback_urdf": None,
                 }
             )
-    cases_path = os.path.join(wdir, "cases.json")
-    with open(cases_path, "w", encoding="utf-8") as f:
-        json.dump(cases, f, indent=1)
-    result_path = os.path.join(wdir, "newton.json")
-    newton = _run(
-        [
-            os.path.join(envs, "newton", "bin", "python"),
-            os.path.join(HERE, "newton_check.py"),
-            "--cases",
-            cases_path,
-            "--out",
-            result_path,
-        ],
-        1800,
-        log,
+    newton, results = _newton_check(
+        cases, os.path.join(wdir, "cases.json"), os.path.join(wdir, "newton.json"), envs, log
     )
-    results = _read_json(result_path) or {}
     for case in cases:
         kind = str(case["name"])
         res = results.get(kind)
@@ -247,23 +254,10 @@ def run_robot_mjcf(robot: CorpusRobot, envs: str, work: str) -> dict[str, object
         "package_dir": package_dirs,
         "fallback_urdf": own_urdf,
     }
-    cases_path = os.path.join(wdir, "cases_mjcf.json")
-    with open(cases_path, "w", encoding="utf-8") as f:
-        json.dump([case], f, indent=1)
-    result_path = os.path.join(wdir, "newton_mjcf.json")
-    newton = _run(
-        [
-            os.path.join(envs, "newton", "bin", "python"),
-            os.path.join(HERE, "newton_check.py"),
-            "--cases",
-            cases_path,
-            "--out",
-            result_path,
-        ],
-        1800,
-        log,
+    newton, results = _newton_check(
+        [case], os.path.join(wdir, "cases_mjcf.json"), os.path.join(wdir, "newton_mjcf.json"), envs, log
     )
-    res = (_read_json(result_path) or {}).get("newton_mjcf")
+    res = results.get("newton_mjcf")
     out: dict[str, object] = {"newton_mjcf": res["status"] if res else f"fail: Newton crashed ({_last_error(newton)})"}
     if res and res.get("checks"):
         out["newton_mjcf_loads"] = any(c["name"] == "loads" and c["ok"] for c in res["checks"])
