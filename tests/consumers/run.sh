@@ -12,6 +12,7 @@
 # ~/.cache/robodesc-consumers), one virtualenv per engine:
 #   newton/    Python 3.12, newton[importers,sim] 1.8, warp-lang, newton-usd-schemas (CPU)
 #   isaacsim/  Python 3.12, isaacsim-asset-isolated 6.2 (the URDF importer, no Kit, no GPU)
+#   physx/     ovphysx 0.7 (PhysX on CPU), physx-usd-schemas, newton-usd-schemas, usd-core
 #   isaaclab/  Python 3.12, isaaclab 3.0 (optional)
 # PYTHON312 names the interpreter used to create them (default: python3.12 on PATH, then pyenv's).
 # robodesc itself runs with the Python that runs this script's driver ($PYTHON, default python).
@@ -41,6 +42,8 @@ build() {  # build NAME PACKAGES...: a venv with these packages, once (a marker 
 
 build newton "newton[importers,sim]==1.8.0" warp-lang newton-usd-schemas
 build isaacsim "isaacsim-asset-isolated==6.2.0.0"
+# PhysX (ovphysx, CPU) with the current PhysX and Newton USD schemas; Python 3.11 or 3.12 both work.
+build physx "ovphysx==0.7.*" physx-usd-schemas newton-usd-schemas usd-core numpy
 if [ "${ROBODESC_CONSUMERS_ISAACLAB:-0}" = "1" ]; then
   build isaaclab "isaaclab==3.0.0"
 fi
