@@ -31,7 +31,7 @@ def main() -> None:
     import numpy as np
     import ovphysx  # type: ignore[import-not-found]
     import ovstage  # type: ignore[import-not-found]
-    from ovphysx import PhysX  # type: ignore[import-not-found]
+    from ovphysx import PhysX
     from ovphysx.samples.python_samples.schema_support import (  # type: ignore[import-not-found]
         physx_schema_paths,
     )

@@ -100,11 +100,22 @@ def census(stage: Any) -> SchemaCensus:
                 if name.startswith("physxJoint:"):
                     why += f" ({LEGACY['PhysxJointAPI']})"
                 out.unknown_attributes.append((path, name, why))
-            elif spec.GetTypeName() != attr.GetTypeName():
+                continue
+            # usd-core reports a defined attribute's type from its definition: the authored spec says
+            # what the file holds (a reader converts or drops a value of another type).
+            authored = _authored_type(attr)
+            if authored is not None and authored != spec.GetTypeName():
                 out.unknown_attributes.append(
-                    (path, name, f"authored as {attr.GetTypeName()}, the schema declares {spec.GetTypeName()}")
+                    (path, name, f"authored as {authored}, the schema declares {spec.GetTypeName()}")
                 )
     return out
+
+
+def _authored_type(attr: Any) -> Any:
+    for spec in attr.GetPropertyStack():
+        if spec.typeName:
+            return spec.typeName
+    return None
 
 
 def _prims(stage: Any) -> Iterator[Any]:
