@@ -49,8 +49,9 @@ def main() -> None:
         out = []
         with physx.read_sync(joint, [attr], scope=ObjectScope.ALL) as result:
             for group in result.groups:
-                if not group.is_delete and group.tensors:
-                    out.append(np.asarray(group.tensors[0].numpy(), dtype=float).ravel().copy())
+                # One tensor per joint of the group.
+                if not group.is_delete:
+                    out += [np.asarray(t.numpy(), dtype=float).ravel().copy() for t in group.tensors]
         return [float(v) for v in np.concatenate(out)] if out else []
 
     results: list[dict[str, Any]] = []
