@@ -30,7 +30,7 @@ LEGACY_JOINT_API = ("4", "5")
 ISAAC_WITHOUT_JOINT_AXIS = ("4",)
 ISAAC_VERSION = flag(
     "Isaac Sim release the USD targets (default 6: PhysxJointAxisAPI only; 5: also the legacy "
-    "physxJoint:* spelling; 4: legacy only for what it has); docs/isaac.md",
+    "physxJoint:* spelling; 4: only the legacy spelling, no friction effort); docs/isaac.md",
     choices=ISAAC_VERSIONS,
 )
 MOTOR_ENVELOPE = flag(
