@@ -120,3 +120,18 @@ def Xform "robot" (prepend apiSchemas = ["PhysicsArticulationRootAPI"])
 )
 def test_physics_namespaces(name: str, physics: bool) -> None:
     assert is_physics_attribute(name) is physics
+
+
+def test_validate_reports_the_legacy_spelling_by_joint(tmp_path: Path) -> None:
+    # The check runs in every -t usd compile: --isaac-version 5 writes PhysxJointAPI, which the
+    # current schemas do not define; the default writes nothing unknown.
+    source = str(ROOT / "tests" / "usd" / "data" / "arm.urdf")
+    legacy = robodesc.compile_to(source, "usd", str(tmp_path / "legacy.usda"), isaac_version="5")
+    current = robodesc.compile_to(source, "usd", str(tmp_path / "current.usda"))
+    assert legacy.validation is not None and current.validation is not None
+    rows = legacy.validation.by_name(CHECK)
+    elbow = [row.message for row in rows if row.status is Status.WARN and row.element == "/arm/joints/elbow"]
+    assert any(m.startswith("API schema PhysxJointAPI:") for m in elbow)
+    assert any(m.startswith("attribute physxJoint:maxJointVelocity:") for m in elbow)
+    assert legacy.validation.ok  # a warning: the file stays loadable
+    assert [row.status for row in current.validation.by_name(CHECK)] == [Status.PASS]
