@@ -131,7 +131,7 @@ def test_friction_effort_holds_below_and_slows_above(tmp_path: Path) -> None:
     at = round(0.1 / DT) - 1
     for case, friction in ((free, 0.0), (slowed, 3.0)):
         expected = 0.5 * (torque - friction) / INERTIA * 0.1**2
-        assert math.pi / 2 - case["q"][at] == pytest.approx(expected, rel=0.03)
+        assert math.pi / 2 - case["q"][at] == pytest.approx(expected, rel=0.01)
 
 
 def test_performance_envelope_reduces_torque_with_speed(tmp_path: Path) -> None:
