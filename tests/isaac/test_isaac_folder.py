@@ -86,7 +86,7 @@ def _usd_drives(path: str) -> dict[str, tuple[float, float, str, float | None, f
         for kind in ("angular", "linear"):
             drive = UsdPhysics.DriveAPI.Get(prim, kind)
             if drive and drive.GetStiffnessAttr().HasAuthoredValue():
-                arm = prim.GetAttribute("physxJoint:armature")
+                arm = prim.GetAttribute(f"physxJointAxis:{kind}:armature")
                 newton = prim.GetAttribute("newton:armature")
                 name = prim.GetAttribute("displayName").Get() if prim.HasAttribute("displayName") else None
                 out[str(name or prim.GetName())] = (

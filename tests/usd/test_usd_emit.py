@@ -190,24 +190,77 @@ def test_drive_units_and_extras(tmp_path: Path) -> None:
     elbow = stage.GetPrimAtPath("/arm/joints/elbow")
     assert math.isclose(elbow.GetAttribute("drive:angular:physics:stiffness").Get(), 300 * math.pi / 180, rel_tol=1e-6)
     assert math.isclose(elbow.GetAttribute("drive:angular:physics:damping").Get(), 3 * math.pi / 180, rel_tol=1e-6)
-    assert math.isclose(elbow.GetAttribute("physxJoint:maxJointVelocity").Get(), 2.5 * 180 / math.pi, rel_tol=1e-6)
+    # physx-usd-schemas 25.11: PhysxJointAxisAPI:angular, maximum joint velocity in deg/s.
+    assert math.isclose(
+        elbow.GetAttribute("physxJointAxis:angular:maxJointVelocity").Get(), 2.5 * 180 / math.pi, rel_tol=1e-6
+    )
     # newton-usd-schemas 0.6: NewtonJointAPI's velocity limit is newton:velocityLimit, in deg/s.
     assert math.isclose(elbow.GetAttribute("newton:velocityLimit").Get(), 2.5 * 180 / math.pi, rel_tol=1e-6)
     assert not elbow.GetAttribute("newton:maxJointVelocity").IsValid()
     slide = stage.GetPrimAtPath("/arm/joints/slide")
     assert slide.GetAttribute("drive:linear:physics:stiffness").Get() == 2000.0
-    assert math.isclose(slide.GetAttribute("physxJoint:maxJointVelocity").Get(), 0.3, rel_tol=1e-6)
+    assert math.isclose(slide.GetAttribute("physxJointAxis:linear:maxJointVelocity").Get(), 0.3, rel_tol=1e-6)
     # The slide's range excludes 0: it starts (and targets) its lower bound.
     assert math.isclose(slide.GetAttribute("state:linear:physics:position").Get(), 0.01, rel_tol=1e-6)
     yaw = stage.GetPrimAtPath("/arm/joints/yaw")
     assert yaw.GetAttribute("drive:angular:physics:stiffness").Get() == pytest.approx(50 * math.pi / 180)
-    assert yaw.GetAttribute("physxJoint:jointFriction").Get() == pytest.approx(0.2)
+    # URDF friction is a Coulomb effort: PhysX's static and dynamic friction efforts, in N·m.
+    assert yaw.GetAttribute("physxJointAxis:angular:staticFrictionEffort").Get() == pytest.approx(0.2)
+    assert yaw.GetAttribute("physxJointAxis:angular:dynamicFrictionEffort").Get() == pytest.approx(0.2)
     assert yaw.GetAttribute("newton:friction").Get() == pytest.approx(0.2)
     # Passive damping is per degree for an angular DOF (NewtonJointAPI: effort·s/deg).
     assert yaw.GetAttribute("newton:damping").Get() == pytest.approx(0.5 * math.pi / 180)
+    viscous = yaw.GetAttribute("physxJointAxis:angular:viscousFrictionCoefficient").Get()
+    assert viscous == pytest.approx(0.5 * math.pi / 180)
     schemas = yaw.GetPrimTypeInfo().GetAppliedAPISchemas()
-    assert "PhysxJointAPI" in schemas and "NewtonJointAPI" in schemas and "PhysicsJointStateAPI:angular" in schemas
-    assert not yaw.GetAttribute("physxJoint:armature").IsAuthored()
+    assert "PhysxJointAxisAPI:angular" in schemas and "NewtonJointAPI" in schemas
+    assert "PhysicsJointStateAPI:angular" in schemas
+    # Isaac Sim 6 (the default) does not read the legacy single-apply PhysxJointAPI.
+    assert "PhysxJointAPI" not in schemas and not elbow.GetAttribute("physxJoint:maxJointVelocity").IsValid()
+    assert not yaw.GetAttribute("physxJointAxis:angular:armature").IsAuthored()
+
+
+@pytest.mark.parametrize(("version", "axis", "legacy"), [("6", True, False), ("5", True, True), ("4", False, True)])
+def test_isaac_version_chooses_the_joint_vocabulary(tmp_path: Path, version: str, axis: bool, legacy: bool) -> None:
+    out = tmp_path / "arm.usda"
+    findings = emit_usd(load("arm"), str(out), UsdOptions(isaac_version=version))
+    stage = Usd.Stage.Open(str(out))
+    elbow = stage.GetPrimAtPath("/arm/joints/elbow")
+    schemas = elbow.GetPrimTypeInfo().GetAppliedAPISchemas()
+    assert ("PhysxJointAxisAPI:angular" in schemas) is axis
+    assert ("PhysxJointAPI" in schemas) is legacy
+    if legacy:
+        assert elbow.GetAttribute("physxJoint:maxJointVelocity").Get() == pytest.approx(2.5 * 180 / math.pi)
+    # The legacy jointFriction is a unitless coefficient: a URDF friction effort is never written to it.
+    yaw = stage.GetPrimAtPath("/arm/joints/yaw")
+    assert not yaw.GetAttribute("physxJoint:jointFriction").IsValid()
+    assert yaw.GetAttribute("newton:friction").Get() == pytest.approx(0.2)
+    unwritten = [f for f in findings if f.code == "usd-friction-unwritten"]
+    assert [f.element for f in unwritten] == (["joint 'yaw'"] if not axis else [])
+
+
+def test_motor_envelope(tmp_path: Path) -> None:
+    out = tmp_path / "arm.usda"
+    robot = load("arm")
+    emit_usd(robot, str(out), UsdOptions(motor_envelope=True))
+    stage = Usd.Stage.Open(str(out))
+    for joint in robot.joints:
+        prim = stage.GetPrimAtPath(f"/arm/joints/{joint.name}")
+        limit = joint.limit
+        kind = "angular" if joint.type.is_angular else "linear"
+        base = f"physxDrivePerformanceEnvelope:{kind}"
+        if joint.type.dof != 1 or limit is None or not (limit.effort or 0) > 0 or not (limit.velocity or 0) > 0:
+            assert not prim.GetAttribute(f"{base}:maxActuatorVelocity").IsValid()
+            continue
+        unit = 180 / math.pi if kind == "angular" else 1.0
+        assert f"PhysxDrivePerformanceEnvelopeAPI:{kind}" in prim.GetPrimTypeInfo().GetAppliedAPISchemas()
+        assert prim.GetAttribute(f"{base}:maxActuatorVelocity").Get() == pytest.approx(limit.velocity * unit)
+        # The motor line reaches 0 torque at the no-load speed: maxForce = resistance * maxActuatorVelocity.
+        resistance = prim.GetAttribute(f"{base}:velocityDependentResistance").Get()
+        assert resistance * limit.velocity * unit == pytest.approx(limit.effort, rel=1e-6)
+    plain = tmp_path / "plain.usda"
+    emit_usd(robot, str(plain), UsdOptions())
+    assert "PhysxDrivePerformanceEnvelopeAPI" not in plain.read_text()
 
 
 def test_armature_written_in_both_vocabularies(tmp_path: Path) -> None:
@@ -219,9 +272,10 @@ def test_armature_written_in_both_vocabularies(tmp_path: Path) -> None:
         prim = stage.GetPrimAtPath(f"/spirit/joints/{joint.name}")
         if joint.armature is None:
             continue
-        assert prim.GetAttribute("physxJoint:armature").Get() == pytest.approx(joint.armature)
+        armature = prim.GetAttribute("physxJointAxis:angular:armature")
+        assert armature.Get() == pytest.approx(joint.armature)
         assert prim.GetAttribute("newton:armature").Get() == pytest.approx(joint.armature)
-        assert not prim.GetAttribute("physxJoint:armature").IsCustom()
+        assert not armature.IsCustom()
         assert prim.GetDisplayName() == (joint.display_name or "")
 
 

@@ -44,6 +44,7 @@ from robodesc.validation.compare import (
 from robodesc.validation.mujoco_load import tree_depth
 from robodesc.validation.options import ValidateOptions
 from robodesc.validation.report import Status, Tally, ValidationReport
+from robodesc.validation.usd_schemas import check_schemas, register_schemas
 
 CONSUMER = "usd-physics"
 DEG = 180.0 / math.pi
@@ -100,6 +101,8 @@ def validate_usd_physics(robot: Robot, usd_path: str, options: ValidateOptions |
     from pxr import Usd
 
     report.info["usd-physics"] = "usd-core " + ".".join(str(v) for v in Usd.GetVersion())
+    # The PhysX and Newton schemas register before the stage opens, so its prims' definitions carry them.
+    register_schemas()
     stage = Usd.Stage.Open(usd_path) if os.path.exists(usd_path) else None
     if stage is None:
         report.add("usd-open", Status.FAIL, "document", f"usd-core cannot open {usd_path!r}")
@@ -119,6 +122,7 @@ def validate_usd_physics(robot: Robot, usd_path: str, options: ValidateOptions |
             "its physics was not checked",
         )
         return report
+    check_schemas(stage, report)
     parsed = parse(stage, str(prim.GetPath()), robot)
     report.add(
         "usd-open",

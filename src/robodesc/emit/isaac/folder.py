@@ -47,6 +47,8 @@ def usd_options(settings: IsaacSettings, initial: Mapping[str, float] | None = N
         physics_scene=settings.physics_scene,
         friction_combine=settings.friction_combine,
         default_friction=settings.default_friction,
+        isaac_version=settings.isaac_version,
+        motor_envelope=settings.motor_envelope,
     )
 
 

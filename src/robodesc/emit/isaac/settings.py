@@ -54,6 +54,9 @@ class IsaacSettings:
     physics_scene: bool = field(default=False, metadata=usd.PHYSICS_SCENE)
     friction_combine: str | None = field(default=None, metadata=common.FRICTION_COMBINE)
     default_friction: float = field(default=0.5, metadata=common.DEFAULT_FRICTION)
+    # The Isaac Sim release the USD's PhysX joint attributes are written for (docs/isaac.md).
+    isaac_version: str = field(default="6", metadata=usd.ISAAC_VERSION)
+    motor_envelope: bool = field(default=False, metadata=usd.MOTOR_ENVELOPE)
     # Spawn pose for Isaac Lab: base position (m) and the initial joint positions (rad) by regex.
     init_pos: tuple[float, float, float] = field(default=(0.0, 0.0, 0.0), metadata=common.INIT_POS)
     init_joint_pos: dict[str, float] = field(default_factory=dict, metadata=common.INIT_JOINT_POS)

@@ -25,7 +25,7 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
         findings.info(
             "urdf-armature",
             f"armature of {len(with_armature)} joints written as <dynamics armature=...> (URDF has no armature element; "
-            "standard parsers ignore it, the USD output carries physxJoint:armature and newton:armature)",
+            "standard parsers ignore it, the USD output carries physxJointAxis:<axis>:armature and newton:armature)",
             element=f"robot {robot.name!r}",
             stage="emit:urdf",
         )

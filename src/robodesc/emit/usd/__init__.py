@@ -12,7 +12,9 @@ from typing import TYPE_CHECKING, Any
 from robodesc.emit.usd.options import (
     COLLISION_APPROXIMATION,
     CONTACT_OFFSET,
+    ISAAC_VERSION,
     LAYERED,
+    MOTOR_ENVELOPE,
     PHYSICS_SCENE,
     POSITION_ITERATIONS,
     REST_OFFSET,
@@ -35,7 +37,9 @@ def __getattr__(name: str) -> Any:
 __all__ = [
     "COLLISION_APPROXIMATION",
     "CONTACT_OFFSET",
+    "ISAAC_VERSION",
     "LAYERED",
+    "MOTOR_ENVELOPE",
     "PHYSICS_SCENE",
     "POSITION_ITERATIONS",
     "REST_OFFSET",

@@ -14,6 +14,7 @@ from robodesc.emit.usd.context import (
     check_identifier,
     set_display_name,
 )
+from robodesc.emit.usd.options import ISAAC_WITHOUT_JOINT_AXIS, LEGACY_JOINT_API
 from robodesc.emit.usd.quantities import DEG, PER_DEGREE, AxisFrame, axis_frame
 from robodesc.ir.diagnostics import UnsupportedError
 from robodesc.ir.model import Joint, JointType, LoopJoint
@@ -99,7 +100,7 @@ def _one_dof(ctx: UsdContext, joint: Joint, prim: Prim, frame: AxisFrame) -> Non
         _mimic(ctx, joint, prim, frame)
         _follower_effort(joint, prim, kind, ctx.options.drive_type)
         drive_damps = False
-    _extras(joint, prim, angular, passive_damping=not drive_damps)
+    _extras(ctx, joint, prim, kind, passive_damping=not drive_damps)
 
 
 def _drive(ctx: UsdContext, joint: Joint, prim: Prim, kind: str, start: float) -> bool:
@@ -132,6 +133,8 @@ def _drive(ctx: UsdContext, joint: Joint, prim: Prim, kind: str, start: float) -
     prim.attr(f"{base}:damping", "float", damping * per)
     if joint.limit is not None and joint.limit.effort is not None and joint.limit.effort > 0:
         prim.attr(f"{base}:maxForce", "float", joint.limit.effort)
+    if options.motor_envelope:
+        _envelope(joint, prim, kind)
     if target_position is not None:
         prim.attr(f"{base}:targetPosition", "float", target_position * unit)
     if target_velocity is not None:
@@ -201,14 +204,21 @@ def _mimic(ctx: UsdContext, joint: Joint, prim: Prim, frame: AxisFrame) -> None:
         )
 
 
-def _extras(joint: Joint, prim: Prim, angular: bool, *, passive_damping: bool) -> None:
+def _extras(ctx: UsdContext, joint: Joint, prim: Prim, kind: str, *, passive_damping: bool) -> None:
     """Armature, velocity limit, friction and passive damping in PhysX's and Newton's vocabularies.
 
-    Names, types and units are those of ``newton-usd-schemas`` 0.6 (``NewtonJointAPI``: angular
-    damping in effort·s/deg, velocity limit in deg/s, armature and friction unconverted) and of what
-    Isaac Sim 6.2's importer writes for PhysX (``physxJoint:maxJointVelocity`` in deg/s). With target
-    type ``none`` the drive already carries the URDF damping, so Newton is not given it twice.
+    PhysX reads them from the multiple-apply ``PhysxJointAxisAPI:<kind>`` (``physx-usd-schemas``
+    25.11; the instance is the drive's, ``angular`` on a revolute joint and ``linear`` on a prismatic
+    one): armature in kg·m² (kg), maximum joint velocity in deg/s (m/s), static and dynamic friction
+    efforts in N·m (N), viscous friction in N·m·s/deg (N·s/m). URDF's ``<dynamics friction>`` is the
+    Coulomb friction effort, so it is both the static effort (what holds a resting joint) and the
+    dynamic one (what opposes a moving joint). Newton's names and units are ``newton-usd-schemas``
+    0.6's ``NewtonJointAPI`` (damping in effort·s/deg, velocity limit in deg/s). The legacy
+    single-apply ``PhysxJointAPI`` is written only for the Isaac Sim releases that read it
+    (``isaac_version``). With target type ``none`` the drive already carries the URDF damping, so it
+    is not given twice.
     """
+    angular = kind == "angular"
     armature = joint.armature
     velocity = joint.limit.velocity if joint.limit is not None else None
     if velocity is not None and not velocity > 0:
@@ -222,14 +232,36 @@ def _extras(joint: Joint, prim: Prim, angular: bool, *, passive_damping: bool) -
         return
     unit = DEG if angular else 1.0
     per = PER_DEGREE if angular else 1.0
-    if armature is not None or velocity is not None or friction is not None:
+    version = ctx.options.isaac_version
+    # Isaac Sim 4.x has no PhysxJointAxisAPI: it reads only the legacy spelling.
+    if version not in ISAAC_WITHOUT_JOINT_AXIS:
+        axis = f"physxJointAxis:{kind}"
+        prim.apply(f"PhysxJointAxisAPI:{kind}")
+        if armature is not None:
+            prim.attr(f"{axis}:armature", "float", armature)
+        if velocity is not None:
+            prim.attr(f"{axis}:maxJointVelocity", "float", velocity * unit)
+        if friction is not None:
+            prim.attr(f"{axis}:staticFrictionEffort", "float", friction)
+            prim.attr(f"{axis}:dynamicFrictionEffort", "float", friction)
+        if damping is not None:
+            prim.attr(f"{axis}:viscousFrictionCoefficient", "float", damping * per)
+    if version in LEGACY_JOINT_API and (armature is not None or velocity is not None):
+        # physxJoint:jointFriction is PhysX's unitless friction coefficient (scaled by the joint's
+        # constraint force), not an effort: a URDF friction has no place in it.
         prim.apply("PhysxJointAPI")
         if armature is not None:
             prim.attr("physxJoint:armature", "float", armature)
         if velocity is not None:
             prim.attr("physxJoint:maxJointVelocity", "float", velocity * unit)
-        if friction is not None:
-            prim.attr("physxJoint:jointFriction", "float", friction)
+    if friction and version in ISAAC_WITHOUT_JOINT_AXIS:
+        ctx.warn(
+            "usd-friction-unwritten",
+            f"Isaac Sim {version}.x's PhysX has no friction effort (only a unitless coefficient): the URDF's "
+            f"friction {friction:g} reaches it only through newton:friction, which it does not read",
+            f"joint {joint.name!r}",
+            dyn.src if dyn is not None else joint.src,
+        )
     prim.apply("NewtonJointAPI")
     if armature is not None:
         prim.attr("newton:armature", "float", armature)
@@ -239,6 +271,22 @@ def _extras(joint: Joint, prim: Prim, angular: bool, *, passive_damping: bool) -
         prim.attr("newton:friction", "float", friction)
     if damping is not None:
         prim.attr("newton:damping", "float", damping * per)
+
+
+def _envelope(joint: Joint, prim: Prim, kind: str) -> None:
+    """``PhysxDrivePerformanceEnvelopeAPI:<kind>`` from the URDF effort (stall torque) and velocity
+    (no-load speed): a DC motor's line |τ| <= effort·(1 - |ω|/velocity), which PhysX writes as
+    ``maxForce - velocityDependentResistance·|ω|`` with ``maxActuatorVelocity`` where it reaches 0.
+    Angular values per degree, as the schema's units say (resistance N·m·s/deg, velocity deg/s)."""
+    limit = joint.limit
+    if limit is None or not (limit.effort or 0.0) > 0 or not (limit.velocity or 0.0) > 0:
+        return
+    assert limit.effort is not None and limit.velocity is not None
+    unit = DEG if kind == "angular" else 1.0
+    base = f"physxDrivePerformanceEnvelope:{kind}"
+    prim.apply(f"PhysxDrivePerformanceEnvelopeAPI:{kind}")
+    prim.attr(f"{base}:maxActuatorVelocity", "float", limit.velocity * unit)
+    prim.attr(f"{base}:velocityDependentResistance", "float", limit.effort / (limit.velocity * unit))
 
 
 def emit_loop_joint(ctx: UsdContext, loop: LoopJoint, path: str) -> None:

@@ -22,6 +22,22 @@ VELOCITY_ITERATIONS = flag("PhysX articulation velocity iterations", type=int, m
 CONTACT_OFFSET = flag("PhysX contact offset on every collider (default PhysX's ~2 cm)", type=float, metavar="M")
 REST_OFFSET = flag("PhysX rest offset on every collider", type=float, metavar="M")
 PHYSICS_SCENE = flag("add a /PhysicsScene beside the robot (outside the default prim)", kind="on")
+# Isaac Sim releases by the PhysX joint vocabulary they read (docs/isaac.md, "Isaac Sim versions").
+ISAAC_VERSIONS = ("4", "5", "6")
+# The releases whose PhysX still reads the single-apply PhysxJointAPI (physxJoint:*).
+LEGACY_JOINT_API = ("4", "5")
+# The releases before PhysxJointAxisAPI (PhysX 5.6, Isaac Sim 5.0).
+ISAAC_WITHOUT_JOINT_AXIS = ("4",)
+ISAAC_VERSION = flag(
+    "Isaac Sim release the USD targets (default 6: PhysxJointAxisAPI only; 5: also the legacy "
+    "physxJoint:* spelling; 4: only the legacy spelling, no friction effort); docs/isaac.md",
+    choices=ISAAC_VERSIONS,
+)
+MOTOR_ENVELOPE = flag(
+    "read each driven joint's URDF effort and velocity as its motor's stall torque and no-load speed and "
+    "write PhysxDrivePerformanceEnvelopeAPI, so PhysX lowers the torque linearly with speed; docs/usd.md",
+    kind="on",
+)
 
 # A gain is one number for every joint, or an ordered {regex: value} table (first full match wins).
 Gain = float | Mapping[str, float]
@@ -52,6 +68,8 @@ class UsdOptions:
     # How PhysX combines two colliders' friction (its default: average); None leaves it to PhysX.
     friction_combine: str | None = field(default=None, metadata=common.FRICTION_COMBINE)
     default_friction: float = field(default=0.5, metadata=common.DEFAULT_FRICTION)
+    isaac_version: str = field(default="6", metadata=ISAAC_VERSION)
+    motor_envelope: bool = field(default=False, metadata=MOTOR_ENVELOPE)
     # Initial joint positions (rad or m) by joint name: the joint state and the position target.
     # None or a missing joint: 0, clamped into the limits. The Isaac folder gives its default pose.
     initial_positions: Mapping[str, float] | None = None
@@ -61,6 +79,7 @@ class UsdOptions:
         approximation.check(self.collision_approximation)
         if self.friction_combine is not None:
             one_of("friction_combine", self.friction_combine, COMBINE_MODES)
+        one_of("isaac_version", self.isaac_version, ISAAC_VERSIONS)
         for name in ("solver_position_iterations", "solver_velocity_iterations"):
             value = getattr(self, name)
             if value is not None and (not isinstance(value, int) or value < 1 or value > 255):
