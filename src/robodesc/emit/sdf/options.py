@@ -87,10 +87,9 @@ class SdfOptions:
     loop_joints: bool = True
     # Where the model sits in the world (and the model's <pose> when a bare model is written).
     model_pose: Pose | None = None
-    # ---- world wrapper (``--world``) -----------------------------------------------------
-    world: bool = field(
-        default=False, metadata=flag("wrap the model in a world with ground plane, physics and light", kind="on")
-    )
+    # ---- world wrapper (a bare ``--world``; cli/parser.py declares the flag, which also takes a
+    # world file: docs/worlds.md) -------------------------------------------------------------
+    world: bool = False
     world_name: str = "default"
     props: list[SdfProp] = field(default_factory=list)
     step_size: float = 0.001
