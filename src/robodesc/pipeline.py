@@ -173,7 +173,7 @@ def compile_robot(
     if options.world.given and not spec.worlds:
         raise UnsupportedError(
             f"-t {spec.name} describes the robot alone and cannot hold a world; a world (--world FILE, --terrain) "
-            "is written by -t mjcf (docs/worlds.md)",
+            "is written by -t mjcf and -t usd (docs/worlds.md)",
             element="--world" if options.world.file is not None else "--terrain",
         )
     if out is not None:
@@ -193,6 +193,8 @@ def compile_robot(
         request = dataclasses.replace(_request(spec, stage, options, findings), world=world)
         if spec.owned is not None and stage.final is not None:
             stage.protect(spec.owned(request.options, stage.final))
+        if world is not None and spec.world_files is not None and stage.final is not None:
+            stage.protect(spec.world_files(request.options, stage.final))
         emitted = _emit(robot, spec, request, stage, resolved, findings, progress)
         result = CompileResult(robot=robot, findings=[], target=spec.name, text=emitted.text, files=emitted.files)
         if options.validate:

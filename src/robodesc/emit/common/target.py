@@ -121,6 +121,9 @@ class Target:
     # The target writes a world around the robot (``--world``, ``--terrain``: EmitRequest.world);
     # the pipeline refuses a world for one that cannot.
     worlds: bool = False
+    # The files beside a file output that a world adds (the USD world stage): protected as ``owned``
+    # is, only when a world is given.
+    world_files: OwnedFunction | None = None
 
     def output_name(self, stem: str, suffix: str | None = None) -> str:
         """The output path for ``stem`` (a folder for folder targets), with ``suffix`` or the default."""
