@@ -502,15 +502,17 @@ def _numpy_bytes(num: _Numeric, arr: Any) -> bytes:
         expected = "(n,)" if num.width == 1 else f"(n, {num.width})"
         raise Misfit(f"numpy array of shape {arr.shape}, expected {expected}")
     kind = arr.dtype.kind
-    allowed = {"?": "b", "i": "iu", "f": "fiu", "d": "fiu"}[num.code]
+    allowed = {"?": "b", "i": "iu", "I": "iu", "f": "fiu", "d": "fiu"}[num.code]
     if kind not in allowed:
         raise Misfit(f"numpy array of dtype {arr.dtype} for {num.code!r} elements")
     wide = num.code == "i" and arr.dtype.itemsize >= 4 and arr.size
     if wide and (int(arr.min()) < -(2**31) or int(arr.max()) >= 2**31):
         raise Misfit("a value is beyond int32's range")
+    if num.code == "I" and arr.size and (int(arr.min()) < 0 or int(arr.max()) >= 2**32):
+        raise Misfit("a value is beyond uint32's range")
     if num.quat:
         arr = arr[:, [1, 2, 3, 0]]
-    dtype = {"?": "?", "i": "<i4", "f": "<f4", "d": "<f8"}[num.code]
+    dtype = {"?": "?", "i": "<i4", "I": "<u4", "f": "<f4", "d": "<f8"}[num.code]
     try:
         with np.errstate(over="raise"):
             out = np.ascontiguousarray(arr, dtype=dtype)
