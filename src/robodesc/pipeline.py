@@ -173,7 +173,7 @@ def compile_robot(
     if options.world.given and not spec.worlds:
         raise UnsupportedError(
             f"-t {spec.name} describes the robot alone and cannot hold a world; a world (--world FILE, --terrain) "
-            "is written by -t mjcf and -t usd (docs/worlds.md)",
+            "is written by -t mjcf, -t usd and -t sdf (docs/worlds.md)",
             element="--world" if options.world.file is not None else "--terrain",
         )
     if out is not None:
