@@ -19,6 +19,7 @@ CORPUS = SHARED / "corpus"
 QUADSDK = CORPUS / "quadsdk"
 SPIRIT_XACRO = QUADSDK / "spirit_description/models/spirit/urdf/spirit.urdf.xacro"
 GO2_XACRO = QUADSDK / "go2_description/models/go2/urdf/go2.urdf.xacro"
+WORLDS = QUADSDK / "worlds"
 HOLO_ARM = CORPUS / "holoscript/isaac-sim-robot-arm.holo"
 EXAMPLES = ROOT / "examples"
 

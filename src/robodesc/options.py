@@ -15,6 +15,7 @@ from typing import Any
 
 from robodesc.emit.common.paths import PathMode
 from robodesc.frontends.options import LoadOptions, MissingMesh
+from robodesc.frontends.world.options import WorldOptions
 from robodesc.ir.diagnostics import ConfigError
 
 
@@ -40,6 +41,8 @@ class CompileOptions:
     mesh_paths: PathMode = PathMode.RELATIVE
     target_options: dict[str, Any] = field(default_factory=dict)
     validate: bool = True
+    # ---- the world around the robot (--world FILE, --terrain, --spawn; docs/worlds.md) ----------
+    world: WorldOptions = field(default_factory=WorldOptions)
 
     @property
     def strict(self) -> bool:
@@ -68,9 +71,14 @@ def build_options(values: Mapping[str, Any], *, extra_names: Mapping[str, str] |
     """
     extra = dict(extra_names or {})
     loading = [f.name for f in dataclasses.fields(LoadOptions)]
-    known = [f.name for f in dataclasses.fields(CompileOptions) if f.name not in _BUCKETS] + loading
+    known = [f.name for f in dataclasses.fields(CompileOptions) if f.name not in _BUCKETS] + loading + list(WORLD_NAMES)
     opts = CompileOptions()
     for name, value in values.items():
+        if name in WORLD_NAMES and not (name == "world" and isinstance(value, bool)):
+            # ``world=True`` is SDF's empty-world switch (a target option); a path is a world file.
+            if value is not None:
+                setattr(opts.world, WORLD_NAMES[name], _world_value(name, value))
+            continue
         if name in extra:
             getattr(opts, extra[name])[name] = value
             continue
@@ -88,7 +96,36 @@ def build_options(values: Mapping[str, Any], *, extra_names: Mapping[str, str] |
 
 
 # Fields of CompileOptions that are not options themselves but hold them.
-_BUCKETS = ("load", "passes", "target_options")
+_BUCKETS = ("load", "passes", "target_options", "world")
+
+# The world's keyword options (API and CLI) and the WorldOptions field each sets.
+WORLD_NAMES = {
+    "world": "file",
+    "terrain": "terrain",
+    "terrain_size": "terrain_size",
+    "terrain_resolution": "terrain_resolution",
+    "spawn": "spawn",
+    "model_path": "model_path",
+}
+
+
+def _world_value(name: str, value: Any) -> Any:
+    import math
+    import os
+
+    if name in ("world", "terrain"):
+        return os.fspath(value)
+    if name == "model_path":
+        return (os.fspath(value),) if isinstance(value, str | os.PathLike) else tuple(os.fspath(v) for v in value)
+    if name == "terrain_resolution":
+        number = float(value)
+        if not (math.isfinite(number) and number > 0):
+            raise ConfigError(f"terrain_resolution={value!r}: a positive number of metres")
+        return number
+    numbers = tuple(float(v) for v in value)
+    if not all(math.isfinite(v) for v in numbers):
+        raise ConfigError(f"{name}={value!r}: finite numbers")
+    return numbers
 
 
 def dataclass_from_mapping(cls: type[Any], values: Mapping[str, Any], what: str) -> Any:

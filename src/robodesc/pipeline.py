@@ -16,7 +16,7 @@ import dataclasses
 import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from robodesc.emit.common.staging import Staging, check_output
 from robodesc.emit.common.target import CheckRequest, EmitRequest, Emitted, Target
@@ -26,6 +26,7 @@ from robodesc.ir.diagnostics import (
     Finding,
     Findings,
     Severity,
+    UnsupportedError,
     ValidationFailed,
     VerificationError,
 )
@@ -43,6 +44,9 @@ from robodesc.plugins import load_plugins
 from robodesc.targets import target_spec
 from robodesc.validation.options import ValidateOptions
 from robodesc.validation.report import Check, Status, ValidationReport
+
+if TYPE_CHECKING:
+    from robodesc.emit.common.world import PlacedWorld
 
 Progress = Callable[[str], None]
 
@@ -166,6 +170,12 @@ def compile_robot(
 ) -> CompileResult:
     load_plugins(options.plugins)
     spec = target_spec(target)
+    if options.world.given and not spec.worlds:
+        raise UnsupportedError(
+            f"-t {spec.name} describes the robot alone and cannot hold a world; a world (--world FILE, --terrain) "
+            "is written by -t mjcf, -t usd and -t sdf (docs/worlds.md)",
+            element="--world" if options.world.file is not None else "--terrain",
+        )
     if out is not None:
         check_output(out, folder=spec.folder, source=source, suffixes=spec.suffixes if spec.suffix_required else ())
     findings = Findings()
@@ -177,11 +187,14 @@ def compile_robot(
     progress("running passes: " + ", ".join(passes_pipeline.enabled_passes(resolved)))
     findings.extend(passes_pipeline.run_passes(robot, options=resolved))
     _physical(verify(robot).errors, options, None)
+    world = _world(robot, options, findings, progress)
     stage = Staging(out, spec.folder)
     try:
-        request = _request(spec, stage, options, findings)
+        request = dataclasses.replace(_request(spec, stage, options, findings), world=world)
         if spec.owned is not None and stage.final is not None:
             stage.protect(spec.owned(request.options, stage.final))
+        if world is not None and spec.world_files is not None and stage.final is not None:
+            stage.protect(spec.world_files(request.options, stage.final))
         emitted = _emit(robot, spec, request, stage, resolved, findings, progress)
         result = CompileResult(robot=robot, findings=[], target=spec.name, text=emitted.text, files=emitted.files)
         if options.validate:
@@ -205,6 +218,22 @@ def compile_robot(
         stage.discard()
         raise
     return result
+
+
+def _world(robot: Robot, options: CompileOptions, findings: Findings, progress: Progress) -> PlacedWorld | None:
+    """The world, read and placed once for whichever target writes it (emit/common/world.py)."""
+    if not options.world.given:
+        return None
+    from robodesc.emit.common.world import place_world
+    from robodesc.frontends.world import load_world
+
+    progress("reading the world")
+    world = load_world(options.world, findings)
+    if world is None:
+        return None
+    progress("placing the robot in the world")
+    given = options.world
+    return place_world(robot, world, findings, resolution=given.terrain_resolution, spawn=given.spawn)
 
 
 def _emit(

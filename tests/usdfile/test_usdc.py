@@ -26,11 +26,12 @@ from robodesc.usdfile.usdc import usdc_bytes
 from robodesc.usdfile.usdc_encoding import encode_ints, fast_compress
 
 SRC = Path(__file__).resolve().parents[2] / "src"
-DTYPES = {"bool": np.bool_, "int": np.int32, "float": np.float32, "double": np.float64}
+DTYPES = {"bool": np.bool_, "int": np.int32, "uint": np.uint32, "float": np.float32, "double": np.float64}
 
 SCALARS: dict[str, Any] = {
     "bool": True,
     "int": -123456,
+    "uint": 4_000_000_000,  # past int32: PhysX's timeStepsPerSecond is a uint
     "float": 0.1,
     "double": 0.1,  # not exact as a float: written out of line
     "string": 'a "quoted"\nstring, é',
@@ -51,6 +52,7 @@ SCALARS: dict[str, Any] = {
 ARRAYS: dict[str, list[Any]] = {
     "bool": [True, False, True],
     "int": [0, -1, 2**31 - 1, -(2**31), 17] * 4,
+    "uint": [0, 1, 2**32 - 1, 17] * 5,
     "float": [0.1, -0.0, math.inf, math.nan, 1e-40, 3.4e38, 1.0],
     "double": [0.1, -0.0, -math.inf, math.nan, 5e-324, 1.7e308, 1.0],
     "string": ["", "a", 'b "c"', "a"],

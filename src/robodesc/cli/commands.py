@@ -32,6 +32,43 @@ def _input_options(args: argparse.Namespace) -> dict[str, Any]:
     }
 
 
+def _bare_world(args: argparse.Namespace) -> dict[str, Any]:
+    """A bare ``--world``: SDF's empty world around the model (a target option of -t sdf)."""
+    return {"world": True} if getattr(args, "world", None) is True else {}
+
+
+def world_options(args: argparse.Namespace) -> dict[str, Any]:
+    """``--world FILE``, ``--terrain`` and the rest, as the API's keyword options."""
+    out: dict[str, Any] = {}
+    world = getattr(args, "world", None)
+    if isinstance(world, str):
+        out["world"] = world
+    if getattr(args, "terrain", None):
+        out["terrain"] = args.terrain
+    if getattr(args, "terrain_size", None):
+        out["terrain_size"] = _numbers(args.terrain_size, "--terrain-size", (3,))
+    if getattr(args, "terrain_resolution", None) is not None:
+        out["terrain_resolution"] = args.terrain_resolution
+    if getattr(args, "spawn", None):
+        out["spawn"] = _numbers(args.spawn, "--spawn", (2, 3))
+    if getattr(args, "model_path", None):
+        out["model_path"] = tuple(args.model_path)
+    return out
+
+
+def _numbers(text: str, flag: str, sizes: tuple[int, ...]) -> tuple[float, ...]:
+    import math
+
+    try:
+        values = tuple(float(p) for p in text.split(","))
+    except ValueError:
+        values = ()
+    if len(values) not in sizes or not all(math.isfinite(v) for v in values):
+        wanted = " or ".join(str(n) for n in sizes)
+        raise ConfigError(f"{flag} {text!r}: expected {wanted} comma-separated finite numbers")
+    return values
+
+
 def _pass_options(args: argparse.Namespace) -> dict[str, Any]:
     given: dict[str, Any] = {
         "rename": args.rename or None,
@@ -78,7 +115,8 @@ def cmd_compile(args: argparse.Namespace) -> int:
     options = {
         **_input_options(args),
         **_pass_options(args),
-        **{k: v for k, v in target_options(args).items() if k in accepted},
+        **{k: v for k, v in {**target_options(args), **_bare_world(args)}.items() if k in accepted},
+        **world_options(args),
         "mesh_paths": args.mesh_paths,
         "preset": args.preset,
         "validate": args.validate,

@@ -175,6 +175,7 @@ def _compile_parser(sub: Any) -> argparse.ArgumentParser:
     )
     _add_pass_flags(comp)
     add_target_flags(comp)
+    add_world_options(comp)
     val = comp.add_argument_group("validation")
     val.add_argument(
         "--validate",
@@ -200,6 +201,48 @@ def _compile_parser(sub: Any) -> argparse.ArgumentParser:
     )
 
     return comp
+
+
+def add_world_options(p: argparse.ArgumentParser) -> None:
+    """The world around the robot (docs/worlds.md): read once, written by every target that can."""
+    g = p.add_argument_group("world (docs/worlds.md)")
+    g.add_argument(
+        "--world",
+        nargs="?",
+        const=True,
+        metavar="FILE",
+        help="put the robot in an SDF world (.world, .sdf): its terrain, static models and physics "
+        "(-t mjcf). Bare, with -t sdf: wrap the model in an empty world with a ground plane, physics and light",
+    )
+    g.add_argument(
+        "--terrain",
+        metavar="FILE",
+        help="put the robot on a bare terrain: a mesh (STL, PLY, OBJ, DAE) or a grey PNG height image "
+        "(with --terrain-size)",
+    )
+    g.add_argument(
+        "--terrain-size", metavar="X,Y,Z", help="a height image's extent in x and y and the height of white (m)"
+    )
+    g.add_argument(
+        "--terrain-resolution",
+        type=float,
+        metavar="M",
+        help="heightfield cell for targets that need one (MJCF), in metres (default 0.02)",
+    )
+    g.add_argument(
+        "--spawn",
+        metavar="X,Y[,Z]",
+        help="where the robot stands in the world (default: the world's include of it, else the origin); "
+        "without Z its height comes from the ground under its feet",
+    )
+    g.add_argument(
+        "--model-path",
+        action="append",
+        default=[],
+        metavar="DIR",
+        help="a folder searched for the world's model:// URIs (repeatable; before GZ_SIM_RESOURCE_PATH and "
+        "GAZEBO_MODEL_PATH)",
+    )
 
 
 def _add_pass_flags(comp: argparse.ArgumentParser) -> None:

@@ -45,6 +45,7 @@ def _vec(scalar: str, width: int, role: str = "") -> ValueType:
 VALUE_TYPES: dict[str, ValueType] = {
     "bool": _vec("bool", 1),
     "int": _vec("int", 1),
+    "uint": _vec("uint", 1),
     "float": _vec("float", 1),
     "double": _vec("double", 1),
     "string": _vec("string", 1),

@@ -153,7 +153,7 @@ def _single(scalar: str, value: Any) -> str:
         return format_float(float(value))
     if scalar == "double":
         return format_double(float(value))
-    if scalar == "int":
+    if scalar in ("int", "uint"):
         return str(int(value))
     if scalar == "bool":
         return "1" if value else "0"

@@ -46,7 +46,7 @@ _COMPRESSED = 1 << 61
 _MIN_COMPRESSED = 16
 
 # Type enum values from Sdf's crateDataTypes.h: part of the file format.
-_BOOL, _INT, _FLOAT, _DOUBLE, _STRING, _TOKEN, _ASSET = 1, 3, 8, 9, 10, 11, 12
+_BOOL, _INT, _UINT, _FLOAT, _DOUBLE, _STRING, _TOKEN, _ASSET = 1, 3, 4, 8, 9, 10, 11, 12
 _QUATD, _QUATF = 16, 17
 _DICTIONARY, _TOKEN_LIST_OP, _PATH_LIST_OP, _TOKEN_VECTOR = 31, 32, 34, 41
 _SPECIFIER, _VARIABILITY, _LAYER_OFFSET_VECTOR, _STRING_VECTOR, _PAYLOAD_LIST_OP = 42, 44, 49, 50, 55
@@ -61,7 +61,7 @@ _VECTORS = {
     ("float", 4): 28,
     ("int", 4): 30,
 }
-_SCALARS = {"bool": _BOOL, "int": _INT, "float": _FLOAT, "double": _DOUBLE}
+_SCALARS = {"bool": _BOOL, "int": _INT, "uint": _UINT, "float": _FLOAT, "double": _DOUBLE}
 _TEXT = {"string": _STRING, "token": _TOKEN, "asset": _ASSET}
 
 # SdfSpecType, SdfSpecifier, SdfVariability enum values.
@@ -266,7 +266,7 @@ def _rep(type_enum: int, payload: int, flags: int = 0) -> int:
 
 
 def _numeric(vtype: ValueType) -> _Numeric:
-    code = {"bool": "?", "int": "i", "float": "f", "double": "d"}.get(vtype.scalar)
+    code = {"bool": "?", "int": "i", "uint": "I", "float": "f", "double": "d"}.get(vtype.scalar)
     if code is None:
         raise Misfit(f"no crate encoding for {vtype.scalar} values")
     if vtype.role == "Quat":
@@ -502,15 +502,17 @@ def _numpy_bytes(num: _Numeric, arr: Any) -> bytes:
         expected = "(n,)" if num.width == 1 else f"(n, {num.width})"
         raise Misfit(f"numpy array of shape {arr.shape}, expected {expected}")
     kind = arr.dtype.kind
-    allowed = {"?": "b", "i": "iu", "f": "fiu", "d": "fiu"}[num.code]
+    allowed = {"?": "b", "i": "iu", "I": "iu", "f": "fiu", "d": "fiu"}[num.code]
     if kind not in allowed:
         raise Misfit(f"numpy array of dtype {arr.dtype} for {num.code!r} elements")
     wide = num.code == "i" and arr.dtype.itemsize >= 4 and arr.size
     if wide and (int(arr.min()) < -(2**31) or int(arr.max()) >= 2**31):
         raise Misfit("a value is beyond int32's range")
+    if num.code == "I" and arr.size and (int(arr.min()) < 0 or int(arr.max()) >= 2**32):
+        raise Misfit("a value is beyond uint32's range")
     if num.quat:
         arr = arr[:, [1, 2, 3, 0]]
-    dtype = {"?": "?", "i": "<i4", "f": "<f4", "d": "<f8"}[num.code]
+    dtype = {"?": "?", "i": "<i4", "I": "<u4", "f": "<f4", "d": "<f8"}[num.code]
     try:
         with np.errstate(over="raise"):
             out = np.ascontiguousarray(arr, dtype=dtype)

@@ -414,6 +414,32 @@ def _mesh_lowest(mesh: Mesh, f: Frame, exact: bool, meshes: MeshCache) -> float 
     return f.translation[2] + min(a * pts[i] + b * pts[i + 1] + c * pts[i + 2] for i in range(0, len(pts), 3))
 
 
+def shape_low_point(geometry: object, f: Frame, meshes: MeshCache | None = None) -> Vec3 | None:
+    """A lowest point of a shape placed at ``f``, in ``f``'s parent frame: exact for primitives, the
+    lowest corner of the bounding box for a mesh; None for a shape with nothing to measure."""
+    r = f.rotation
+    down = (r[2][0], r[2][1], r[2][2])  # the world's z in the shape's frame
+    if isinstance(geometry, Sphere):
+        local: Vec3 = _scale(down, -geometry.radius)
+    elif isinstance(geometry, Box):
+        local = tuple(-math.copysign(s / 2, d) if d else 0.0 for s, d in zip(geometry.size, down, strict=True))  # type: ignore[assignment]
+    elif isinstance(geometry, Cylinder | Capsule):
+        end = (0.0, 0.0, -math.copysign(geometry.length / 2, down[2]) if down[2] else 0.0)
+        side = (down[0], down[1], 0.0 if isinstance(geometry, Cylinder) else down[2])
+        n = math.sqrt(_dot(side, side))
+        local = _sub(end, _scale(side, geometry.radius / n)) if n > 0 else end
+    elif isinstance(geometry, Mesh) and geometry.path:
+        try:
+            data = (meshes or MeshCache()).get(str(geometry.path), geometry.scale)
+        except (MeshReadError, OSError):
+            return None
+        lo, hi = data.extent
+        local = tuple(lo[i] if down[i] > 0 else hi[i] for i in range(3))  # type: ignore[assignment]
+    else:
+        return None
+    return (f @ pose_frame(Pose(xyz=local))).translation
+
+
 # ---- small vector helpers ------------------------------------------------------------------------
 
 

@@ -11,13 +11,16 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from robodesc.emit.common.paths import PathMode
 from robodesc.ir.diagnostics import ConfigError, Finding, Findings
 from robodesc.ir.model import Robot
 from robodesc.validation.options import ValidateOptions
 from robodesc.validation.report import ValidationReport
+
+if TYPE_CHECKING:  # the world's placement reads meshes (numpy): imported only where a world is given
+    from robodesc.emit.common.world import PlacedWorld
 
 
 @dataclass(slots=True)
@@ -45,6 +48,9 @@ class EmitRequest:
     # (a composition's fixed base, its placement).
     given: frozenset[str] = frozenset()
     final: str | None = None
+    # The world around the robot, read and placed once before every emitter (emit/common/world.py);
+    # None without --world or --terrain.
+    world: PlacedWorld | None = None
 
     def output(self, what: str) -> str:
         """The output path, for targets that cannot write to standard output."""
@@ -112,6 +118,12 @@ class Target:
     # The target derives per-joint drive gains where the user gives none (emit/common/gains.py); a
     # target with gain options that does not writes its options' constants.
     derives_gains: bool = False
+    # The target writes a world around the robot (``--world``, ``--terrain``: EmitRequest.world);
+    # the pipeline refuses a world for one that cannot.
+    worlds: bool = False
+    # The files beside a file output that a world adds (the USD world stage): protected as ``owned``
+    # is, only when a world is given.
+    world_files: OwnedFunction | None = None
 
     def output_name(self, stem: str, suffix: str | None = None) -> str:
         """The output path for ``stem`` (a folder for folder targets), with ``suffix`` or the default."""

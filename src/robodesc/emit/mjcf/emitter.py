@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import xml.etree.ElementTree as ET
+from typing import TYPE_CHECKING
 
 from robodesc._files import write_atomic
 from robodesc.emit.common.approximation import TRIANGLE_MODES, asked, mode_for
@@ -22,6 +23,10 @@ from robodesc.ir.diagnostics import Findings, UnsupportedError
 from robodesc.ir.geometry import Mesh
 from robodesc.ir.model import Collision, Robot, Visual
 from robodesc.ir.rigid import Frame, link_frames, pose_frame
+
+if TYPE_CHECKING:
+    from robodesc.emit.common.world import PlacedWorld
+    from robodesc.emit.mjcf.world import RobotSurface
 
 # MuJoCo reads MJCF with tinyxml2, which refuses an element nested 500 deep
 # (XML_ELEMENT_DEPTH_EXCEEDED): <mujoco>, <worldbody>, the nested bodies and a body's <joint> or
@@ -115,6 +120,7 @@ def emit_mjcf(
     mesh_paths: PathMode = PathMode.RELATIVE,
     given: frozenset[str] = frozenset(),
     final_name: str | None = None,
+    world: PlacedWorld | None = None,
 ) -> dict[str, str]:
     """Write ``out`` (robot.xml) and, with ``options.scene``, the scene beside it. ``final_name`` is
     the robot file's name once it is moved into place (the scene includes it by that name).
@@ -128,11 +134,28 @@ def emit_mjcf(
     if options.scene:
         name = final_name or os.path.basename(out)
         scene = os.path.join(out_dir, scene_name(name))
-        data = scene_text(name, _scene_floor(robot, options, findings)).encode()
+        if world is not None:
+            from robodesc.emit.mjcf.world import world_scene_text
+
+            data = world_scene_text(name, world, findings, _surface(robot, options)).encode()
+        else:
+            data = scene_text(name, _scene_floor(robot, options, findings)).encode()
         if not (os.path.isfile(scene) and _read(scene) == data):
             write_atomic(scene, data)
         files["scene"] = scene
     return files
+
+
+def _surface(robot: Robot, options: MjcfOptions) -> RobotSurface:
+    """The robot colliders' friction range (MuJoCo's default 1 where none is given) and priority."""
+    from robodesc.emit.mjcf.world import RobotSurface
+
+    mus = [
+        contact.mu if (contact := link.collision_contact(c)) is not None and contact.mu is not None else 1.0
+        for link in robot.links
+        for c in link.collisions
+    ] or [1.0]
+    return RobotSurface(min(mus), max(mus), 1 if options.friction_combine == "min" else 0)
 
 
 def _read(path: str) -> bytes:

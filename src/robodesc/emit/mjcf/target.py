@@ -30,6 +30,8 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     request.default("init_pos", robot.placement.xyz if robot.placement is not None else None)
     stance = _default_base_and_pose(robot, request, findings)
     _default_gains(robot, request, findings, stance)
+    if request.world is not None:
+        _place_in_world(robot, request, stance)
     files = emit_mjcf(
         robot,
         out,
@@ -38,6 +40,7 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
         mesh_paths=request.mesh_paths,
         given=request.given,
         final_name=os.path.basename(request.final or out),
+        world=request.world,
     )
     return Emitted(files=files, extra={"mjcf_options": request.options, "drives": _asked_drives(robot, request)})
 
@@ -75,6 +78,24 @@ def _default_base_and_pose(robot: Robot, request: EmitRequest, findings: Finding
         if options.init_pos is None:
             options.home_height = spawn_height(stance)
     return stance
+
+
+def _place_in_world(robot: Robot, request: EmitRequest, stance: Stance) -> None:
+    """The root on the world's ground at the spawn point (emit/common/world.py): the body where its
+    zero pose clears the ground, the ``home`` keyframe where its stance does (a given --init-pos wins)."""
+    from robodesc.emit.common.stance import Stance as _Stance
+    from robodesc.emit.common.stance import complete
+
+    options: MjcfOptions = request.options
+    placed = request.world
+    assert placed is not None
+    if "init_pos" in request.given:
+        return
+    floating = not options.fix_base and robot.root.name != "world"
+    zero = _Stance(complete(robot, {}), "zeros")
+    options.init_pos = placed.root_position(robot, zero, floating)
+    if floating:
+        options.home_height = placed.root_position(robot, stance, floating)[2]
 
 
 def _default_gains(robot: Robot, request: EmitRequest, findings: Findings, stance: Stance) -> None:
@@ -120,5 +141,6 @@ TARGET = Target(
     # scene.xml is rewritten with each robot.xml: the earlier one is restored if the run fails.
     owned=lambda options, out: (scene_name(out),) if options.scene else (),
     derives_gains=True,
+    worlds=True,
     options_title="MJCF (-t mjcf; docs/mjcf.md)",
 )

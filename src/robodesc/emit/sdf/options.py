@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
-from typing import ClassVar
+from typing import Any, ClassVar
 
 from robodesc.emit.common import approximation
 from robodesc.emit.common import decomposition as decomp
@@ -87,11 +87,13 @@ class SdfOptions:
     loop_joints: bool = True
     # Where the model sits in the world (and the model's <pose> when a bare model is written).
     model_pose: Pose | None = None
-    # ---- world wrapper (``--world``) -----------------------------------------------------
-    world: bool = field(
-        default=False, metadata=flag("wrap the model in a world with ground plane, physics and light", kind="on")
-    )
+    # ---- world wrapper (a bare ``--world``; cli/parser.py declares the flag, which also takes a
+    # world file: docs/worlds.md) -------------------------------------------------------------
+    world: bool = False
     world_name: str = "default"
+    # A world read from --world FILE / --terrain (emit/common/world.PlacedWorld): its static models
+    # replace the ground plane (set by the target, not a flag).
+    placed_world: Any = None
     props: list[SdfProp] = field(default_factory=list)
     step_size: float = 0.001
     real_time_factor: float = 1.0

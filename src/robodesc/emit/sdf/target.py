@@ -18,6 +18,8 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     sdf_options: SdfOptions = request.options
     sdf_options.path_mode = request.mesh_paths
     sdf_options.out_dir = os.path.dirname(os.path.abspath(request.out)) if request.out else None
+    if request.world is not None:
+        _world(robot, request)
     result = build_sdf(robot, sdf_options)
     findings.extend(result.findings)
     emitted = Emitted(
@@ -35,6 +37,27 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     return emitted
 
 
+def _world(robot: Robot, request: EmitRequest) -> None:
+    """The world's models, physics and the robot's place in it (a given --init-pos... wins)."""
+    from robodesc.emit.common.stance import Stance, complete
+    from robodesc.ir.geometry import Pose
+
+    options: SdfOptions = request.options
+    placed = request.world
+    assert placed is not None
+    options.world = True
+    options.placed_world = placed
+    physics = placed.world.physics
+    if physics.step is not None:
+        options.step_size = physics.step
+    if physics.gravity is not None:
+        options.gravity = physics.gravity
+    if options.model_pose is None:
+        floating = not options.fix_base and robot.root.name != "world"
+        root = placed.root_position(robot, Stance(complete(robot, {}), "zeros"), floating)
+        options.model_pose = Pose(root, (0.0, 0.0, placed.yaw))
+
+
 TARGET = Target(
     name="sdf",
     emit=emit_target,
@@ -43,5 +66,6 @@ TARGET = Target(
     options=SdfOptions,
     stdout=True,
     check=check_sdf,
+    worlds=True,
     options_title="SDF (-t sdf; docs/sdf.md)",
 )

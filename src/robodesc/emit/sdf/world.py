@@ -47,7 +47,12 @@ def world_element(parent: etree._Element, robots: list[Robot], options: SdfOptio
         for tag in ("latitude_deg", "longitude_deg", "elevation", "heading_deg"):
             E(sc, tag).text = "0"
     _sun(world)
-    _ground(world)
+    if options.placed_world is not None:
+        from robodesc.emit.sdf.world_models import world_models
+
+        world_models(world, options.placed_world, options)
+    else:
+        _ground(world)
     return world
 
 

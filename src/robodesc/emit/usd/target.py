@@ -6,6 +6,7 @@ from robodesc.emit.common.target import EmitRequest, Emitted, Target
 from robodesc.emit.usd.check import check_usd
 from robodesc.emit.usd.layers import PAYLOAD_DIR
 from robodesc.emit.usd.options import UsdOptions
+from robodesc.emit.usd.world import world_file_name
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
 
@@ -16,7 +17,27 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     from robodesc.emit.usd.emitter import emit_usd  # the writer loads when it writes
 
     findings.extend(emit_usd(robot, out, request.options))
-    return Emitted(files={"usd": out})
+    files = {"usd": out}
+    if request.world is not None:
+        files["world"] = _write_world(robot, request, out, findings)
+    return Emitted(files=files)
+
+
+def _write_world(robot: Robot, request: EmitRequest, out: str, findings: Findings) -> str:
+    """The world stage beside the robot, the robot on its ground in the zero pose USD starts it in."""
+    import os
+
+    from robodesc.emit.common.stance import Stance, complete
+    from robodesc.emit.usd.world import world_file_name, write_world
+
+    placed = request.world
+    assert placed is not None
+    final = request.final or out
+    floating = not request.options.fix_base and robot.root.name != "world"
+    root = placed.root_position(robot, Stance(complete(robot, {}), "zeros"), floating)
+    path = os.path.join(os.path.dirname(os.path.abspath(out)), world_file_name(final))
+    write_world(path, final, robot.name, placed, root, findings)
+    return path
 
 
 # USD prim names must be identifiers, and Isaac merges materials that share a name.
@@ -31,5 +52,7 @@ TARGET = Target(
     check=check_usd,
     # A layered asset owns its payload folder beside the file.
     owned=lambda options, out: (PAYLOAD_DIR,) if options.layered else (),
+    worlds=True,
+    world_files=lambda options, out: (world_file_name(out),),
     options_title="USD and Isaac Sim (-t usd, --isaac-sim; see docs/usd.md, docs/isaac.md)",
 )

@@ -1,0 +1,188 @@
+"""``scene.xml`` with a world: the robot on the world's terrain, under the world's physics.
+
+MuJoCo collides a mesh as its convex hull, so a terrain reaches it as an ``<hfield>`` made from the
+heightfield grid (emit/common/world.py), its heights inline (``elevation``): no further file to find
+through ``meshdir``, and the scene stays one file written atomically. MuJoCo reads inline rows from
+the +y edge down (as an image) and normalizes them to ``[0, size[2]]``; the grid's rows run from -y,
+so they are written reversed, relative to the lowest height. A flat grid is a box. Boxes, spheres,
+cylinders and planes are written as they are; friction is the world's ``mu`` (MuJoCo has one
+isotropic coefficient).
+"""
+
+from __future__ import annotations
+
+import os
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+
+import numpy as np
+
+from robodesc.emit.common.numbers import fmt, fmt_vec
+from robodesc.emit.common.world import PlacedWorld, TerrainGrid
+from robodesc.emit.mjcf.contact_params import ROLL, TORSION
+from robodesc.emit.mjcf.scene import SCENE
+from robodesc.ir.diagnostics import Findings
+from robodesc.ir.geometry import Box, Cylinder, Mesh, Sphere
+from robodesc.ir.rigid import Frame, pose_frame
+from robodesc.ir.world import HeightImage, Plane, StaticBody, WorldCollider
+
+STAGE = "emit:mjcf"
+BASE = 0.1  # m: the solid below a heightfield's lowest point (MuJoCo's size[3])
+FLAT = 1e-9  # m: a grid whose heights span less than this is a box
+
+
+@dataclass(slots=True, frozen=True)
+class RobotSurface:
+    """What the robot's colliders bring to a contact: their friction range and geom priority."""
+
+    mu_low: float = 1.0
+    mu_high: float = 1.0
+    priority: int = 0
+
+
+def world_scene_text(robot_file: str, placed: PlacedWorld, findings: Findings, robot: RobotSurface) -> str:
+    """The scene with the world's ground instead of the plane floor, and its physics."""
+    base = os.path.basename(robot_file)
+    head = SCENE.format(stem=os.path.splitext(base)[0], robot=base, floor_pos="").partition("  <worldbody>")[0]
+    option = _option(placed)
+    assets = ET.Element("asset")
+    world = ET.Element("worldbody")
+    ET.SubElement(world, "light", pos="0 0 3", dir="0 0 -1", directional="true")
+    for body in placed.world.bodies:
+        for collider in body.colliders:
+            _collider(placed, body, collider, assets, world, findings, robot)
+    text = head.replace("  <asset>", (option + "\n" if option else "") + "  <asset>", 1)
+    # The scene's own <asset> (sky, checker) stays; the terrain's hfields go in a second one.
+    extra_assets = _indent(assets) if len(assets) else ""
+    body_text = _indent(world)
+    return text + extra_assets + body_text + "</mujoco>\n"
+
+
+def _option(placed: PlacedWorld) -> str:
+    physics = placed.world.physics
+    attrs = {}
+    if physics.step is not None:
+        attrs["timestep"] = fmt(physics.step)
+    if physics.gravity is not None:
+        attrs["gravity"] = fmt_vec(physics.gravity)
+    if not attrs:
+        return ""
+    return "  <option " + " ".join(f'{k}="{v}"' for k, v in attrs.items()) + "/>"
+
+
+def _collider(
+    placed: PlacedWorld,
+    body: StaticBody,
+    collider: WorldCollider,
+    assets: ET.Element,
+    world: ET.Element,
+    findings: Findings,
+    robot: RobotSurface,
+) -> None:
+    frame = pose_frame(body.pose) @ pose_frame(collider.origin)
+    name = f"{body.name}/{collider.name}"
+    attrs: dict[str, str] = {"name": name}
+    surface = collider.surface
+    mu = surface.mu if surface is not None and surface.mu is not None else 1.0  # ODE's default
+    attrs["friction"] = fmt_vec((mu, TORSION, ROLL))
+    attrs["priority"] = str(_priority(mu, robot, collider, body, findings))
+    shape = collider.shape
+    grid = placed.grid_of(collider)
+    if grid is not None:
+        _heightfield(grid, name, attrs, assets, world)
+        return
+    if isinstance(shape, Plane):
+        attrs.update(type="plane", size="0 0 0.05", material="groundplane")
+    elif isinstance(shape, Box):
+        attrs.update(type="box", size=fmt_vec(s / 2 for s in shape.size))
+    elif isinstance(shape, Sphere):
+        attrs.update(type="sphere", size=fmt(shape.radius))
+    elif isinstance(shape, Cylinder):
+        attrs.update(type="cylinder", size=fmt_vec((shape.radius, shape.length / 2)))
+    elif isinstance(shape, Mesh | HeightImage):
+        findings.warn(
+            "mjcf-world-mesh-hull",
+            "no heightfield could be made from this terrain (the warning above says why): it is left out of "
+            "scene.xml, since MuJoCo would collide its convex hull",
+            element=f"collision {collider.name!r} of {body.name!r}",
+            loc=collider.src,
+            stage=STAGE,
+        )
+        return
+    ET.SubElement(world, "geom", _placed(attrs, frame))
+
+
+def _priority(mu: float, robot: RobotSurface, collider: WorldCollider, body: StaticBody, findings: Findings) -> int:
+    """Gazebo (ODE) takes the smaller friction of two surfaces; MuJoCo takes the larger, or the
+    higher-priority geom's. A world that grips at least as much as every robot collider (Quad-SDK's
+    terrains: mu 100) yields to the robot (priority below it), one that grips less wins over it:
+    ODE's minimum either way. MuJoCo at mu 100 sinks the robot through its solver's soft contacts."""
+    element = f"collision {collider.name!r} of {body.name!r}"
+    if mu >= robot.mu_high:
+        findings.info(
+            "mjcf-world-friction",
+            f"mu {mu:g}; the robot's colliders have {_range(robot)}: Gazebo uses the smaller of two, so the terrain "
+            "yields to each robot collider's own friction (a lower geom priority)",
+            element=element,
+            loc=collider.src,
+            stage=STAGE,
+        )
+        return robot.priority - 1
+    if mu > robot.mu_low:
+        findings.warn(
+            "mjcf-world-friction-mixed",
+            f"mu {mu:g} lies inside the robot's {_range(robot)}: MuJoCo applies the terrain's mu to every robot "
+            "collider, where Gazebo keeps the smaller one (the robot's below it)",
+            element=element,
+            loc=collider.src,
+            stage=STAGE,
+        )
+    return robot.priority + 1
+
+
+def _range(robot: RobotSurface) -> str:
+    if robot.mu_low == robot.mu_high:
+        return f"mu {robot.mu_low:g}"
+    return f"mu {robot.mu_low:g} to {robot.mu_high:g}"
+
+
+def _heightfield(grid: TerrainGrid, name: str, attrs: dict[str, str], assets: ET.Element, world: ET.Element) -> None:
+    g = grid.grid
+    width, depth = g.size
+    low, high = float(g.z.min()), float(g.z.max())
+    centre = Frame(translation=(g.x0 + width / 2, g.y0 + depth / 2, low))
+    if high - low < FLAT:
+        # A flat terrain: a box whose top is the surface (MuJoCo needs a height range for an hfield).
+        slab = Frame(translation=(centre.translation[0], centre.translation[1], low - BASE / 2))
+        attrs.update(type="box", size=fmt_vec((width / 2, depth / 2, BASE / 2)))
+        ET.SubElement(world, "geom", _placed(attrs, grid.frame @ slab))
+        return
+    rows, cols = g.shape
+    # MuJoCo's first inline row is the +y edge. Heights to 0.1 µm: float noise (2.8e-17) is no height.
+    rel = np.round(np.flipud(g.z - low), 7) + 0.0
+    ET.SubElement(
+        assets,
+        "hfield",
+        name=name,
+        nrow=str(rows),
+        ncol=str(cols),
+        size=fmt_vec((width / 2, depth / 2, high - low, BASE)),
+        elevation=" ".join(f"{v:.7g}" for v in rel.ravel()),
+    )
+    attrs.update(type="hfield", hfield=name)
+    ET.SubElement(world, "geom", _placed(attrs, grid.frame @ centre))
+
+
+def _placed(attrs: dict[str, str], frame: Frame) -> dict[str, str]:
+    out = dict(attrs)
+    if any(abs(v) > 0 for v in frame.translation):
+        out["pos"] = fmt_vec(frame.translation)
+    quat = frame.quat()
+    if abs(quat[0] - 1.0) > 1e-12:
+        out["quat"] = fmt_vec(quat)
+    return out
+
+
+def _indent(element: ET.Element) -> str:
+    ET.indent(element, space="  ", level=1)
+    return "  " + ET.tostring(element, encoding="unicode") + "\n"

@@ -1,0 +1,200 @@
+"""The world stage beside a USD robot (``<stem>_world.usda``): the world's ground and physics, and
+the robot brought in by a payload at its spawn point (docs/worlds.md).
+
+USD has no heightfield prim, and PhysX and Isaac Lab collide terrains as triangle meshes, so every
+terrain is a static ``Mesh`` collider with ``physics:approximation = "none"`` (PhysX honours every
+triangle of a static mesh). Boxes, spheres, cylinders and planes are UsdGeom shapes. The scene
+carries the world's gravity and step: UsdPhysics' gravity, ``physxScene:timeStepsPerSecond`` and
+``newton:timeStepsPerSecond``. The terrain's material combines friction by the minimum
+(``physxMaterial:frictionCombineMode``), as Gazebo's ODE does: Quad-SDK's terrains say mu 100 and
+mean "the robot's own friction".
+
+The robot is a payload (robodesc's USD writer's composition arc; Isaac Sim loads payloads), under
+``/World/<robot>``, translated to where emit/common/world.py placed it.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from typing import TYPE_CHECKING
+
+from robodesc.emit.usd.layers import encode, stage_metadata
+from robodesc.ir.diagnostics import Findings
+from robodesc.ir.geometry import Box, Cylinder, Mesh, Sphere, Vec3
+from robodesc.ir.rigid import Frame, pose_frame
+from robodesc.ir.world import HeightImage, Plane, StaticBody, WorldCollider
+from robodesc.usdfile.spec import Layer, Payload, Prim
+
+if TYPE_CHECKING:  # the placement reads meshes (numpy); a plain USD compile must not import it
+    from robodesc.emit.common.world import PlacedWorld
+
+STAGE = "emit:usd"
+WORLD = "World"
+PLANE_SIZE = 100.0  # m: a finite stand-in for SDF's infinite plane (UsdPhysics' Plane is infinite too)
+
+
+def world_file_name(robot_file: str) -> str:
+    stem, ext = os.path.splitext(os.path.basename(robot_file))
+    return f"{stem}_world{ext}"
+
+
+def write_world(
+    path: str, robot_file: str, robot_prim: str, placed: PlacedWorld, root: Vec3, findings: Findings
+) -> None:
+    """Write the world stage to ``path``; ``robot_file`` is the robot's final file name beside it."""
+    from robodesc._files import write_atomic
+
+    layer = Layer()
+    stage_metadata(layer, WORLD)
+    world = layer.prim(f"/{WORLD}", "Xform")
+    world.kind = "assembly"
+    _scene(world, placed)
+    material = _terrain_material(world, placed)
+    for body in placed.world.bodies:
+        body_prim = world.child(_name(body.name), "Xform")
+        _xform(body_prim, pose_frame(body.pose))
+        for collider in body.colliders:
+            _collider(body_prim, body, collider, material, findings)
+    robot = world.child(robot_prim, "Xform")
+    robot.payloads.append(Payload(f"./{os.path.basename(robot_file)}", f"/{robot_prim}"))
+    _xform(robot, Frame(translation=root))
+    write_atomic(path, encode(layer, os.path.splitext(path)[1].lower()))
+
+
+def _scene(world: Prim, placed: PlacedWorld) -> None:
+    physics = placed.world.physics
+    scene = world.child("PhysicsScene", "PhysicsScene")
+    gravity = physics.gravity or (0.0, 0.0, -9.81)
+    magnitude = math.sqrt(sum(g * g for g in gravity))
+    if magnitude > 0:
+        scene.attr("physics:gravityDirection", "vector3f", tuple(g / magnitude for g in gravity))
+    scene.attr("physics:gravityMagnitude", "float", magnitude)
+    if physics.step is not None:
+        steps = round(1.0 / physics.step)
+        scene.apply("PhysxSceneAPI")
+        scene.attr("physxScene:timeStepsPerSecond", "uint", steps)
+        scene.apply("NewtonSceneAPI")
+        scene.attr("newton:timeStepsPerSecond", "int", steps)
+
+
+def _terrain_material(world: Prim, placed: PlacedWorld) -> dict[float, str]:
+    """One physics material per distinct world friction, combining by the minimum (ODE's rule)."""
+    out: dict[float, str] = {}
+    values = sorted(
+        {
+            c.surface.mu
+            for b in placed.world.bodies
+            for c in b.colliders
+            if c.surface is not None and c.surface.mu is not None
+        }
+    )
+    if not values:
+        return out
+    scope = world.child("PhysicsMaterials", "Scope")
+    for i, mu in enumerate(values):
+        material = scope.child(f"surface_{i}", "Material")
+        material.apply("PhysicsMaterialAPI")
+        material.attr("physics:staticFriction", "float", mu)
+        material.attr("physics:dynamicFriction", "float", mu)
+        material.apply("PhysxMaterialAPI")
+        material.attr("physxMaterial:frictionCombineMode", "token", "min", uniform=True)
+        out[mu] = f"/{WORLD}/PhysicsMaterials/surface_{i}"
+    return out
+
+
+def _collider(
+    body_prim: Prim, body: StaticBody, collider: WorldCollider, materials: dict[float, str], findings: Findings
+) -> None:
+    shape = collider.shape
+    name = _name(collider.name)
+    if isinstance(shape, Mesh):
+        prim = body_prim.child(name, "Mesh")
+        if not _mesh(prim, shape, collider, body, findings):
+            del body_prim.children[name]
+            return
+        prim.apply("PhysicsMeshCollisionAPI")
+        prim.attr("physics:approximation", "token", "none", uniform=True)
+    elif isinstance(shape, HeightImage):
+        findings.warn(
+            "usd-world-height-image",
+            "a height image has no USD form yet (USD has no heightfield prim); give the terrain as a mesh",
+            element=f"collision {collider.name!r} of {body.name!r}",
+            loc=collider.src,
+            stage=STAGE,
+        )
+        return
+    elif isinstance(shape, Box):
+        prim = body_prim.child(name, "Cube")
+        prim.attr("size", "double", 1.0)
+        prim.attr("extent", "float3[]", [(-0.5, -0.5, -0.5), (0.5, 0.5, 0.5)])
+        _xform(prim, pose_frame(collider.origin), scale=shape.size)
+    elif isinstance(shape, Sphere):
+        prim = body_prim.child(name, "Sphere")
+        prim.attr("radius", "double", shape.radius)
+    elif isinstance(shape, Cylinder):
+        prim = body_prim.child(name, "Cylinder")
+        prim.attr("radius", "double", shape.radius)
+        prim.attr("height", "double", shape.length)
+        prim.attr("axis", "token", "Z", uniform=True)
+    elif isinstance(shape, Plane):
+        prim = body_prim.child(name, "Plane")
+        prim.attr("width", "double", PLANE_SIZE)
+        prim.attr("length", "double", PLANE_SIZE)
+        prim.attr("axis", "token", "Z", uniform=True)
+    else:  # pragma: no cover - the world IR has no other shape
+        return
+    if not isinstance(shape, Box):
+        _xform(prim, pose_frame(collider.origin))
+    prim.apply("PhysicsCollisionAPI")
+    surface = collider.surface
+    if surface is not None and surface.mu is not None:
+        prim.apply("MaterialBindingAPI")
+        prim.rel("material:binding:physics", [materials[surface.mu]])
+
+
+def _mesh(prim: Prim, shape: Mesh, collider: WorldCollider, body: StaticBody, findings: Findings) -> bool:
+    from robodesc.meshes.buffers import MeshReadError
+    from robodesc.meshes.data import build_mesh
+
+    try:
+        assert shape.path is not None
+        data = build_mesh(shape.path, shape.scale)
+    except (MeshReadError, OSError, AssertionError) as exc:
+        findings.warn(
+            "usd-world-mesh-unreadable",
+            f"the terrain mesh cannot be read ({exc}); left out of the world stage",
+            element=f"collision {collider.name!r} of {body.name!r}",
+            loc=collider.src,
+            stage=STAGE,
+        )
+        return False
+    prim.attr("points", "point3f[]", data.points)
+    prim.attr("faceVertexCounts", "int[]", data.face_vertex_counts)
+    prim.attr("faceVertexIndices", "int[]", data.face_vertex_indices)
+    prim.attr("subdivisionScheme", "token", "none", uniform=True)
+    prim.attr("extent", "float3[]", data.extent)
+    return True
+
+
+def _xform(prim: Prim, frame: Frame, scale: Vec3 | None = None) -> None:
+    order = []
+    t = frame.translation
+    if any(t):
+        prim.attr("xformOp:translate", "double3", (float(t[0]), float(t[1]), float(t[2])))
+        order.append("xformOp:translate")
+    q = frame.quat()
+    if abs(q[0] - 1.0) > 1e-15:
+        prim.attr("xformOp:orient", "quatd", q)
+        order.append("xformOp:orient")
+    if scale is not None:
+        prim.attr("xformOp:scale", "float3", scale)
+        order.append("xformOp:scale")
+    if order:
+        prim.attr("xformOpOrder", "token[]", order, uniform=True)
+
+
+def _name(text: str) -> str:
+    """A prim name from an SDF name (identifiers only)."""
+    out = "".join(c if c.isalnum() or c == "_" else "_" for c in text) or "item"
+    return out if not out[0].isdigit() else f"_{out}"
