@@ -43,6 +43,8 @@ class CompileOptions:
     validate: bool = True
     # ---- the world around the robot (--world FILE, --terrain, --spawn; docs/worlds.md) ----------
     world: WorldOptions = field(default_factory=WorldOptions)
+    # Contact sensors: "" on the feet robodesc finds, a regex on the links it fully matches, None none.
+    contact_sensors: str | None = None
 
     @property
     def strict(self) -> bool:
@@ -78,6 +80,9 @@ def build_options(values: Mapping[str, Any], *, extra_names: Mapping[str, str] |
             # ``world=True`` is SDF's empty-world switch (a target option); a path is a world file.
             if value is not None:
                 setattr(opts.world, WORLD_NAMES[name], _world_value(name, value))
+            continue
+        if name == "contact_sensors":
+            opts.contact_sensors = "" if value is True else None if value is False else value
             continue
         if name in extra:
             getattr(opts, extra[name])[name] = value

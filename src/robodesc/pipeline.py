@@ -187,6 +187,10 @@ def compile_robot(
     progress("running passes: " + ", ".join(passes_pipeline.enabled_passes(resolved)))
     findings.extend(passes_pipeline.run_passes(robot, options=resolved))
     _physical(verify(robot).errors, options, None)
+    if options.contact_sensors is not None:
+        from robodesc.emit.common.contact_sensors import add_contact_sensors
+
+        add_contact_sensors(robot, options.contact_sensors, findings)
     world = _world(robot, options, findings, progress)
     stage = Staging(out, spec.folder)
     try:

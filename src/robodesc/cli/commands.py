@@ -53,6 +53,8 @@ def world_options(args: argparse.Namespace) -> dict[str, Any]:
         out["spawn"] = _numbers(args.spawn, "--spawn", (2, 3))
     if getattr(args, "model_path", None):
         out["model_path"] = tuple(args.model_path)
+    if getattr(args, "contact_sensors", None) is not None:
+        out["contact_sensors"] = args.contact_sensors
     return out
 
 

@@ -236,6 +236,14 @@ def add_world_options(p: argparse.ArgumentParser) -> None:
         "without Z its height comes from the ground under its feet",
     )
     g.add_argument(
+        "--contact-sensors",
+        nargs="?",
+        const="",
+        metavar="REGEX",
+        help="a contact sensor on each foot robodesc finds, or on each link REGEX matches: MJCF touch, USD "
+        "PhysxContactReportAPI, SDF contact sensor, Isaac Lab ContactSensorCfg",
+    )
+    g.add_argument(
         "--model-path",
         action="append",
         default=[],

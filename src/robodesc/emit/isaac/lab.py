@@ -122,6 +122,26 @@ except ImportError:
     ROBOT_CFG = None
 '''
 
+# Appended when the robot carries contact sensors (--contact-sensors): the links whose USD prims
+# carry PhysxContactReportAPI, read by one ContactSensorCfg.
+_CONTACT_TEMPLATE = '''
+
+def make_contact_sensor_cfg(robot_prim: str = "{{ENV_REGEX_NS}}/Robot") -> Any:
+    """A ``ContactSensorCfg`` on the links of ``ROBOT["contact_sensors"]``; raises ImportError without
+    Isaac Lab. The spawner also activates contact reporting on them (``activate_contact_sensors``)."""
+    from isaaclab.sensors import ContactSensorCfg
+
+    links = "|".join(ROBOT["contact_sensors"])
+    return ContactSensorCfg(prim_path=f"{{robot_prim}}/({{links}})", history_length=3, track_air_time=True)
+
+
+try:
+    CONTACT_SENSOR_CFG: Any = make_contact_sensor_cfg()
+    ROBOT_CFG.spawn.activate_contact_sensors = True
+except (ImportError, AttributeError):
+    CONTACT_SENSOR_CFG = None
+'''
+
 
 @dataclass(slots=True)
 class IsaacLabModule:
@@ -229,7 +249,10 @@ def isaac_lab_module(
         },
         "actuators": actuator_groups(robot, settings),
     }
-    text = _TEMPLATE.format(
+    contact = [s.parent for s in robot.sensors if s.type.value == "contact"]
+    if contact:
+        data["contact_sensors"] = contact
+    text = (_TEMPLATE + (_CONTACT_TEMPLATE if contact else "")).format(
         lab_version=settings.isaac_lab_version,
         identity=IDENTITY[settings.isaac_lab_version],
         name=robot.name,

@@ -7,6 +7,8 @@
   reads (``cameraSensorType = "lidar"``, ``sensorModelPluginName``, ``sensorModelConfig`` = the
   URDF's ``isaac_sim_config`` preset or JSON path) plus the URDF ray parameters as
   ``robodesc:ray:*`` attributes.
+- contact: PhysX reports the contacts of a rigid body that carries ``PhysxContactReportAPI``
+  (threshold 0: every contact), so the link's prim gets it; the sensor's own prim is an ``Xform``.
 - everything else: an ``Xform`` with the parameters as ``robodesc:*`` custom attributes.
 """
 
@@ -14,7 +16,7 @@ from __future__ import annotations
 
 import math
 
-from robodesc.emit.usd.context import GEOMETRY, UsdContext, set_display_name, set_pose
+from robodesc.emit.usd.context import GEOMETRY, PHYSICS, UsdContext, set_display_name, set_pose
 from robodesc.emit.usd.quantities import CAMERA_FROM_SENSOR
 from robodesc.ir.model import FixedFrame, RayAxis, Sensor, SensorType
 from robodesc.ir.rigid import Frame, pose_frame
@@ -42,6 +44,10 @@ def emit_sensor(ctx: UsdContext, sensor: Sensor, path: str) -> None:
     else:
         prim = ctx.define(GEOMETRY, path, "Xform")
         set_pose(prim, pose)
+        if sensor.type is SensorType.CONTACT:
+            body = ctx.over(PHYSICS, ctx.link_paths[sensor.parent])
+            body.apply("PhysxContactReportAPI")
+            body.attr("physxContactReport:threshold", "float", 0.0)
     set_display_name(prim, sensor.display_name)
     _custom(prim, "robodesc:sensor:type", "token", sensor.type.value)
     _custom(prim, "robodesc:sensor:updateRate", "double", sensor.update_rate)

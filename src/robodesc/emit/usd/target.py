@@ -36,7 +36,8 @@ def _write_world(robot: Robot, request: EmitRequest, out: str, findings: Finding
     floating = not request.options.fix_base and robot.root.name != "world"
     root = placed.root_position(robot, Stance(complete(robot, {}), "zeros"), floating)
     path = os.path.join(os.path.dirname(os.path.abspath(out)), world_file_name(final))
-    write_world(path, final, robot.name, placed, root, findings)
+    contacts = any(s.type.value == "contact" for s in robot.sensors)
+    write_world(path, final, robot.name, placed, root, findings, contacts=contacts)
     return path
 
 

@@ -40,7 +40,14 @@ def world_file_name(robot_file: str) -> str:
 
 
 def write_world(
-    path: str, robot_file: str, robot_prim: str, placed: PlacedWorld, root: Vec3, findings: Findings
+    path: str,
+    robot_file: str,
+    robot_prim: str,
+    placed: PlacedWorld,
+    root: Vec3,
+    findings: Findings,
+    *,
+    contacts: bool = False,
 ) -> None:
     """Write the world stage to ``path``; ``robot_file`` is the robot's final file name beside it."""
     from robodesc._files import write_atomic
@@ -49,7 +56,7 @@ def write_world(
     stage_metadata(layer, WORLD)
     world = layer.prim(f"/{WORLD}", "Xform")
     world.kind = "assembly"
-    _scene(world, placed)
+    _scene(world, placed, contacts)
     material = _terrain_material(world, placed)
     for body in placed.world.bodies:
         body_prim = world.child(_name(body.name), "Xform")
@@ -62,9 +69,14 @@ def write_world(
     write_atomic(path, encode(layer, os.path.splitext(path)[1].lower()))
 
 
-def _scene(world: Prim, placed: PlacedWorld) -> None:
+def _scene(world: Prim, placed: PlacedWorld, contacts: bool) -> None:
     physics = placed.world.physics
     scene = world.child("PhysicsScene", "PhysicsScene")
+    if contacts:
+        # PhysX stops reporting the contacts of bodies asleep: a robot standing still would read no
+        # force on its feet (ovphysx docs, "Sleeping contacts"). Isaac Lab's GPU scenes never sleep.
+        scene.apply("PhysxSceneAPI")
+        scene.attr("physxScene:disableSleeping", "bool", True, uniform=True)
     gravity = physics.gravity or (0.0, 0.0, -9.81)
     magnitude = math.sqrt(sum(g * g for g in gravity))
     if magnitude > 0:
