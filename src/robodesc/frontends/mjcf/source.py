@@ -1,0 +1,251 @@
+"""An MJCF file and what it includes, read safely into one element tree.
+
+The tree is what MuJoCo's own parser then compiles (:mod:`.compiled`), so every rule of the format
+(``<default>`` classes and ``childclass``, ``angle``, ``eulerseq``, ``fromto``, frames) is MuJoCo's
+rather than a copy of it. What reaches MuJoCo is checked here first, because a model file arrives
+from the internet:
+
+- Every file goes through :mod:`robodesc.frontends.xml_safety` (no DOCTYPE, no entities, a size cap).
+- ``<include>`` is expanded here, not by MuJoCo: each included file must lie inside the model's
+  folder (symlinks resolved), the nesting is capped and a file cannot include itself.
+- Asset files (meshes, height fields) are resolved against ``meshdir``/``assetdir`` and must lie
+  inside the folder too; MuJoCo gets absolute paths, so it opens nothing else.
+- Plugins (``<extension>``, ``<plugin>``) would load and run native code: they are removed, with a
+  warning. Textures and skins are removed too: images MuJoCo would decode (a builtin texture of any
+  size it allocates) carry no mass or shape. ``<replicate>`` is capped so a small file cannot
+  expand into millions of bodies.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+
+from lxml import etree
+
+from robodesc.frontends.xml_safety import parse_xml, read_file
+from robodesc.ir.diagnostics import BrokenReferenceError, Findings, ParseError, PathEscapeError, SourceLoc
+
+STAGE = "frontend:mjcf"
+MAX_INCLUDE_DEPTH = 16
+MAX_INCLUDED_FILES = 256
+# Bodies ``<replicate>`` may make in all (menagerie's largest model has a few hundred bodies).
+MAX_REPLICATED = 10_000
+# Elements removed before MuJoCo compiles the tree, and why (the message's end).
+_REMOVED = {
+    "extension": "plugins load and run native code",
+    "plugin": "plugins load and run native code",
+    "texture": "textures carry no mass or shape, and MuJoCo would decode the images",
+    "skin": "skins are drawn only",
+}
+
+
+@dataclass(slots=True)
+class MjcfSource:
+    """The expanded tree, the file of every element that came from an include, and the asset folders."""
+
+    root: etree._Element
+    file: str
+    folder: str
+    files: dict[etree._Element, str] = field(default_factory=dict)
+    # Mesh assets whose file is missing: their name -> the path as written (resolved, absolute).
+    missing_meshes: dict[str, str] = field(default_factory=dict)
+    # Mesh asset name -> (file as written, absolute path or None).
+    mesh_files: dict[str, tuple[str, str | None]] = field(default_factory=dict)
+
+    def loc(self, el: etree._Element) -> SourceLoc:
+        """``file:line`` of an element, in the file it was written in."""
+        line = el.sourceline
+        return SourceLoc(self._file_of(el), line if isinstance(line, int) else None)
+
+    def _file_of(self, el: etree._Element) -> str:
+        node: etree._Element | None = el
+        while node is not None:
+            found = self.files.get(node)
+            if found is not None:
+                return found
+            node = node.getparent()
+        return self.file
+
+
+def tag(el: etree._Element) -> str:
+    return etree.QName(el).localname if isinstance(el.tag, str) else ""
+
+
+def read_source(path: str, findings: Findings) -> MjcfSource:
+    """Read ``path`` and everything it includes, and make its asset paths absolute and confined."""
+    path = os.path.abspath(path)
+    root = parse_xml(read_file(path), path, findings)
+    if tag(root) != "mujoco":
+        raise ParseError(f"root element is <{tag(root)}>, expected <mujoco>", loc=SourceLoc(path, root.sourceline))
+    folder = os.path.realpath(os.path.dirname(path))
+    source = MjcfSource(root=root, file=path, folder=folder)
+    _expand_includes(source, root, path, [os.path.realpath(path)], findings)
+    _check_replicate(source)
+    _remove_unsafe(source, findings)
+    _resolve_assets(source, findings)
+    return source
+
+
+def _inside(folder: str, path: str) -> bool:
+    real = os.path.realpath(path)
+    return real == folder or real.startswith(folder.rstrip(os.sep) + os.sep)
+
+
+def _expand_includes(source: MjcfSource, node: etree._Element, file: str, chain: list[str], findings: Findings) -> None:
+    for el in list(node):
+        if not isinstance(el.tag, str):
+            continue
+        if tag(el) != "include":
+            _expand_includes(source, el, file, chain, findings)
+            continue
+        loc = SourceLoc(file, el.sourceline)
+        name = el.get("file")
+        if not name:
+            raise ParseError("<include> has no file attribute", element="include", loc=loc)
+        if len(chain) > MAX_INCLUDE_DEPTH:
+            raise ParseError(f"includes nest deeper than {MAX_INCLUDE_DEPTH} files", element="include", loc=loc)
+        # MuJoCo resolves an include against the main model's folder; a path relative to the including
+        # file is accepted too, as MuJoCo 3.2+ does for nested includes.
+        candidates = [os.path.join(os.path.dirname(file), name), os.path.join(os.path.dirname(source.file), name)]
+        target = next((c for c in candidates if os.path.exists(c)), candidates[0])
+        if not _inside(source.folder, target):
+            raise PathEscapeError(
+                f"<include file={name!r}> lies outside the model's folder {source.folder}; refused",
+                element="include",
+                loc=loc,
+            )
+        if not os.path.exists(target):
+            raise BrokenReferenceError(f"<include file={name!r}>: file not found", element="include", loc=loc)
+        real = os.path.realpath(target)
+        if real in chain:
+            raise ParseError(f"<include file={name!r}> includes itself (through {len(chain)} files)", loc=loc)
+        if len(source.files) >= MAX_INCLUDED_FILES:
+            raise ParseError(f"more than {MAX_INCLUDED_FILES} included elements; refused", loc=loc)
+        included = parse_xml(read_file(target), target, findings)
+        if tag(included) != "mujoco":
+            raise ParseError(
+                f"included file's root is <{tag(included)}>, expected <mujoco>", loc=SourceLoc(target, included.sourceline)
+            )
+        _expand_includes(source, included, target, [*chain, real], findings)
+        parent = el.getparent()
+        assert parent is not None
+        position = parent.index(el)
+        parent.remove(el)
+        for offset, child in enumerate(list(included)):
+            if isinstance(child.tag, str):
+                source.files.setdefault(child, target)
+            parent.insert(position + offset, child)
+
+
+def _check_replicate(source: MjcfSource) -> None:
+    def count(el: etree._Element, factor: int) -> int:
+        total = 0
+        for child in el:
+            if not isinstance(child.tag, str):
+                continue
+            name = tag(child)
+            if name == "replicate":
+                try:
+                    times = int(child.get("count", "1"))
+                except ValueError:
+                    raise ParseError("count is not an integer", element="replicate", loc=source.loc(child)) from None
+                total += count(child, factor * max(times, 0))
+            else:
+                total += (factor if name == "body" else 0) + count(child, factor)
+            if total > MAX_REPLICATED:
+                raise ParseError(
+                    f"<replicate> would make more than {MAX_REPLICATED} bodies; refused",
+                    element="replicate",
+                    loc=source.loc(child),
+                )
+        return total
+
+    count(source.root, 1)
+
+
+def _remove_unsafe(source: MjcfSource, findings: Findings) -> None:
+    said: set[str] = set()
+    for el in list(source.root.iter()):
+        if not isinstance(el.tag, str):
+            continue
+        name = tag(el)
+        why = _REMOVED.get(name)
+        if why is not None and el.getparent() is not None:
+            if name in ("extension", "plugin") or name not in said:
+                label = el.get("name") or el.get("plugin") or el.get("instance") or ""
+                findings.warn(
+                    "mjcf-removed",
+                    f"<{name}{' ' + repr(label) if label else ''}> removed before reading ({why}); no output has it",
+                    element=name,
+                    loc=source.loc(el),
+                    stage=STAGE,
+                )
+                said.add(name)
+            el.getparent().remove(el)  # type: ignore[union-attr]
+            continue
+        for attr in ("texture", "plugin"):
+            if attr in el.attrib and name in ("material", "geom", "body", "actuator", "sensor", "general", "mesh"):
+                del el.attrib[attr]
+        if name == "material":
+            # A material that only named its texture keeps its colour.
+            for attr in ("texrepeat", "texuniform"):
+                el.attrib.pop(attr, None)
+        if name == "layer":  # MuJoCo 3.3's <material><layer texture=...>
+            el.getparent().remove(el)  # type: ignore[union-attr]
+
+
+# What MuJoCo reads as a mesh or height field file (it picks the reader by the suffix).
+_ASSET_SUFFIXES = (".stl", ".obj", ".msh", ".png")
+
+
+def _usable(path: str) -> bool:
+    """A regular file (no pipe or device), under the size cap, with a suffix MuJoCo reads."""
+    from robodesc.frontends.xml_safety import MAX_BYTES, is_regular_file
+
+    return (
+        path.lower().endswith(_ASSET_SUFFIXES) and is_regular_file(path) and os.path.getsize(path) <= MAX_BYTES
+    )
+
+
+def _resolve_assets(source: MjcfSource, findings: Findings) -> None:
+    """Absolute, confined asset paths; ``meshdir``/``assetdir``/``texturedir`` are then dropped."""
+    meshdir = assetdir = ""
+    for compiler in source.root.iter("compiler"):
+        meshdir = compiler.get("meshdir", meshdir)
+        assetdir = compiler.get("assetdir", assetdir)
+        for attr in ("meshdir", "texturedir", "assetdir"):
+            compiler.attrib.pop(attr, None)
+    base = os.path.dirname(source.file)
+    for el in list(source.root.iter("mesh", "hfield")):
+        parent = el.getparent()
+        if parent is None or tag(parent) != "asset":
+            continue  # a <default>'s <mesh> holds no file
+        written = el.get("file")
+        if written is None:
+            continue
+        folder = meshdir or assetdir
+        path = os.path.normpath(os.path.join(base, folder, written))
+        kind = tag(el)
+        name = el.get("name") or os.path.splitext(os.path.basename(written))[0]
+        usable = _usable(path)
+        if usable and not _inside(source.folder, path):
+            findings.info(
+                "mjcf-asset-outside",
+                f"<{kind} file={written!r}> lies outside the model's folder; read as a mesh (a regular file with a "
+                "mesh suffix), as URDF meshes are",
+                element=f"{kind} {name!r}",
+                loc=source.loc(el),
+                stage=STAGE,
+            )
+        if kind == "mesh":
+            source.mesh_files[name] = (written, path if usable else None)
+        if not usable:
+            if kind == "mesh":
+                source.missing_meshes[name] = path
+            else:
+                raise BrokenReferenceError(
+                    f"<hfield file={written!r}>: not a readable file", element=f"hfield {name!r}", loc=source.loc(el)
+                )
+            continue
+        el.set("file", path)
