@@ -71,7 +71,13 @@ def read_geoms(r: Reading) -> None:
             solref = (float(m.geom_solref[g][0]), float(m.geom_solref[g][1]))
             if not _close(friction, DEFAULT_FRICTION) or not _close(solref, DEFAULT_SOLREF):
                 surfaces.append((collision, solref))
-                collision.contact = Contact(mu=friction[0], torsional=friction[1], rolling=friction[2], src=loc)
+                # Torsion and roll as MuJoCo's defaults stay "not given": the MJCF emitter writes those.
+                collision.contact = Contact(
+                    mu=friction[0],
+                    torsional=None if friction[1] == DEFAULT_FRICTION[1] else friction[1],
+                    rolling=None if friction[2] == DEFAULT_FRICTION[2] else friction[2],
+                    src=loc,
+                )
             owner.collisions.append(collision)
     r.robot.materials.extend(materials.values())
     _solref(r, surfaces, links)
@@ -163,15 +169,20 @@ def _mesh(r: Reading, g: int, label: str, loc: object) -> tuple[Geometry, object
 def _material(r: Reading, g: int, materials: dict[str, Material]) -> Material | None:
     m = r.model
     mat = int(m.geom_matid[g])
-    rgba = tuple(float(v) for v in m.geom_rgba[g])
+    rgba = _colour(m.geom_rgba[g])
     if mat >= 0:
-        name = r.name("material", mat) or f"material{mat}"
-        color = tuple(float(v) for v in m.mat_rgba[mat])
+        base = r.name("material", mat) or f"material{mat}"
+        name, color = base, _colour(m.mat_rgba[mat])
         if rgba != DEFAULT_RGBA and rgba != color:
-            color = rgba  # a geom's own rgba wins over its material's
-            name = f"{name}_{g}"
+            name, color = f"{base}_{g}", rgba  # a geom's own rgba wins over its material's
         if name not in materials:
-            materials[name] = Material(name=name, color=color)  # type: ignore[arg-type]
+            texture = r.source.textures.get(r.source.material_textures.get(base, ""))
+            materials[name] = Material(
+                name=name,
+                color=color,  # type: ignore[arg-type]
+                texture=texture[0] if texture else None,
+                texture_path=texture[1] if texture else None,
+            )
         return Material(name=name)
     if rgba == DEFAULT_RGBA:
         return None
@@ -179,6 +190,11 @@ def _material(r: Reading, g: int, materials: dict[str, Material]) -> Material | 
     if name not in materials:
         materials[name] = Material(name=name, color=rgba)  # type: ignore[arg-type]
     return Material(name=name)
+
+
+def _colour(values: object) -> tuple[float, ...]:
+    # MuJoCo keeps colours in float32: 0.1 reads back as 0.10000000149; 7 digits are what was written.
+    return tuple(float(f"{float(v):.7g}") for v in values)  # type: ignore[attr-defined]
 
 
 def _solref(r: Reading, surfaces: list[tuple[Collision, tuple[float, float]]], links: dict[str, Link]) -> None:

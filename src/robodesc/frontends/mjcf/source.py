@@ -52,6 +52,12 @@ class MjcfSource:
     missing_meshes: dict[str, str] = field(default_factory=dict)
     # Mesh asset name -> (file as written, absolute path or None).
     mesh_files: dict[str, tuple[str, str | None]] = field(default_factory=dict)
+    # Texture name -> (file as written, absolute path); material name -> its texture's name. The IR's
+    # materials keep the image's reference (MuJoCo never decodes it: textures are removed).
+    textures: dict[str, tuple[str, str]] = field(default_factory=dict)
+    material_textures: dict[str, str] = field(default_factory=dict)
+    # The ``model`` names of the included files, in order (a scene names its robot's file).
+    included_models: list[str] = field(default_factory=list)
 
     def loc(self, el: etree._Element) -> SourceLoc:
         """``file:line`` of an element, in the file it was written in."""
@@ -82,6 +88,7 @@ def read_source(path: str, findings: Findings) -> MjcfSource:
     source = MjcfSource(root=root, file=path, folder=folder)
     _expand_includes(source, root, path, [os.path.realpath(path)], findings)
     _check_replicate(source)
+    _textures(source)
     _remove_unsafe(source, findings)
     _resolve_assets(source, findings)
     return source
@@ -127,6 +134,8 @@ def _expand_includes(source: MjcfSource, node: etree._Element, file: str, chain:
             raise ParseError(
                 f"included file's root is <{tag(included)}>, expected <mujoco>", loc=SourceLoc(target, included.sourceline)
             )
+        if included.get("model"):
+            source.included_models.append(included.get("model", ""))
         _expand_includes(source, included, target, [*chain, real], findings)
         parent = el.getparent()
         assert parent is not None
@@ -164,6 +173,27 @@ def _check_replicate(source: MjcfSource) -> None:
     count(source.root, 1)
 
 
+def _textures(source: MjcfSource) -> None:
+    """The image files of 2D textures, confined like meshes (a texture outside the folder is not kept)."""
+    texturedir = assetdir = ""
+    for compiler in source.root.iter("compiler"):
+        texturedir = compiler.get("texturedir", texturedir)
+        assetdir = compiler.get("assetdir", assetdir)
+    base = os.path.dirname(source.file)
+    for el in source.root.iter("texture"):
+        parent = el.getparent()
+        written = el.get("file")
+        if parent is None or tag(parent) != "asset" or not written or el.get("type", "cube") != "2d":
+            continue
+        path = os.path.normpath(os.path.join(base, texturedir or assetdir, written))
+        name = el.get("name") or os.path.splitext(os.path.basename(written))[0]
+        if _inside(source.folder, path):
+            source.textures[name] = (written, path)
+    for el in source.root.iter("material"):
+        if el.get("name") and el.get("texture"):
+            source.material_textures[el.get("name", "")] = el.get("texture", "")
+
+
 def _remove_unsafe(source: MjcfSource, findings: Findings) -> None:
     said: set[str] = set()
     for el in list(source.root.iter()):
@@ -172,7 +202,17 @@ def _remove_unsafe(source: MjcfSource, findings: Findings) -> None:
         name = tag(el)
         why = _REMOVED.get(name)
         if why is not None and el.getparent() is not None:
-            if name in ("extension", "plugin") or name not in said:
+            if name == "texture" and name not in said:
+                findings.info(
+                    "mjcf-texture",
+                    "textures are not decoded: a material's 2D texture is kept as its image file's reference, "
+                    "builtin textures and skyboxes (a scene's) are left out",
+                    element=name,
+                    loc=source.loc(el),
+                    stage=STAGE,
+                )
+                said.add(name)
+            elif name in ("extension", "plugin") or name not in said:
                 label = el.get("name") or el.get("plugin") or el.get("instance") or ""
                 findings.warn(
                     "mjcf-removed",
