@@ -48,7 +48,11 @@ def random_q(model: Any, rng: np.random.Generator) -> dict[str, np.ndarray]:
     return out
 
 
-def summary(model: Any, q: dict[str, np.ndarray], ref_of: dict[str, float] | None = None) -> Summary:
+def summary(
+    model: Any, q: dict[str, np.ndarray], ref_of: dict[str, float] | None = None, bodies: set[str] | None = None
+) -> Summary:
+    """``bodies``: count only these (the massless links between a body's joints get MuJoCo's minimum
+    mass from the MJCF emitter, with a warning: not the source's)."""
     data = mujoco.MjData(model)
     for j in range(model.njnt):
         name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or f"joint{j}"
@@ -60,11 +64,16 @@ def summary(model: Any, q: dict[str, np.ndarray], ref_of: dict[str, float] | Non
                 value = value - ref_of.get(name, 0.0)
             data.qpos[adr : adr + len(value)] = value
     mujoco.mj_kinematics(model, data)
-    masses = model.body_mass[1:]
+    kept = [
+        b
+        for b in range(1, model.nbody)
+        if bodies is None or mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, b) in bodies
+    ]
+    masses = model.body_mass[kept]
     total = float(masses.sum())
-    com = (data.xipos[1:] * masses[:, None]).sum(axis=0) / total
+    com = (data.xipos[kept] * masses[:, None]).sum(axis=0) / total
     inertia = np.zeros((3, 3))
-    for b in range(1, model.nbody):
+    for b in kept:
         rot = data.ximat[b].reshape(3, 3)
         c = data.xipos[b]
         m = model.body_mass[b]
@@ -102,11 +111,12 @@ def compare(source: Any, written: Any, samples: int = 5, seed: int = 0, tol: flo
     rng = np.random.default_rng(seed)
     problems: list[str] = []
     source_refs = refs(source)
+    names = {mujoco.mj_id2name(source, mujoco.mjtObj.mjOBJ_BODY, i) for i in range(source.nbody)}
     for _ in range(samples):
         q = random_q(source, rng)
         a = summary(source, q)
         # The written model's root: wherever it is placed, compare relative to its root body.
-        b = summary(written, q, source_refs)
+        b = summary(written, q, source_refs, names)
         shift = _root_shift(source, written)
         if abs(a.mass - b.mass) > tol * max(a.mass, 1.0):
             problems.append(f"mass {a.mass} vs {b.mass}")
@@ -144,3 +154,29 @@ def _shift_inertia(inertia: np.ndarray, mass: float, com_from: np.ndarray, com_t
     """An inertia about the origin of a body whose centre moves from ``com_from`` to ``com_to``."""
     about_com = inertia - mass * (com_from @ com_from * np.eye(3) - np.outer(com_from, com_from))
     return about_com + mass * (com_to @ com_to * np.eye(3) - np.outer(com_to, com_to))
+
+
+def mesh_geom_frames(model: Any) -> list[tuple[np.ndarray, np.ndarray, float]]:
+    """World position, rotation and volume-free size (the AABB's half diagonal) of every mesh geom
+    at qpos0: where MuJoCo puts the (recentred) mesh."""
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    out = []
+    for g in range(model.ngeom):
+        if int(model.geom_type[g]) == int(mujoco.mjtGeom.mjGEOM_MESH):
+            out.append((data.geom_xpos[g].copy(), data.geom_xmat[g].reshape(3, 3).copy(), float(model.geom_rbound[g])))
+    return out
+
+
+def unmatched_meshes(source: Any, written: Any, shift: np.ndarray | None = None, tol: float = 1e-5) -> int:
+    """How many of the source's mesh geoms have no written mesh geom at the same place, axes and size."""
+    theirs = mesh_geom_frames(written)
+    offset = np.zeros(3) if shift is None else shift
+    missing = 0
+    for pos, rot, size in mesh_geom_frames(source):
+        if not any(
+            np.abs(pos - (p - offset)).max() < tol and np.abs(rot - r).max() < tol and abs(size - s) < tol
+            for p, r, s in theirs
+        ):
+            missing += 1
+    return missing
