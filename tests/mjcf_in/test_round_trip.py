@@ -1,0 +1,111 @@
+"""MJCF -> IR -> MJCF: the same model in MuJoCo.
+
+Masses, the whole robot's centre and inertia, every joint's world anchor and axis at random joint
+positions, mesh geoms' places, effort limits, equalities and the home keyframe, between the source
+and robodesc's MJCF of it. robodesc's own MJCF goldens and the feature fixture always; menagerie's
+models when ROBODESC_MENAGERIE_DIR names a checkout (tests/mjcf_in/README in docs/mjcf-input.md).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any
+
+import mujoco
+import numpy as np
+import pytest
+
+import robodesc
+from tests.mjcf_in.compare import _root_shift, compare, unmatched_meshes
+
+DATA = Path(__file__).parent / "data"
+ROOT = Path(__file__).resolve().parents[2]
+GOLDEN = ROOT / "tests" / "mjcf" / "golden"
+MENAGERIE = os.environ.get("ROBODESC_MENAGERIE_DIR")
+# Models of menagerie covering its features: degrees and eulerseq (cassie), loop closures (cassie),
+# <general> servos, a tendon and a joint equality (panda), position servos and a free base (go1, anymal_c).
+MENAGERIE_MODELS = (
+    "unitree_go1/scene.xml",
+    "franka_emika_panda/scene.xml",
+    "agility_cassie/scene.xml",
+    "universal_robots_ur5e/scene.xml",
+    "anybotics_anymal_c/scene.xml",
+    "shadow_hand/scene_right.xml",
+)
+
+
+def _golden(name: str, tmp_path: Path) -> Path:
+    path = tmp_path / f"{name}.xml"
+    path.write_text((GOLDEN / f"{name}.xml").read_text().replace("<ROOT>", str(ROOT)))
+    return path
+
+
+def _round_trip(source: Path, tmp_path: Path) -> tuple[Any, Any, Any]:
+    out = tmp_path / "out" / "robot.xml"
+    result = robodesc.compile_to(str(source), "mjcf", str(out))
+    return mujoco.MjModel.from_xml_path(str(source)), mujoco.MjModel.from_xml_path(str(out)), result
+
+
+def _efforts(model: Any) -> dict[str, float]:
+    """Joint name -> the force its joint actuator can give (forcerange, else ctrlrange x gain for a motor)."""
+    out = {}
+    for a in range(model.nu):
+        if int(model.actuator_trntype[a]) != 0:
+            continue
+        joint = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, int(model.actuator_trnid[a][0]))
+        gear = abs(float(model.actuator_gear[a][0]))
+        if model.actuator_forcelimited[a]:
+            out[joint] = float(np.abs(model.actuator_forcerange[a]).max()) * gear
+        elif int(model.actuator_biastype[a]) == 0 and model.actuator_ctrllimited[a]:
+            out[joint] = float(np.abs(model.actuator_ctrlrange[a]).max()) * gear * float(model.actuator_gainprm[a][0])
+    return out
+
+
+def _equalities(model: Any) -> list[int]:
+    return sorted(int(model.eq_type[e]) for e in range(model.neq))
+
+
+def _check(source: Any, written: Any) -> None:
+    assert compare(source, written) == []
+    assert unmatched_meshes(source, written, _root_shift(source, written)) == 0
+    want, got = _efforts(source), _efforts(written)
+    for joint, effort in want.items():
+        assert got.get(joint) == pytest.approx(effort, rel=1e-9), joint
+    tendon_or_flex = {3, 4}
+    wanted = [t for e, t in enumerate(_equalities(source)) if t not in tendon_or_flex and source.eq_active0[e]]
+    assert _equalities(written) == wanted
+
+
+@pytest.mark.parametrize("name", ["quadruped", "four_bar", "gripper_arm"])
+def test_goldens(name: str, tmp_path: Path) -> None:
+    source, written, _ = _round_trip(_golden(name, tmp_path), tmp_path)
+    _check(source, written)
+
+
+def test_feature_fixture(tmp_path: Path) -> None:
+    source, written, result = _round_trip(DATA / "features.xml", tmp_path)
+    _check(source, written)
+    # The home keyframe's joints, less their ref, are the written model's home.
+    home = mujoco.mj_name2id(source, mujoco.mjtObj.mjOBJ_KEY, "home")
+    written_home = mujoco.mj_name2id(written, mujoco.mjtObj.mjOBJ_KEY, "home")
+    assert written_home >= 0
+    for name in ("shoulder", "wrist_pitch", "wrist_roll", "slide", "follower"):
+        j_a = mujoco.mj_name2id(source, mujoco.mjtObj.mjOBJ_JOINT, name)
+        j_b = mujoco.mj_name2id(written, mujoco.mjtObj.mjOBJ_JOINT, name)
+        a = source.key_qpos[home][source.jnt_qposadr[j_a]] - source.qpos0[source.jnt_qposadr[j_a]]
+        b = written.key_qpos[written_home][written.jnt_qposadr[j_b]]
+        if name != "follower":  # a mimic joint is placed by its leader
+            assert b == pytest.approx(a, abs=1e-9), name
+    codes = {f.code for f in result.findings}
+    assert "mjcf-not-held" in codes
+
+
+@pytest.mark.skipif(MENAGERIE is None, reason="ROBODESC_MENAGERIE_DIR names no mujoco_menagerie checkout")
+@pytest.mark.parametrize("model", MENAGERIE_MODELS)
+def test_menagerie(model: str, tmp_path: Path) -> None:
+    path = Path(MENAGERIE or "") / model
+    if not path.exists():
+        pytest.skip(f"{model} is not in this checkout")
+    source, written, _ = _round_trip(path, tmp_path)
+    _check(source, written)
