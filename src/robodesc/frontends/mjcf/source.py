@@ -201,7 +201,7 @@ def _remove_unsafe(source: MjcfSource, findings: Findings) -> None:
             continue
         name = tag(el)
         why = _REMOVED.get(name)
-        if why is not None and el.getparent() is not None:
+        if why is not None and _attached(el, source.root):
             if name == "texture" and name not in said:
                 findings.info(
                     "mjcf-texture",
@@ -246,6 +246,14 @@ def _usable(path: str) -> bool:
     return (
         path.lower().endswith(_ASSET_SUFFIXES) and is_regular_file(path) and os.path.getsize(path) <= MAX_BYTES
     )
+
+
+def _attached(el: etree._Element, root: etree._Element) -> bool:
+    """Whether ``el`` is still in the tree (not inside an element removed before it)."""
+    node = el.getparent()
+    while node is not None and node is not root:
+        node = node.getparent()
+    return node is root
 
 
 def _resolve_assets(source: MjcfSource, findings: Findings) -> None:

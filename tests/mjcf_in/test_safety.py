@@ -1,0 +1,110 @@
+"""Untrusted MJCF: no escape from the model's folder, no code, no memory blow-up, clear messages."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+from robodesc.frontends.load import load_path
+from robodesc.ir.diagnostics import BrokenReferenceError, ParseError, PathEscapeError
+
+BODY = '<worldbody><body name="b"><freejoint/><geom type="sphere" size="0.1"/></body></worldbody>'
+
+
+def _model(folder: Path, inner: str, name: str = "model.xml") -> Path:
+    path = folder / name
+    path.write_text(f'<mujoco model="m">{inner}</mujoco>')
+    return path
+
+
+def test_include_outside_the_folder_is_refused(tmp_path: Path) -> None:
+    outside = tmp_path / "outside.xml"
+    outside.write_text(f"<mujoco>{BODY}</mujoco>")
+    folder = tmp_path / "model"
+    folder.mkdir()
+    path = _model(folder, '<include file="../outside.xml"/>')
+    with pytest.raises(PathEscapeError, match="outside the model's folder") as err:
+        load_path(str(path))
+    assert "model.xml:1" in str(err.value)
+
+
+def test_include_through_a_symlink_out_is_refused(tmp_path: Path) -> None:
+    outside = tmp_path / "secret.xml"
+    outside.write_text(f"<mujoco>{BODY}</mujoco>")
+    folder = tmp_path / "model"
+    folder.mkdir()
+    os.symlink(outside, folder / "parts.xml")
+    with pytest.raises(PathEscapeError):
+        load_path(str(_model(folder, '<include file="parts.xml"/>')))
+
+
+def test_include_cycle_is_refused(tmp_path: Path) -> None:
+    (tmp_path / "a.xml").write_text('<mujoco><include file="model.xml"/></mujoco>')
+    with pytest.raises(ParseError, match="includes itself"):
+        load_path(str(_model(tmp_path, '<include file="a.xml"/>' + BODY)))
+
+
+def test_included_elements_name_their_own_file(tmp_path: Path) -> None:
+    (tmp_path / "robot.xml").write_text(
+        '<mujoco model="inner">\n<worldbody>\n<body name="b">\n<joint type="ball" range="0 30"/>\n'
+        '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>'
+    )
+    result = load_path(str(_model(tmp_path, '<include file="robot.xml"/>', "scene.xml")))
+    assert result.robot.name == "inner"  # a scene is named after the robot it includes
+    limit = next(f for f in result.findings if f.code == "mjcf-ball-limit")
+    assert limit.loc is not None and limit.loc.file == str(tmp_path / "robot.xml") and limit.loc.line == 4
+
+
+def test_doctype_is_refused(tmp_path: Path) -> None:
+    path = tmp_path / "model.xml"
+    path.write_text('<!DOCTYPE m [<!ENTITY x SYSTEM "/etc/passwd">]><mujoco>' + BODY + "</mujoco>")
+    with pytest.raises(ParseError, match="DOCTYPE"):
+        load_path(str(path))
+
+
+def test_replicate_bomb_is_refused(tmp_path: Path) -> None:
+    inner = (
+        '<worldbody><replicate count="1000" offset="0.1 0 0"><replicate count="1000" offset="0 0.1 0">'
+        '<body><geom type="sphere" size="0.01"/></body></replicate></replicate></worldbody>'
+    )
+    with pytest.raises(ParseError, match="more than 10000 bodies"):
+        load_path(str(_model(tmp_path, inner)))
+
+
+def test_plugins_are_removed_with_a_warning(tmp_path: Path) -> None:
+    inner = (
+        '<extension><plugin plugin="mujoco.elasticity.cable"/></extension>'
+        '<worldbody><body name="b"><freejoint/><geom type="sphere" size="0.1"/>'
+        '<plugin plugin="mujoco.elasticity.cable" instance="x"/></body></worldbody>'
+    )
+    result = load_path(str(_model(tmp_path, inner)))
+    removed = [f for f in result.findings if f.code == "mjcf-removed"]
+    assert len(removed) == 2 and all("native code" in f.message for f in removed)
+    assert result.robot.link("b").inertial is not None
+
+
+def test_a_mesh_that_is_not_a_file_is_missing(tmp_path: Path) -> None:
+    inner = (
+        '<asset><mesh name="m" file="/dev/zero.stl"/><mesh name="p" file="pipe.stl"/></asset>'
+        '<worldbody><body name="b"><freejoint/><geom type="mesh" mesh="m"/><geom type="mesh" mesh="p"/>'
+        '<inertial mass="1" diaginertia="1 1 1" pos="0 0 0"/></body></worldbody>'
+    )
+    os.mkfifo(tmp_path / "pipe.stl")
+    result = load_path(str(_model(tmp_path, inner)))
+    missing = [f for f in result.findings if f.code == "missing-mesh"]
+    assert len(missing) == 2
+    assert result.robot.link("b").inertial.mass == pytest.approx(1.0)  # type: ignore[union-attr]
+
+
+def test_mujoco_errors_are_messages(tmp_path: Path) -> None:
+    inner = '<worldbody><body name="b"><joint type="bogus"/><geom size="0.1"/></body></worldbody>'
+    with pytest.raises(ParseError, match="MuJoCo cannot compile this model") as err:
+        load_path(str(_model(tmp_path, inner)))
+    assert "Traceback" not in str(err.value)
+
+
+def test_missing_include(tmp_path: Path) -> None:
+    with pytest.raises(BrokenReferenceError, match="file not found"):
+        load_path(str(_model(tmp_path, '<include file="nowhere.xml"/>')))
