@@ -101,7 +101,9 @@ def read_actuators(r: Reading) -> None:
                 name=r.unique(f"{name}_transmission", set(t.name for t in r.robot.transmissions)),
                 type="transmission_interface/SimpleTransmission",
                 joints=[TransmissionJoint(joint.name, [interface] if interface else [], src=loc)],
-                actuators=[TransmissionActuator(name, [interface] if interface else [], mechanical_reduction=gear, src=loc)],
+                actuators=[
+                    TransmissionActuator(name, [interface] if interface else [], mechanical_reduction=gear, src=loc)
+                ],
                 src=loc,
             )
         )
@@ -112,7 +114,8 @@ def read_actuators(r: Reading) -> None:
     if gains:
         r.info(
             "mjcf-actuator-gains",
-            "the source's servo gains (SI, joint space), which targets take from --stiffness/--damping: " + ", ".join(gains),
+            "the source's servo gains (SI, joint space), which targets take from --stiffness/--damping: "
+            + ", ".join(gains),
             f"robot {r.robot.name!r}",
             r.source.loc(r.source.root),
         )

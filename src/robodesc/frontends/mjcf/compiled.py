@@ -57,7 +57,8 @@ def _placeholders(source: MjcfSource, findings: Findings) -> etree._Element:
             el.set("name", name)
             el.set("vertex", _PLACEHOLDER)
             for attr in ("scale", "refpos", "refquat"):
-                el.attrib.pop(attr, None)
+                if attr in el.attrib:
+                    del el.attrib[attr]
     if inertia_from_mesh:
         findings.warn(
             "mjcf-mass-from-missing-mesh",

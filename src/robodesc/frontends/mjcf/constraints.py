@@ -11,9 +11,13 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from typing import Any
+
 from robodesc.frontends.mjcf.context import Reading
 from robodesc.frontends.mjcf.frames import frame, inverse, pose, translation
-from robodesc.ir.model import LoopFrame, LoopJoint, Mimic
+from robodesc.ir.diagnostics import SourceLoc
+from robodesc.ir.model import Joint, LoopFrame, LoopJoint, Mimic
 from robodesc.ir.rigid import Frame
 
 _CONNECT, _WELD, _JOINT, _TENDON, _FLEX = 0, 1, 2, 3, 4
@@ -34,7 +38,9 @@ def read_equalities(r: Reading) -> None:
         loc = r.loc("equality", e)
         kind = int(m.eq_type[e])
         if not bool(m.eq_active0[e]):
-            r.warn("mjcf-equality-inactive", "an inactive equality (active=false) is left out of every output", label, loc)
+            r.warn(
+                "mjcf-equality-inactive", "an inactive equality (active=false) is left out of every output", label, loc
+            )
             continue
         if kind == _JOINT:
             _mimic(r, e, joints, label, loc)
@@ -52,17 +58,17 @@ def read_equalities(r: Reading) -> None:
             )
 
 
-def _mimic(r: Reading, e: int, joints: dict[str, object], label: str, loc: object) -> None:
+def _mimic(r: Reading, e: int, joints: Mapping[str, Joint], label: str, loc: SourceLoc) -> None:
     m = r.model
     j1, j2 = int(m.eq_obj1id[e]), int(m.eq_obj2id[e])
     follower = joints.get(r.joint_of.get(j1, ""))
     coef = [float(v) for v in m.eq_data[e][:5]]
     if j2 < 0:
-        r.warn("mjcf-equality-not-held", "a joint held at a constant has no IR form: left out", label, loc)  # type: ignore[arg-type]
+        r.warn("mjcf-equality-not-held", "a joint held at a constant has no IR form: left out", label, loc)
         return
     leader = joints.get(r.joint_of.get(j2, ""))
     if follower is None or leader is None:
-        r.warn("mjcf-equality-not-held", "the joints of this equality are not one-DOF joints of the robot", label, loc)  # type: ignore[arg-type]
+        r.warn("mjcf-equality-not-held", "the joints of this equality are not one-DOF joints of the robot", label, loc)
         return
     if any(coef[2:]):
         r.warn(
@@ -70,15 +76,15 @@ def _mimic(r: Reading, e: int, joints: dict[str, object], label: str, loc: objec
             f"polycoef {' '.join(f'{c:g}' for c in coef)}: the IR's mimic is linear; the quadratic and higher "
             "terms are left out",
             label,
-            loc,  # type: ignore[arg-type]
+            loc,
         )
     ref1 = float(m.qpos0[int(m.jnt_qposadr[j1])])
     ref2 = float(m.qpos0[int(m.jnt_qposadr[j2])])
     offset = coef[0] + coef[1] * ref2 - ref1
-    follower.mimic = Mimic(joint=leader.name, multiplier=coef[1], offset=offset, src=loc)  # type: ignore[attr-defined]
+    follower.mimic = Mimic(joint=leader.name, multiplier=coef[1], offset=offset, src=loc)
 
 
-def _loop(r: Reading, data: object, e: int, kind: int, name: str, loc: object) -> LoopJoint | None:
+def _loop(r: Reading, data: Any, e: int, kind: int, name: str, loc: SourceLoc) -> LoopJoint | None:
     m = r.model
     objtype = int(m.eq_objtype[e])
     o1, o2 = int(m.eq_obj1id[e]), int(m.eq_obj2id[e])
@@ -99,21 +105,21 @@ def _loop(r: Reading, data: object, e: int, kind: int, name: str, loc: object) -
             world = _world(data, b2) @ side2
     l1, l2 = r.link_of.get(b1), r.link_of.get(b2)
     if l1 is None or l2 is None:
-        r.warn("mjcf-equality-not-held", "a side of this closure is not a body of the robot", f"equality {name!r}", loc)  # type: ignore[arg-type]
+        r.warn("mjcf-equality-not-held", "a side of this closure is not a body of the robot", f"equality {name!r}", loc)
         return None
     f1 = r.content[b1] @ inverse(_world(data, b1)) @ world
     f2 = r.content[b2] @ inverse(_world(data, b2)) @ world
     return LoopJoint(
         name=name,
         type="spherical" if kind == _CONNECT else "fixed",
-        link1=LoopFrame(l1, pose(f1), src=loc),  # type: ignore[arg-type]
-        link2=LoopFrame(l2, pose(f2), src=loc),  # type: ignore[arg-type]
-        src=loc,  # type: ignore[arg-type]
+        link1=LoopFrame(l1, pose(f1), src=loc),
+        link2=LoopFrame(l2, pose(f2), src=loc),
+        src=loc,
     )
 
 
-def _world(data: object, b: int) -> Frame:
-    return frame(data.xpos[b], data.xquat[b])  # type: ignore[attr-defined]
+def _world(data: Any, b: int) -> Frame:
+    return frame(data.xpos[b], data.xquat[b])
 
 
 def read_contact(r: Reading) -> None:

@@ -48,7 +48,11 @@ class Reading:
     def loc(self, kind: str, index: int) -> SourceLoc:
         el = self.elements.get(kind, {}).get(index)
         if el is None and kind in ("joint", "geom", "site", "camera"):
-            body = int(getattr(self.model, f"{'jnt' if kind == 'joint' else 'cam' if kind == 'camera' else kind}_bodyid")[index])
+            body = int(
+                getattr(self.model, f"{'jnt' if kind == 'joint' else 'cam' if kind == 'camera' else kind}_bodyid")[
+                    index
+                ]
+            )
             el = self.elements.get("body", {}).get(body)
         return self.source.loc(el) if el is not None else SourceLoc(self.source.file)
 

@@ -23,7 +23,12 @@ _CAMERA_TO_SENSOR = Frame(((0.0, -1.0, 0.0), (0.0, 0.0, 1.0), (-1.0, 0.0, 0.0)))
 _SITE_TO_RAY = Frame(((0.0, 0.0, -1.0), (0.0, 1.0, 0.0), (1.0, 0.0, 0.0)))
 # mjtSensor values.
 _TOUCH, _ACC, _VEL, _GYRO, _FORCE, _TORQUE, _MAG, _RANGE = 0, 1, 2, 3, 4, 5, 6, 7
-_KINDS = {_ACC: SensorType.IMU, _GYRO: SensorType.IMU, _FORCE: SensorType.FORCE_TORQUE, _TORQUE: SensorType.FORCE_TORQUE}
+_KINDS = {
+    _ACC: SensorType.IMU,
+    _GYRO: SensorType.IMU,
+    _FORCE: SensorType.FORCE_TORQUE,
+    _TORQUE: SensorType.FORCE_TORQUE,
+}
 
 
 def read_sites(r: Reading) -> set[str]:
@@ -33,7 +38,7 @@ def read_sites(r: Reading) -> set[str]:
     for s in range(m.nsite):
         b = int(m.site_bodyid[s])
         link = r.link_of.get(b)
-        if link is None or b == 0 and link not in r.link_names:
+        if link is None or (b == 0 and link not in r.link_names):
             continue
         name = r.unique(r.name("site", s) or f"site{s}", taken)
         origin = pose(r.content[b] @ frame(m.site_pos[s], m.site_quat[s]))

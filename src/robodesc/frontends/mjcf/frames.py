@@ -18,7 +18,9 @@ ZERO = (0.0, 0.0, 0.0)
 
 def frame(pos: Sequence[float], quat: Sequence[float] | None = None) -> Frame:
     """A frame from MuJoCo's ``pos`` and ``quat`` (w, x, y, z)."""
-    rotation = IDENTITY if quat is None else quat_rotation((float(quat[0]), float(quat[1]), float(quat[2]), float(quat[3])))
+    rotation = (
+        IDENTITY if quat is None else quat_rotation((float(quat[0]), float(quat[1]), float(quat[2]), float(quat[3])))
+    )
     return Frame(rotation, (float(pos[0]), float(pos[1]), float(pos[2])))
 
 

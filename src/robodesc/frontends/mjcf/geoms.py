@@ -17,13 +17,16 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from robodesc.frontends.mjcf.context import Reading
 from robodesc.frontends.mjcf.frames import frame, inverse, pose
 from robodesc.frontends.options import MissingMesh
 from robodesc.ir.contact import Contact
-from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Material, Mesh, Sphere
+from robodesc.ir.diagnostics import SourceLoc
+from robodesc.ir.geometry import RGBA, Box, Capsule, Cylinder, Geometry, Material, Mesh, Sphere
 from robodesc.ir.model import Collision, Link, Visual
+from robodesc.ir.rigid import Frame
 
 PLANE, HFIELD, SPHERE, CAPSULE, ELLIPSOID, CYLINDER, BOX, MESH, SDF = range(9)
 _NAMES = {PLANE: "plane", HFIELD: "hfield", ELLIPSOID: "ellipsoid", SDF: "sdf"}
@@ -87,9 +90,7 @@ def _close(a: tuple[float, ...], b: tuple[float, ...]) -> bool:
     return all(math.isclose(x, y, rel_tol=1e-9, abs_tol=1e-12) for x, y in zip(a, b, strict=True))
 
 
-def _shape(r: Reading, g: int, kind: int, label: str, loc: object) -> tuple[Geometry, object] | None:
-    from robodesc.ir.rigid import Frame
-
+def _shape(r: Reading, g: int, kind: int, label: str, loc: SourceLoc) -> tuple[Geometry, Frame] | None:
     m = r.model
     size = [float(v) for v in m.geom_size[g]]
     if kind == SPHERE:
@@ -106,7 +107,7 @@ def _shape(r: Reading, g: int, kind: int, label: str, loc: object) -> tuple[Geom
             f"ellipsoid {size[0]:g} x {size[1]:g} x {size[2]:g} has no IR shape: every output gets the sphere of its "
             "largest radius (the body's mass and inertia are MuJoCo's, unchanged)",
             label,
-            loc,  # type: ignore[arg-type]
+            loc,
         )
         return Sphere(max(size)), Frame()
     if kind == MESH:
@@ -117,24 +118,25 @@ def _shape(r: Reading, g: int, kind: int, label: str, loc: object) -> tuple[Geom
             "mjcf-plane",
             "a plane on a body has no IR shape: every output leaves it out (each target's scene has its own floor)",
             label,
-            loc,  # type: ignore[arg-type]
+            loc,
         )
     else:
         r.warn(
             "mjcf-shape-not-held",
             f"a {what} geom has no IR shape: URDF, SDF, USD and MJCF outputs leave it out",
             label,
-            loc,  # type: ignore[arg-type]
+            loc,
         )
     return None
 
 
-def _mesh(r: Reading, g: int, label: str, loc: object) -> tuple[Geometry, object] | None:
+def _mesh(r: Reading, g: int, label: str, loc: SourceLoc) -> tuple[Geometry, Frame] | None:
     m = r.model
     mesh_id = int(m.geom_dataid[g])
     mesh_name = r.name("mesh", mesh_id) or f"mesh{mesh_id}"
     written, path = r.source.mesh_files.get(mesh_name, (mesh_name, None))
-    scale = tuple(float(v) for v in m.mesh_scale[mesh_id])
+    sx, sy, sz = (float(v) for v in m.mesh_scale[mesh_id])
+    scale = None if (sx, sy, sz) == (1.0, 1.0, 1.0) else (sx, sy, sz)
     # The compiled geom carries MuJoCo's recentring of the vertices: undo it for the file as written.
     offset = inverse(frame(m.mesh_pos[mesh_id], m.mesh_quat[mesh_id]))
     if path is None and mesh_name in r.source.missing_meshes:
@@ -144,25 +146,23 @@ def _mesh(r: Reading, g: int, label: str, loc: object) -> tuple[Geometry, object
             from robodesc.ir.diagnostics import BrokenReferenceError
 
             raise BrokenReferenceError(
-                message + "; --missing-mesh warn|primitive|drop chooses another policy", element=label, loc=loc  # type: ignore[arg-type]
+                message + "; --missing-mesh warn|primitive|drop chooses another policy", element=label, loc=loc
             )
         if policy is MissingMesh.DROP:
-            r.warn("missing-mesh", message + "; geom dropped", label, loc)  # type: ignore[arg-type]
+            r.warn("missing-mesh", message + "; geom dropped", label, loc)
             return None
-        r.warn("missing-mesh", message + "; reference kept", label, loc)  # type: ignore[arg-type]
-        from robodesc.ir.rigid import Frame
-
+        r.warn("missing-mesh", message + "; reference kept", label, loc)
         # Without the file MuJoCo's recentring is unknown: the geom's own frame is kept.
-        return Mesh(uri=written, scale=None if scale == (1.0, 1.0, 1.0) else scale, src=loc), Frame()  # type: ignore[arg-type]
+        return Mesh(uri=written, scale=scale, src=loc), Frame()
     if path is None:
         r.warn(
             "mjcf-inline-mesh",
             "a mesh given by its vertices in the file (no mesh file) has no IR form: every output leaves it out",
             label,
-            loc,  # type: ignore[arg-type]
+            loc,
         )
         return None
-    mesh = Mesh(uri=written, path=path, scale=None if scale == (1.0, 1.0, 1.0) else scale, src=loc)  # type: ignore[arg-type]
+    mesh = Mesh(uri=written, path=path, scale=scale, src=loc)
     return mesh, offset
 
 
@@ -179,7 +179,7 @@ def _material(r: Reading, g: int, materials: dict[str, Material]) -> Material | 
             texture = r.source.textures.get(r.source.material_textures.get(base, ""))
             materials[name] = Material(
                 name=name,
-                color=color,  # type: ignore[arg-type]
+                color=color,
                 texture=texture[0] if texture else None,
                 texture_path=texture[1] if texture else None,
             )
@@ -188,13 +188,14 @@ def _material(r: Reading, g: int, materials: dict[str, Material]) -> Material | 
         return None
     name = f"rgba_{'_'.join(f'{c:.3g}' for c in rgba)}"
     if name not in materials:
-        materials[name] = Material(name=name, color=rgba)  # type: ignore[arg-type]
+        materials[name] = Material(name=name, color=rgba)
     return Material(name=name)
 
 
-def _colour(values: object) -> tuple[float, ...]:
+def _colour(values: Any) -> RGBA:
     # MuJoCo keeps colours in float32: 0.1 reads back as 0.10000000149; 7 digits are what was written.
-    return tuple(float(f"{float(v):.7g}") for v in values)  # type: ignore[attr-defined]
+    r, g, b, a = (float(f"{float(v):.7g}") for v in values)
+    return (r, g, b, a)
 
 
 def _solref(r: Reading, surfaces: list[tuple[Collision, tuple[float, float]]], links: dict[str, Link]) -> None:

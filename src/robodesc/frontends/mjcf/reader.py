@@ -21,7 +21,9 @@ def read_mjcf(path: str, options: LoadOptions, findings: Findings) -> Robot:
     source = read_source(path, findings)
     model = compile_model(source, findings)
     name = source.root.get("model") or "robot"
-    own = [b for w in source.root.iter("worldbody") for b in w.iterchildren("body") if source.loc(b).file == source.file]
+    own = [
+        b for w in source.root.iter("worldbody") for b in w.iterchildren("body") if source.loc(b).file == source.file
+    ]
     if source.included_models and not own:
         # A scene (menagerie's scene.xml: "go1 scene") is named by the robot it includes.
         name = source.included_models[0]

@@ -61,8 +61,7 @@ class MjcfSource:
 
     def loc(self, el: etree._Element) -> SourceLoc:
         """``file:line`` of an element, in the file it was written in."""
-        line = el.sourceline
-        return SourceLoc(self._file_of(el), line if isinstance(line, int) else None)
+        return SourceLoc(self._file_of(el), line(el))
 
     def _file_of(self, el: etree._Element) -> str:
         node: etree._Element | None = el
@@ -74,6 +73,11 @@ class MjcfSource:
         return self.file
 
 
+def line(el: etree._Element) -> int | None:
+    number = el.sourceline
+    return number if isinstance(number, int) else None
+
+
 def tag(el: etree._Element) -> str:
     return etree.QName(el).localname if isinstance(el.tag, str) else ""
 
@@ -83,7 +87,7 @@ def read_source(path: str, findings: Findings) -> MjcfSource:
     path = os.path.abspath(path)
     root = parse_xml(read_file(path), path, findings)
     if tag(root) != "mujoco":
-        raise ParseError(f"root element is <{tag(root)}>, expected <mujoco>", loc=SourceLoc(path, root.sourceline))
+        raise ParseError(f"root element is <{tag(root)}>, expected <mujoco>", loc=SourceLoc(path, line(root)))
     folder = os.path.realpath(os.path.dirname(path))
     source = MjcfSource(root=root, file=path, folder=folder)
     _expand_includes(source, root, path, [os.path.realpath(path)], findings)
@@ -106,7 +110,7 @@ def _expand_includes(source: MjcfSource, node: etree._Element, file: str, chain:
         if tag(el) != "include":
             _expand_includes(source, el, file, chain, findings)
             continue
-        loc = SourceLoc(file, el.sourceline)
+        loc = SourceLoc(file, line(el))
         name = el.get("file")
         if not name:
             raise ParseError("<include> has no file attribute", element="include", loc=loc)
@@ -132,7 +136,7 @@ def _expand_includes(source: MjcfSource, node: etree._Element, file: str, chain:
         included = parse_xml(read_file(target), target, findings)
         if tag(included) != "mujoco":
             raise ParseError(
-                f"included file's root is <{tag(included)}>, expected <mujoco>", loc=SourceLoc(target, included.sourceline)
+                f"included file's root is <{tag(included)}>, expected <mujoco>", loc=SourceLoc(target, line(included))
             )
         if included.get("model"):
             source.included_models.append(included.get("model", ""))
@@ -229,8 +233,7 @@ def _remove_unsafe(source: MjcfSource, findings: Findings) -> None:
                 del el.attrib[attr]
         if name == "material":
             # A material that only named its texture keeps its colour.
-            for attr in ("texrepeat", "texuniform"):
-                el.attrib.pop(attr, None)
+            _drop(el, "texrepeat", "texuniform")
         if name == "layer":  # MuJoCo 3.3's <material><layer texture=...>
             el.getparent().remove(el)  # type: ignore[union-attr]
 
@@ -243,9 +246,13 @@ def _usable(path: str) -> bool:
     """A regular file (no pipe or device), under the size cap, with a suffix MuJoCo reads."""
     from robodesc.frontends.xml_safety import MAX_BYTES, is_regular_file
 
-    return (
-        path.lower().endswith(_ASSET_SUFFIXES) and is_regular_file(path) and os.path.getsize(path) <= MAX_BYTES
-    )
+    return path.lower().endswith(_ASSET_SUFFIXES) and is_regular_file(path) and os.path.getsize(path) <= MAX_BYTES
+
+
+def _drop(el: etree._Element, *attrs: str) -> None:
+    for attr in attrs:
+        if attr in el.attrib:
+            del el.attrib[attr]
 
 
 def _attached(el: etree._Element, root: etree._Element) -> bool:
@@ -262,8 +269,7 @@ def _resolve_assets(source: MjcfSource, findings: Findings) -> None:
     for compiler in source.root.iter("compiler"):
         meshdir = compiler.get("meshdir", meshdir)
         assetdir = compiler.get("assetdir", assetdir)
-        for attr in ("meshdir", "texturedir", "assetdir"):
-            compiler.attrib.pop(attr, None)
+        _drop(compiler, "meshdir", "texturedir", "assetdir")
     base = os.path.dirname(source.file)
     for el in list(source.root.iter("mesh", "hfield")):
         parent = el.getparent()
