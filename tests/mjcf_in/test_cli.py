@@ -30,3 +30,16 @@ def test_inspect_and_view(tmp_path: Path, capsys: pytest.CaptureFixture[str]) ->
     page = tmp_path / "features.html"
     assert main(["view", str(FEATURES), "-o", str(page)]) == 0
     assert page.stat().st_size > 1000
+
+
+def test_batch_discovers_scenes_not_the_robots_they_include(tmp_path: Path) -> None:
+    from robodesc.batch.discover import discover
+
+    body = '<worldbody><body name="b"><freejoint/><geom size="0.1"/></body></worldbody>'
+    (tmp_path / "robot.xml").write_text(f'<mujoco model="r">{body}</mujoco>')
+    (tmp_path / "scene.xml").write_text('<mujoco model="r scene"><include file="robot.xml"/></mujoco>')
+    (tmp_path / "alone.xml").write_text(f'<mujoco model="alone">{body}</mujoco>')
+    (tmp_path / "options.xml").write_text('<mujoco><option timestep="0.001"/></mujoco>')
+    (tmp_path / "arm.xml").write_text('<robot name="arm"><link name="a"/></robot>')
+    found = [job for _, job in discover(str(tmp_path))]
+    assert found == ["alone", "arm", "scene"]
