@@ -160,3 +160,14 @@ def test_everything_not_held_is_named(loaded: tuple[Robot, list[tuple[str, str, 
     assert "features.xml:58" in tendon and "'coupler'" in tendon
     # Each message names its file and line; an included file's element names the included file.
     assert all(".xml:" in text for severity, _, text in findings if severity == "warning")
+
+
+def test_drives(loaded: tuple[Robot, list[tuple[str, str, str]]]) -> None:
+    robot, _ = loaded
+    drives = {j.name: j.drive for j in robot.joints if j.drive is not None}
+    assert set(drives) == {"shoulder", "wrist_pitch", "wrist_roll", "slide"}
+    assert (drives["shoulder"].kind, drives["shoulder"].stiffness, drives["shoulder"].damping) == ("position", 50, 2)
+    # A <general> with biasprm 0 -kp -kv is the position servo it is.
+    assert (drives["slide"].kind, drives["slide"].stiffness, drives["slide"].damping) == ("position", 200, 10)
+    assert (drives["wrist_roll"].kind, drives["wrist_roll"].damping) == ("velocity", 3)
+    assert drives["wrist_pitch"].kind == "effort"

@@ -109,3 +109,31 @@ def test_menagerie(model: str, tmp_path: Path) -> None:
         pytest.skip(f"{model} is not in this checkout")
     source, written, _ = _round_trip(path, tmp_path)
     _check(source, written)
+
+
+def test_source_gains_are_written(tmp_path: Path) -> None:
+    """The source's servos come back with their own gains and kinds; a motor gets robodesc's servo."""
+    source, written, _ = _round_trip(DATA / "features.xml", tmp_path)
+
+    def servo(model: Any, joint: str) -> tuple[float, float, float]:
+        j = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint)
+        a = next(a for a in range(model.nu) if model.actuator_trntype[a] == 0 and model.actuator_trnid[a][0] == j)
+        return (
+            float(model.actuator_gainprm[a][0]),
+            float(model.actuator_biasprm[a][1]),
+            float(model.actuator_biasprm[a][2]),
+        )
+
+    for joint in ("shoulder", "slide", "wrist_roll"):
+        assert servo(written, joint) == pytest.approx(servo(source, joint)), joint
+    kp, bias_kp, _ = servo(written, "wrist_pitch")
+    assert kp > 0 and bias_kp == -kp  # a position servo with derived gains, not the source's motor
+
+
+def test_user_gains_win(tmp_path: Path) -> None:
+    out = tmp_path / "robot.xml"
+    robodesc.compile_to(str(DATA / "features.xml"), "mjcf", str(out), stiffness=7.0, damping=0.5)
+    model = mujoco.MjModel.from_xml_path(str(out))
+    j = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "shoulder")
+    a = next(a for a in range(model.nu) if model.actuator_trnid[a][0] == j)
+    assert (model.actuator_gainprm[a][0], model.actuator_biasprm[a][2]) == pytest.approx((7.0, -0.5))

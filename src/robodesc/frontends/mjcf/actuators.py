@@ -10,16 +10,16 @@ is (menagerie's Panda).
   magnitude, as the IR's limit is symmetric.
 - A gear other than 1 is a simple transmission's mechanical reduction (the MJCF emitter writes it
   back as ``gear``); the actuator's kind is its hardware interface.
-- Gains: the IR has no field for a drive's gains; each target's own options (``--stiffness``,
-  ``--damping``, or the gains robodesc derives) set them. The source's gains are said in one
-  finding per robot so they can be given back (docs/mjcf-input.md).
+- The servo itself is the joint's ``drive``: its kind (position, velocity, effort for a motor) and
+  its gains in joint space (``kp·gear²``). Targets write those gains where the user gives none
+  (emit/common/source_drives.py).
 - Actuators on tendons, sites or bodies (a Cartesian actuator, adhesion) have no IR form: warnings.
 """
 
 from __future__ import annotations
 
 from robodesc.frontends.mjcf.context import Reading
-from robodesc.ir.model import Limit, Transmission, TransmissionActuator, TransmissionJoint
+from robodesc.ir.model import Drive, Limit, Transmission, TransmissionActuator, TransmissionJoint
 
 _JOINT, _JOINTINPARENT = 0, 1
 _GAIN_FIXED = 0
@@ -49,7 +49,6 @@ def classify(gaintype: int, gain: float, biastype: int, bias: tuple[float, float
 def read_actuators(r: Reading) -> None:
     m = r.model
     joints = r.robot.joint_map()
-    gains: list[str] = []
     for a in range(m.nu):
         name = r.name("actuator", a) or f"actuator{a}"
         label = f"actuator {name!r}"
@@ -107,18 +106,13 @@ def read_actuators(r: Reading) -> None:
                 src=loc,
             )
         )
+        # A servo's gains in joint space: force gear·kp·(ctrl - gear·q) is kp·gear² per unit of q.
         if kind == "position":
-            gains.append(f"{joint.name} kp {kp * gear * gear:g} kv {kv * gear * gear:g}")
+            joint.drive = Drive("position", kp * gear * gear, kv * gear * gear, src=loc)
         elif kind == "velocity":
-            gains.append(f"{joint.name} kv {kv * gear * gear:g}")
-    if gains:
-        r.info(
-            "mjcf-actuator-gains",
-            "the source's servo gains (SI, joint space), which targets take from --stiffness/--damping: "
-            + ", ".join(gains),
-            f"robot {r.robot.name!r}",
-            r.source.loc(r.source.root),
-        )
+            joint.drive = Drive("velocity", 0.0, kv * gear * gear, src=loc)
+        elif kind == "motor":
+            joint.drive = Drive("effort", src=loc)
 
 
 def _effort(r: Reading, a: int, kind: str, gain: float, gear: float) -> float | None:
