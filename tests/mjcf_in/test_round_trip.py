@@ -137,3 +137,16 @@ def test_user_gains_win(tmp_path: Path) -> None:
     j = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "shoulder")
     a = next(a for a in range(model.nu) if model.actuator_trnid[a][0] == j)
     assert (model.actuator_gainprm[a][0], model.actuator_biasprm[a][2]) == pytest.approx((7.0, -0.5))
+
+
+def test_source_gains_reach_usd(tmp_path: Path) -> None:
+    from pxr import Usd
+
+    out = tmp_path / "robot.usda"
+    robodesc.compile_to(str(DATA / "features.xml"), "usd", str(out))
+    stage = Usd.Stage.Open(str(out))
+    joints = {p.GetName(): p for p in stage.Traverse() if p.GetName() in ("shoulder", "slide")}
+    # USD's angular gains are per degree; linear ones per metre.
+    shoulder = joints["shoulder"].GetAttribute("drive:angular:physics:stiffness").Get()
+    assert shoulder == pytest.approx(50.0 * np.pi / 180, rel=1e-6)
+    assert joints["slide"].GetAttribute("drive:linear:physics:stiffness").Get() == pytest.approx(200.0, rel=1e-6)
