@@ -46,10 +46,10 @@ def models(menagerie: str | None, files: list[str], pattern: str | None) -> list
 
 def run_model(path: str) -> dict[str, Any]:
     import mujoco
+    from tests.mjcf_in.compare import _root_shift, compare, unmatched_meshes
 
     import robodesc
     from robodesc.frontends.load import load_path
-    from tests.mjcf_in.compare import _root_shift, compare, unmatched_meshes
 
     row: dict[str, Any] = {"model": path}
     start = time.perf_counter()
