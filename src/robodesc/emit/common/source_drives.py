@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Collection, Mapping
-from typing import Protocol
+from typing import Any, Protocol
 
 from robodesc.ir.model import Robot
 
@@ -21,8 +21,9 @@ MJCF_ACTUATOR = {"position": "position", "velocity": "velocity"}
 
 
 class HasGains(Protocol):
-    stiffness: float | Mapping[str, float]
-    damping: float | Mapping[str, float]
+    # Any: each target's options class types its gains its own way (a number or a regex table).
+    stiffness: Any
+    damping: Any
 
 
 def source_gains(robot: Robot) -> dict[str, tuple[float | None, float | None]]:
