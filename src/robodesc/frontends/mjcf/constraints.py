@@ -123,12 +123,27 @@ def _world(data: Any, b: int) -> Frame:
 
 
 def read_contact(r: Reading) -> None:
+    import mujoco
+
     from robodesc.frontends.mjcf.source import tag
 
+    m = r.model
     for section in r.source.root.iter("contact"):
         for el in section:
             kind = tag(el)
-            if kind == "exclude":
+            b1 = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, el.get("body1", ""))
+            b2 = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, el.get("body2", ""))
+            related = b1 > 0 and b2 > 0 and (int(m.body_parentid[b2]) == b1 or int(m.body_parentid[b1]) == b2)
+            if kind == "exclude" and related:
+                # MuJoCo never collides a body with its parent (filterparent), and the targets filter
+                # parent-child pairs their own way: nothing is lost.
+                r.info(
+                    "mjcf-contact-exclude",
+                    f"bodies {el.get('body1')!r} and {el.get('body2')!r} are parent and child, which no target collides",
+                    "contact exclude",
+                    r.source.loc(el),
+                )
+            elif kind == "exclude":
                 r.warn(
                     "mjcf-contact-exclude",
                     f"bodies {el.get('body1')!r} and {el.get('body2')!r} never collide in MuJoCo; the IR filters per "
