@@ -171,3 +171,23 @@ def test_drives(loaded: tuple[Robot, list[tuple[str, str, str]]]) -> None:
     assert (drives["slide"].kind, drives["slide"].stiffness, drives["slide"].damping) == ("position", 200, 10)
     assert (drives["wrist_roll"].kind, drives["wrist_roll"].damping) == ("velocity", 3)
     assert drives["wrist_pitch"].kind == "effort"
+
+
+def test_attached_models_and_several_top_bodies(tmp_path: Path) -> None:
+    """<attach> (MuJoCo 3.2+) places a model file's body; two top bodies hang from a world link."""
+    (tmp_path / "arm.xml").write_text(
+        '<mujoco model="arm"><worldbody><body name="base"><joint name="j" axis="0 0 1"/>'
+        '<geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.02"/></body></worldbody></mujoco>'
+    )
+    scene = tmp_path / "scene.xml"
+    scene.write_text(
+        '<mujoco model="two arms"><asset><model name="arm" file="arm.xml"/></asset><worldbody>'
+        '<body name="left" pos="0 0.3 0"><attach model="arm" body="base" prefix="l_"/></body>'
+        '<body name="right" pos="0 -0.3 0"><attach model="arm" body="base" prefix="r_"/></body>'
+        "</worldbody></mujoco>"
+    )
+    robot = load_path(str(scene)).robot
+    assert robot.root.name == "world"
+    joints = robot.joint_map()
+    assert joints["l_j"].parent == "left" and joints["r_j"].type is JointType.CONTINUOUS
+    assert pose_frame(joints["left_fixed"].origin).translation == pytest.approx((0.0, 0.3, 0.0))

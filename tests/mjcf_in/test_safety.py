@@ -108,3 +108,39 @@ def test_mujoco_errors_are_messages(tmp_path: Path) -> None:
 def test_missing_include(tmp_path: Path) -> None:
     with pytest.raises(BrokenReferenceError, match="file not found"):
         load_path(str(_model(tmp_path, '<include file="nowhere.xml"/>')))
+
+
+def test_memory_sizes_are_not_allocated(tmp_path: Path) -> None:
+    """<size memory> would make MuJoCo allocate an arena when robodesc makes MjData (loop closures)."""
+    inner = '<size memory="900G"/>' + BODY
+    result = load_path(str(_model(tmp_path, inner)))
+    assert result.robot.link("b").inertial is not None
+
+
+def test_deformables_are_removed_with_warnings(tmp_path: Path) -> None:
+    inner = (
+        '<worldbody><body name="b"><freejoint/><geom size="0.1"/></body>'
+        '<flexcomp name="cloth" type="grid" count="300 300 1" spacing="0.01 0.01 0.01" dim="2"/>'
+        "</worldbody>"
+    )
+    result = load_path(str(_model(tmp_path, inner)))
+    lost = [f for f in result.findings if f.code == "mjcf-not-held"]
+    assert len(lost) == 1 and "'cloth'" in lost[0].message and lost[0].loc is not None
+    assert [link.name for link in result.robot.links] == ["b"]
+
+
+def test_attached_model_outside_the_folder_is_refused(tmp_path: Path) -> None:
+    outside = tmp_path / "other.xml"
+    outside.write_text(f"<mujoco>{BODY}</mujoco>")
+    folder = tmp_path / "model"
+    folder.mkdir()
+    path = _model(folder, '<asset><model name="o" file="../other.xml"/></asset>' + BODY)
+    with pytest.raises(PathEscapeError, match="outside the model's folder"):
+        load_path(str(path))
+
+
+def test_attached_model_that_reads_files_is_refused(tmp_path: Path) -> None:
+    (tmp_path / "part.xml").write_text('<mujoco><include file="/etc/passwd"/></mujoco>')
+    path = _model(tmp_path, '<asset><model name="p" file="part.xml"/></asset>' + BODY)
+    with pytest.raises(ParseError, match="not supported yet"):
+        load_path(str(path))

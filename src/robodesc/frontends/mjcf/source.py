@@ -32,12 +32,19 @@ MAX_INCLUDED_FILES = 256
 # Bodies ``<replicate>`` may make in all (menagerie's largest model has a few hundred bodies).
 MAX_REPLICATED = 10_000
 # Elements removed before MuJoCo compiles the tree, and why (the message's end).
+_ALL = "URDF, SDF, USD and MJCF outputs leave it out"
+# Elements removed before MuJoCo compiles the tree: (code, why, said once per file set).
 _REMOVED = {
-    "extension": "plugins load and run native code",
-    "plugin": "plugins load and run native code",
-    "texture": "textures carry no mass or shape, and MuJoCo would decode the images",
-    "skin": "skins are drawn only",
+    "extension": ("mjcf-removed", "plugins load and run native code; no output has it", False),
+    "plugin": ("mjcf-removed", "plugins load and run native code; no output has it", False),
+    "skin": ("mjcf-removed", "skins are drawn only; no output has it", True),
+    # Deformables read mesh files and allocate per vertex and per count: removed before compiling.
+    "flexcomp": ("mjcf-not-held", f"a flexcomp (a deformable body) has no IR form: {_ALL}", False),
+    "composite": ("mjcf-not-held", f"a composite (generated bodies) has no IR form: {_ALL}", False),
+    "flex": ("mjcf-not-held", f"a flex (a deformable body) has no IR form: {_ALL}", False),
 }
+# <size> attributes that make MuJoCo allocate (the arena, the stack): not the robot's.
+_SIZE_MEMORY = ("memory", "nstack", "njmax", "nconmax", "nuserdata", "nkey")
 
 
 @dataclass(slots=True)
@@ -201,12 +208,13 @@ def _textures(source: MjcfSource) -> None:
 def _remove_unsafe(source: MjcfSource, findings: Findings) -> None:
     said: set[str] = set()
     for el in list(source.root.iter()):
-        if not isinstance(el.tag, str):
+        if not isinstance(el.tag, str) or not _attached(el, source.root):
             continue
         name = tag(el)
-        why = _REMOVED.get(name)
-        if why is not None and _attached(el, source.root):
-            if name == "texture" and name not in said:
+        parent = el.getparent()
+        assert parent is not None
+        if name == "texture":
+            if name not in said:
                 findings.info(
                     "mjcf-texture",
                     "textures are not decoded: a material's 2D texture is kept as its image file's reference, "
@@ -216,18 +224,27 @@ def _remove_unsafe(source: MjcfSource, findings: Findings) -> None:
                     stage=STAGE,
                 )
                 said.add(name)
-            elif name in ("extension", "plugin") or name not in said:
+            parent.remove(el)
+            continue
+        removed = _REMOVED.get(name)
+        if name == "flex" and tag(parent) == "equality":
+            removed = ("mjcf-equality-not-held", f"a flex equality has no IR form: {_ALL}", False)
+        if removed is not None:
+            code, why, once = removed
+            if not once or name not in said:
                 label = el.get("name") or el.get("plugin") or el.get("instance") or ""
                 findings.warn(
-                    "mjcf-removed",
-                    f"<{name}{' ' + repr(label) if label else ''}> removed before reading ({why}); no output has it",
+                    code,
+                    f"<{name}{' ' + repr(label) if label else ''}> removed before reading: {why}",
                     element=name,
                     loc=source.loc(el),
                     stage=STAGE,
                 )
                 said.add(name)
-            el.getparent().remove(el)  # type: ignore[union-attr]
+            parent.remove(el)
             continue
+        if name == "size":
+            _drop(el, *_SIZE_MEMORY)
         for attr in ("texture", "plugin"):
             if attr in el.attrib and name in ("material", "geom", "body", "actuator", "sensor", "general", "mesh"):
                 del el.attrib[attr]
@@ -235,7 +252,7 @@ def _remove_unsafe(source: MjcfSource, findings: Findings) -> None:
             # A material that only named its texture keeps its colour.
             _drop(el, "texrepeat", "texuniform")
         if name == "layer":  # MuJoCo 3.3's <material><layer texture=...>
-            el.getparent().remove(el)  # type: ignore[union-attr]
+            parent.remove(el)
 
 
 # What MuJoCo reads as a mesh or height field file (it picks the reader by the suffix).
@@ -255,6 +272,38 @@ def _drop(el: etree._Element, *attrs: str) -> None:
             del el.attrib[attr]
 
 
+def _attached_model(source: MjcfSource, el: etree._Element, base: str, findings: Findings) -> None:
+    """An ``<asset><model file>`` that ``<attach>`` places (MuJoCo 3.2+): MuJoCo reads that file itself,
+    so it is checked here as an include is, and may not reach further files of its own."""
+    written = el.get("file")
+    parent = el.getparent()
+    if written is None or parent is None or tag(parent) != "asset":
+        return
+    path = os.path.normpath(os.path.join(base, written))
+    label = f"model {el.get('name') or written!r}"
+    if not _inside(source.folder, path):
+        raise PathEscapeError(
+            f"<model file={written!r}> lies outside the model's folder {source.folder}; refused",
+            element=label,
+            loc=source.loc(el),
+        )
+    if not os.path.exists(path):
+        raise BrokenReferenceError(f"<model file={written!r}>: file not found", element=label, loc=source.loc(el))
+    attached = parse_xml(read_file(path), path, findings)
+    if any(
+        tag(e) in ("include", "model", "mesh", "hfield", "texture", "skin", "plugin", "extension") and e.get("file")
+        for e in attached.iter()
+        if isinstance(e.tag, str)
+    ) or any(True for _ in attached.iter("plugin", "extension")):
+        raise ParseError(
+            "an attached model that reads further files (meshes, includes, models) or plugins is not supported "
+            "yet; include its elements with <include> instead",
+            element=label,
+            loc=source.loc(el),
+        )
+    el.set("file", os.path.realpath(path))
+
+
 def _attached(el: etree._Element, root: etree._Element) -> bool:
     """Whether ``el`` is still in the tree (not inside an element removed before it)."""
     node = el.getparent()
@@ -271,6 +320,8 @@ def _resolve_assets(source: MjcfSource, findings: Findings) -> None:
         assetdir = compiler.get("assetdir", assetdir)
         _drop(compiler, "meshdir", "texturedir", "assetdir")
     base = os.path.dirname(source.file)
+    for el in list(source.root.iter("model")):
+        _attached_model(source, el, base, findings)
     for el in list(source.root.iter("mesh", "hfield")):
         parent = el.getparent()
         if parent is None or tag(parent) != "asset":

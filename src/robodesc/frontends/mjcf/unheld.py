@@ -11,13 +11,6 @@ _ALL = "URDF, SDF, USD and MJCF outputs leave it out"
 _LOST = {
     ("tendon", "fixed"): f"a fixed tendon (a linear coupling of joints, and what acts on it) has no IR form: {_ALL}",
     ("tendon", "spatial"): f"a spatial tendon (a cable through sites) has no IR form: {_ALL}",
-    ("deformable", "flex"): f"a flex (deformable body) has no IR form: {_ALL}",
-    ("deformable", "skin"): f"a skin has no IR form: {_ALL}",
-    ("body", "flexcomp"): f"a flexcomp (deformable body) has no IR form: {_ALL}",
-    ("body", "composite"): f"a composite (generated bodies) has no IR form: {_ALL}",
-    ("worldbody", "flexcomp"): f"a flexcomp (deformable body) has no IR form: {_ALL}",
-    ("worldbody", "composite"): f"a composite (generated bodies) has no IR form: {_ALL}",
-    ("body", "light"): "a light is scene lighting: each target's scene has its own",
 }
 # Sections read by other modules or with nothing robot-specific, that need no warning.
 _OPTIONS = {"option", "size", "visual", "statistic", "custom"}
@@ -31,7 +24,7 @@ def warn_unheld(r: Reading) -> None:
         parent = el.getparent()
         key = (tag(parent) if parent is not None else "", tag(el))
         lost = _LOST.get(key)
-        if lost is not None and key[1] != "light":
+        if lost is not None:
             label = el.get("name") or ""
             r.warn("mjcf-not-held", lost, f"{key[1]}{' ' + repr(label) if label else ''}", r.source.loc(el))
         elif key[0] == "mujoco" and key[1] in _OPTIONS and key[1] not in said_options and len(el.attrib) + len(el):
