@@ -98,14 +98,14 @@ def _read_body(r: Reading, b: int, is_root: bool) -> None:
         previous, here, first = child, Frame(), False
     if first and not is_root:
         # A body welded to its parent: a fixed joint (MuJoCo's bodies without joints).
-        jname = r.unique(f"{name}_fixed" if f"{name}_fixed" not in r.joint_names else name, r.joint_names)
+        jname = r.unique(f"{name}_fixed", r.joint_names)
         r.robot.joints.append(Joint(jname, JointType.FIXED, previous, name, origin=pose(here), src=loc))
     r.link_of[b] = name
     r.content[b] = inverse(translation(anchor))
-    link = Link(name=name, inertial=_inertial(r, b), src=loc)
-    if name != (r.name("body", b) or name) and r.name("body", b):
-        link.display_name = r.name("body", b)
-    r.robot.links.append(link)
+    written = r.name("body", b)
+    # A name made unique (a body named as a joint's intermediate link) keeps the written one.
+    display = written if written is not None and written != name else None
+    r.robot.links.append(Link(name=name, inertial=_inertial(r, b), display_name=display, src=loc))
 
 
 def _sub(a: tuple[float, ...], b: tuple[float, ...]) -> tuple[float, float, float]:
