@@ -144,3 +144,14 @@ def test_attached_model_that_reads_files_is_refused(tmp_path: Path) -> None:
     path = _model(tmp_path, '<asset><model name="p" file="part.xml"/></asset>' + BODY)
     with pytest.raises(ParseError, match="not supported yet"):
         load_path(str(path))
+
+
+def test_mujoco_errors_point_at_the_named_element(tmp_path: Path) -> None:
+    path = tmp_path / "model.xml"
+    path.write_text(
+        '<mujoco>\n<worldbody>\n<body name="b"><joint name="knee"/><geom size="0.1"/></body>\n</worldbody>\n'
+        '<actuator>\n<position name="act" joint="nothere"/>\n</actuator>\n</mujoco>\n'
+    )
+    with pytest.raises(ParseError, match="unknown transmission target 'nothere'") as err:
+        load_path(str(path))
+    assert err.value.loc is not None and err.value.loc.line == 6

@@ -15,6 +15,7 @@ wrong, and that is a warning.
 
 from __future__ import annotations
 
+import re
 from typing import TYPE_CHECKING
 
 from lxml import etree
@@ -25,6 +26,8 @@ from robodesc.ir.diagnostics import Findings, ParseError
 if TYPE_CHECKING:
     import mujoco
 
+_NAMED = re.compile(r"Element name '([^']+)'")
+_LINE = re.compile(r",? line \d+")
 _PLACEHOLDER = "0 0 0  0.001 0 0  0 0.001 0  0 0 0.001"
 
 
@@ -36,10 +39,15 @@ def compile_model(source: MjcfSource, findings: Findings) -> mujoco.MjModel:
     try:
         return mujoco.MjModel.from_xml_string(xml)
     except ValueError as exc:
-        # MuJoCo's message names the element ("Error: ... Element 'body', line 7"): the line is in
-        # the expanded text, so the element name is what helps.
+        # MuJoCo's message ends "Element name 'knee', id 3, line 7": the line is in the expanded text
+        # MuJoCo was given, so the element is found by its name in the files it was written in.
         message = str(exc).strip().replace("\n", "; ")
-        raise ParseError(f"MuJoCo cannot compile this model: {message}", loc=source.loc(source.root)) from None
+        named = _NAMED.search(message)
+        where = source.root
+        if named is not None:
+            where = next((el for el in source.root.iter() if el.get("name") == named.group(1)), source.root)
+        message = _LINE.sub("", message)
+        raise ParseError(f"MuJoCo cannot compile this model: {message}", loc=source.loc(where)) from None
 
 
 def _placeholders(source: MjcfSource, findings: Findings) -> etree._Element:
