@@ -38,7 +38,8 @@ def read_sites(r: Reading) -> set[str]:
     for s in range(m.nsite):
         b = int(m.site_bodyid[s])
         link = r.link_of.get(b)
-        if link is None or (b == 0 and link not in r.link_names):
+        if link is None or link not in r.link_names:
+            _in_world(r, "site", s)
             continue
         name = r.unique(r.name("site", s) or f"site{s}", taken)
         origin = pose(r.content[b] @ frame(m.site_pos[s], m.site_quat[s]))
@@ -53,6 +54,7 @@ def read_cameras(r: Reading) -> None:
         b = int(m.cam_bodyid[c])
         link = r.link_of.get(b)
         if link is None or link not in r.link_names:
+            _in_world(r, "camera", c)
             continue
         name = r.name("camera", c) or f"camera{c}"
         placed = r.content[b] @ frame(m.cam_pos[c], m.cam_quat[c]) @ _CAMERA_TO_SENSOR
@@ -71,6 +73,17 @@ def read_cameras(r: Reading) -> None:
                 f"camera {name!r}",
                 r.loc("camera", c),
             )
+
+
+def _in_world(r: Reading, kind: str, index: int) -> None:
+    """A site or camera of the world itself (a scene's), when no link stands for the world."""
+    name = r.name(kind, index) or f"{kind}{index}"
+    r.info(
+        "mjcf-world-frame",
+        f"a {kind} of the world, not of the robot: left out (the robot's root is not fixed to a world link)",
+        f"{kind} {name!r}",
+        r.loc(kind, index),
+    )
 
 
 def read_sensors(r: Reading, sites: set[str]) -> None:
