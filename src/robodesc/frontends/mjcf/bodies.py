@@ -63,6 +63,14 @@ def _read_body(r: Reading, b: int, is_root: bool) -> None:
     name = r.unique(r.name("body", b) or f"body{b}", r.link_names)
     loc = r.loc("body", b)
     parent = int(m.body_parentid[b])
+    if float(m.body_gravcomp[b]) != 0.0:
+        r.warn(
+            "mjcf-gravcomp",
+            f"gravcomp {float(m.body_gravcomp[b]):g}: MuJoCo cancels this share of the body's weight; the IR has no "
+            "such force, so in every output gravity loads the body fully",
+            f"body {name!r}",
+            loc,
+        )
     if int(m.body_mocapid[b]) >= 0:
         r.info("mjcf-mocap", "a mocap body is moved by the user in MuJoCo: it is welded here", f"body {name!r}", loc)
     placed = frame(m.body_pos[b], m.body_quat[b])  # the body in its parent's frame, at qpos0

@@ -84,6 +84,49 @@ def read_geoms(r: Reading) -> None:
             owner.collisions.append(collision)
     r.robot.materials.extend(materials.values())
     _solref(r, surfaces, links)
+    _unheld_contact(r)
+
+
+# MuJoCo's defaults of the contact parameters the IR has no field for.
+_CONDIM, _PRIORITY, _MARGIN = 3, 0, 0.0
+_SOLIMP = (0.9, 0.95, 0.001, 0.5, 2.0)
+
+
+def _unheld_contact(r: Reading) -> None:
+    """One finding each for collision bitmasks and contact parameters the IR cannot hold, counted
+    over the robot's colliding geoms (per-geom messages would repeat on every foot)."""
+    m = r.model
+    colliders = [
+        g
+        for g in range(m.ngeom)
+        if int(m.geom_bodyid[g]) in r.link_of
+        and r.link_of[int(m.geom_bodyid[g])] in r.link_names
+        and (int(m.geom_contype[g]) or int(m.geom_conaffinity[g]))
+    ]
+    masks = sorted({(int(m.geom_contype[g]), int(m.geom_conaffinity[g])) for g in colliders})
+    if len(masks) > 1 or (masks and masks[0] != (1, 1)):
+        r.warn(
+            "mjcf-collision-filter",
+            f"contype/conaffinity bitmasks {', '.join(f'{a}/{b}' for a, b in masks)} choose which geoms collide; the IR "
+            "has no collision filter: each output collides by its target's self-collision option",
+            f"robot {r.robot.name!r}",
+            r.source.loc(r.source.root),
+        )
+    counts = {
+        "condim": sum(int(m.geom_condim[g]) != _CONDIM for g in colliders),
+        "priority": sum(int(m.geom_priority[g]) != _PRIORITY for g in colliders),
+        "margin": sum(float(m.geom_margin[g]) != _MARGIN for g in colliders),
+        "solimp": sum(not _close(tuple(float(v) for v in m.geom_solimp[g]), _SOLIMP) for g in colliders),
+    }
+    given = {k: v for k, v in counts.items() if v}
+    if given:
+        r.info(
+            "mjcf-contact-params",
+            f"{', '.join(f'{k} on {v} geom(s)' for k, v in given.items())}: the IR's contact (Gazebo's terms) has no "
+            "field for these; every output uses its engine's defaults",
+            f"robot {r.robot.name!r}",
+            r.source.loc(r.source.root),
+        )
 
 
 def _close(a: tuple[float, ...], b: tuple[float, ...]) -> bool:
