@@ -23,15 +23,17 @@ DATA = Path(__file__).parent / "data"
 ROOT = Path(__file__).resolve().parents[2]
 GOLDEN = ROOT / "tests" / "mjcf" / "golden"
 MENAGERIE = os.environ.get("ROBODESC_MENAGERIE_DIR")
-# Models of menagerie covering its features: degrees and eulerseq (cassie), loop closures (cassie),
-# <general> servos, a tendon and a joint equality (panda), position servos and a free base (go1, anymal_c).
+# Models of menagerie covering its features: degrees, eulerseq, refs, ball joints and loop closures
+# (cassie), <general> servos, a tendon and a joint equality (panda), position servos and a free base
+# (go1), motors (h1), site thrusters and ellipsoids (skydio_x2). benchmarks/menagerie_input.py runs
+# a whole checkout.
 MENAGERIE_MODELS = (
     "unitree_go1/scene.xml",
     "franka_emika_panda/scene.xml",
     "agility_cassie/scene.xml",
     "universal_robots_ur5e/scene.xml",
-    "anybotics_anymal_c/scene.xml",
-    "shadow_hand/scene_right.xml",
+    "unitree_h1/scene.xml",
+    "skydio_x2/scene.xml",
 )
 
 
