@@ -25,8 +25,8 @@ GOLDEN = ROOT / "tests" / "mjcf" / "golden"
 MENAGERIE = os.environ.get("ROBODESC_MENAGERIE_DIR")
 # Models of menagerie covering its features: degrees, eulerseq, refs, ball joints and loop closures
 # (cassie), <general> servos, a tendon and a joint equality (panda), position servos and a free base
-# (go1), motors (h1), site thrusters and ellipsoids (skydio_x2). benchmarks/menagerie_input.py runs
-# a whole checkout.
+# (go1), motors (h1), site thrusters and ellipsoids (skydio_x2), inertia from mesh geoms (allegro),
+# a wrist camera (gen3). benchmarks/menagerie_input.py runs a whole checkout.
 MENAGERIE_MODELS = (
     "unitree_go1/scene.xml",
     "franka_emika_panda/scene.xml",
@@ -34,6 +34,8 @@ MENAGERIE_MODELS = (
     "universal_robots_ur5e/scene.xml",
     "unitree_h1/scene.xml",
     "skydio_x2/scene.xml",
+    "wonik_allegro/scene.xml",
+    "kinova_gen3/scene.xml",
 )
 
 
