@@ -15,9 +15,9 @@ from typing import Any
 import mujoco
 import numpy as np
 import pytest
-from tests.mjcf_in.compare import _root_shift, compare, unmatched_meshes
 
 import robodesc
+from tests.mjcf_in.compare import _root_shift, compare, unmatched_meshes
 
 DATA = Path(__file__).parent / "data"
 ROOT = Path(__file__).resolve().parents[2]
