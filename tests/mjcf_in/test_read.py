@@ -191,3 +191,22 @@ def test_attached_models_and_several_top_bodies(tmp_path: Path) -> None:
     joints = robot.joint_map()
     assert joints["l_j"].parent == "left" and joints["r_j"].type is JointType.CONTINUOUS
     assert pose_frame(joints["left_fixed"].origin).translation == pytest.approx((0.0, 0.3, 0.0))
+
+
+def test_scene_objects_are_left_out_with_a_warning(tmp_path: Path) -> None:
+    scene = tmp_path / "scene.xml"
+    scene.write_text(
+        '<mujoco model="arm on a table"><worldbody><geom name="floor" type="plane" size="5 5 0.1"/>'
+        '<body name="table" pos="0 0 0.4"><geom type="box" size="0.5 0.5 0.02"/></body>'
+        '<body name="cube" pos="0.2 0 0.5"><freejoint/><geom type="box" size="0.02 0.02 0.02"/><site name="s"/></body>'
+        '<body name="arm" pos="0 0 0.42"><geom type="cylinder" size="0.05 0.02"/>'
+        '<body name="link" pos="0 0 0.05"><joint name="j" axis="0 0 1"/><geom type="capsule" fromto="0 0 0 0.3 0 0" '
+        'size="0.02"/></body></body></worldbody></mujoco>'
+    )
+    result = load_path(str(scene))
+    robot = result.robot
+    assert robot.root.name == "arm" and robot.fixed_base is True
+    assert {link.name for link in robot.links} == {"arm", "link"}
+    found = [f for f in result.findings if f.code == "mjcf-scene-object"]
+    assert len(found) == 1 and "'table', 'cube'" in found[0].message
+    assert not [f for f in result.findings if f.code in ("mjcf-world-geom", "mjcf-world-frame")]

@@ -29,21 +29,45 @@ FREE, BALL, SLIDE, HINGE = 0, 1, 2, 3
 
 def read_bodies(r: Reading) -> None:
     m = r.model
-    top = [b for b in range(1, m.nbody) if int(m.body_parentid[b]) == 0]
-    free_top = [b for b in top if _joint_types(r, b) == [FREE]]
-    needs_world = len(top) != 1 or (_joint_types(r, top[0]) not in ([], [FREE]))
+    top = _robot_tops(r, [b for b in range(1, m.nbody) if int(m.body_parentid[b]) == 0])
     if not top:
         raise_empty(r)
+    needs_world = len(top) != 1 or (_joint_types(r, top[0]) not in ([], [FREE]))
     r.link_of[0] = WORLD
     r.content[0] = Frame()
     if needs_world:
         r.robot.links.append(Link(name=r.unique(WORLD, r.link_names), src=r.loc("body", 0)))
     else:
         root = top[0]
-        r.robot.fixed_base = root not in free_top
+        r.robot.fixed_base = _joint_types(r, root) != [FREE]
         r.robot.placement = pose(frame(m.body_pos[root], m.body_quat[root]))
     for b in range(1, m.nbody):  # parents come before children in MuJoCo's numbering
+        if int(m.body_rootid[b]) in r.dropped:
+            r.dropped.add(b)
+            continue
         _read_body(r, b, is_root=not needs_world and b == top[0])
+
+
+def _robot_tops(r: Reading, tops: list[int]) -> list[int]:
+    """The world's children that belong to the robot. A scene's objects (a top body with no joint in
+    its tree but its own free joint: a cube, a table) are left out when a body with joints is there,
+    with one warning naming them: the IR holds one robot, and a second free body has no place in it."""
+    m = r.model
+    jointed = {int(m.body_rootid[int(m.jnt_bodyid[j])]) for j in range(m.njnt) if int(m.jnt_type[j]) != FREE}
+    if not jointed:
+        return tops
+    objects = [b for b in tops if b not in jointed]
+    if objects:
+        r.dropped.update(objects)
+        names = ", ".join(repr(r.name("body", b) or f"body{b}") for b in objects)
+        r.warn(
+            "mjcf-scene-object",
+            f"{len(objects)} top-level bod{'y' if len(objects) == 1 else 'ies'} without joints of {'its' if len(objects) == 1 else 'their'} "
+            f"own ({names}): objects of the scene, not the robot; every output leaves them out",
+            "worldbody",
+            r.loc("body", objects[0]),
+        )
+    return [b for b in tops if b in jointed]
 
 
 def raise_empty(r: Reading) -> None:

@@ -37,6 +37,8 @@ class Reading:
     # Compiled joint id -> IR joint name (free joints of the root have none).
     joint_of: dict[int, str] = field(default_factory=dict)
     link_names: set[str] = field(default_factory=set)
+    # Bodies left out (a scene's objects, with their subtrees): what they hold is left out with them.
+    dropped: set[int] = field(default_factory=set)
     joint_names: set[str] = field(default_factory=set)
 
     def name(self, kind: str, index: int) -> str | None:

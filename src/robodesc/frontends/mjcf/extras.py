@@ -39,7 +39,8 @@ def read_sites(r: Reading) -> set[str]:
         b = int(m.site_bodyid[s])
         link = r.link_of.get(b)
         if link is None or link not in r.link_names:
-            _in_world(r, "site", s)
+            if b not in r.dropped:
+                _in_world(r, "site", s)
             continue
         name = r.unique(r.name("site", s) or f"site{s}", taken)
         origin = pose(r.content[b] @ frame(m.site_pos[s], m.site_quat[s]))
@@ -54,7 +55,8 @@ def read_cameras(r: Reading) -> None:
         b = int(m.cam_bodyid[c])
         link = r.link_of.get(b)
         if link is None or link not in r.link_names:
-            _in_world(r, "camera", c)
+            if b not in r.dropped:
+                _in_world(r, "camera", c)
             continue
         name = r.name("camera", c) or f"camera{c}"
         placed = r.content[b] @ frame(m.cam_pos[c], m.cam_quat[c]) @ _CAMERA_TO_SENSOR

@@ -47,6 +47,8 @@ def read_geoms(r: Reading) -> None:
         label = f"geom {r.name('geom', g) or g}"
         loc = r.loc("geom", g)
         kind = int(m.geom_type[g])
+        if b in r.dropped or (kind == PLANE and b == 0):
+            continue  # a scene's floor: each target's scene writes its own
         if owner is None:
             if kind != PLANE:
                 r.warn(
