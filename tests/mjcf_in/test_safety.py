@@ -155,3 +155,17 @@ def test_mujoco_errors_point_at_the_named_element(tmp_path: Path) -> None:
     with pytest.raises(ParseError, match="unknown transmission target 'nothere'") as err:
         load_path(str(path))
     assert err.value.loc is not None and err.value.loc.line == 6
+
+
+def test_height_fields_are_not_decoded(tmp_path: Path) -> None:
+    """A height field's PNG (or nrow x ncol samples) of any size is never given to MuJoCo."""
+    (tmp_path / "terrain.png").write_bytes(b"not a png at all")
+    inner = (
+        '<asset><hfield name="terrain" file="terrain.png" size="1 1 0.1 0.1"/>'
+        '<hfield name="huge" nrow="100000" ncol="100000" size="1 1 0.1 0.1"/></asset>'
+        '<worldbody><geom name="ground" type="hfield" hfield="terrain"/>'
+        '<body name="b"><freejoint/><geom size="0.1"/></body></worldbody>'
+    )
+    result = load_path(str(_model(tmp_path, inner)))
+    lost = [f for f in result.findings if f.code == "mjcf-shape-not-held"]
+    assert len(lost) == 1 and "'ground'" in lost[0].message

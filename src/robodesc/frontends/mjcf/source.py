@@ -255,8 +255,8 @@ def _remove_unsafe(source: MjcfSource, findings: Findings) -> None:
             parent.remove(el)
 
 
-# What MuJoCo reads as a mesh or height field file (it picks the reader by the suffix).
-_ASSET_SUFFIXES = (".stl", ".obj", ".msh", ".png")
+# What MuJoCo reads as a mesh file (it picks the reader by the suffix).
+_ASSET_SUFFIXES = (".stl", ".obj", ".msh")
 
 
 def _usable(path: str) -> bool:
@@ -322,35 +322,50 @@ def _resolve_assets(source: MjcfSource, findings: Findings) -> None:
     base = os.path.dirname(source.file)
     for el in list(source.root.iter("model")):
         _attached_model(source, el, base, findings)
-    for el in list(source.root.iter("mesh", "hfield")):
+    _remove_height_fields(source, findings)
+    for el in list(source.root.iter("mesh")):
         parent = el.getparent()
         if parent is None or tag(parent) != "asset":
             continue  # a <default>'s <mesh> holds no file
         written = el.get("file")
         if written is None:
             continue
-        folder = meshdir or assetdir
-        path = os.path.normpath(os.path.join(base, folder, written))
-        kind = tag(el)
+        path = os.path.normpath(os.path.join(base, meshdir or assetdir, written))
         name = el.get("name") or os.path.splitext(os.path.basename(written))[0]
         usable = _usable(path)
         if usable and not _inside(source.folder, path):
             findings.info(
                 "mjcf-asset-outside",
-                f"<{kind} file={written!r}> lies outside the model's folder; read as a mesh (a regular file with a "
+                f"<mesh file={written!r}> lies outside the model's folder; read as a mesh (a regular file with a "
                 "mesh suffix), as URDF meshes are",
-                element=f"{kind} {name!r}",
+                element=f"mesh {name!r}",
                 loc=source.loc(el),
                 stage=STAGE,
             )
-        if kind == "mesh":
-            source.mesh_files[name] = (written, path if usable else None)
+        source.mesh_files[name] = (written, path if usable else None)
         if not usable:
-            if kind == "mesh":
-                source.missing_meshes[name] = path
-            else:
-                raise BrokenReferenceError(
-                    f"<hfield file={written!r}>: not a readable file", element=f"hfield {name!r}", loc=source.loc(el)
-                )
+            source.missing_meshes[name] = path
             continue
         el.set("file", path)
+
+
+def _remove_height_fields(source: MjcfSource, findings: Findings) -> None:
+    """Height fields, and the geoms on them, are removed before MuJoCo compiles: the IR has no height
+    field, and MuJoCo would decode a PNG (or allocate nrow x ncol samples) of any size."""
+    for el in list(source.root.iter("hfield")):
+        parent = el.getparent()
+        if parent is not None and tag(parent) == "asset":
+            parent.remove(el)
+    for el in list(source.root.iter("geom")):
+        parent = el.getparent()
+        if parent is None or not el.get("hfield"):
+            continue
+        label = el.get("name") or el.get("hfield", "")
+        findings.warn(
+            "mjcf-shape-not-held",
+            f"a height field geom ({label!r}) has no IR shape: URDF, SDF, USD and MJCF outputs leave it out",
+            element="geom",
+            loc=source.loc(el),
+            stage=STAGE,
+        )
+        parent.remove(el)
