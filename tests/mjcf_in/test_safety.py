@@ -169,3 +169,13 @@ def test_height_fields_are_not_decoded(tmp_path: Path) -> None:
     result = load_path(str(_model(tmp_path, inner)))
     lost = [f for f in result.findings if f.code == "mjcf-shape-not-held"]
     assert len(lost) == 1 and "'ground'" in lost[0].message
+
+
+def test_include_fan_out_is_capped(tmp_path: Path) -> None:
+    """Each file includes the next one many times: a few bytes that would expand exponentially."""
+    (tmp_path / "leaf.xml").write_text('<mujoco><worldbody><body><geom size="0.1"/></body></worldbody></mujoco>')
+    for level in range(6):
+        child = "leaf.xml" if level == 0 else f"level{level - 1}.xml"
+        (tmp_path / f"level{level}.xml").write_text("<mujoco>" + f'<include file="{child}"/>' * 10 + "</mujoco>")
+    with pytest.raises(ParseError, match="more than 256 includes"):
+        load_path(str(_model(tmp_path, '<include file="level5.xml"/>')))

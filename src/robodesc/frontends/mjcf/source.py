@@ -63,6 +63,8 @@ class MjcfSource:
     # materials keep the image's reference (MuJoCo never decodes it: textures are removed).
     textures: dict[str, tuple[str, str]] = field(default_factory=dict)
     material_textures: dict[str, str] = field(default_factory=dict)
+    # How many includes were expanded (capped: a file may include another many times over).
+    included: int = 0
     # The ``model`` names of the included files, in order (a scene names its robot's file).
     included_models: list[str] = field(default_factory=list)
 
@@ -138,8 +140,9 @@ def _expand_includes(source: MjcfSource, node: etree._Element, file: str, chain:
         real = os.path.realpath(target)
         if real in chain:
             raise ParseError(f"<include file={name!r}> includes itself (through {len(chain)} files)", loc=loc)
-        if len(source.files) >= MAX_INCLUDED_FILES:
-            raise ParseError(f"more than {MAX_INCLUDED_FILES} included elements; refused", loc=loc)
+        source.included += 1
+        if source.included > MAX_INCLUDED_FILES:
+            raise ParseError(f"more than {MAX_INCLUDED_FILES} includes; refused", element="include", loc=loc)
         included = parse_xml(read_file(target), target, findings)
         if tag(included) != "mujoco":
             raise ParseError(
