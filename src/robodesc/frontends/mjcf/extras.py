@@ -37,10 +37,8 @@ def read_sites(r: Reading) -> set[str]:
     names: set[str] = set()
     for s in range(m.nsite):
         b = int(m.site_bodyid[s])
-        link = r.link_of.get(b)
-        if link is None or link not in r.link_names:
-            if b not in r.dropped:
-                _in_world(r, "site", s)
+        link = _link(r, "site", s, b)
+        if link is None:
             continue
         name = r.unique(r.name("site", s) or f"site{s}", taken)
         origin = pose(r.content[b] @ frame(m.site_pos[s], m.site_quat[s]))
@@ -53,10 +51,8 @@ def read_cameras(r: Reading) -> None:
     m = r.model
     for c in range(m.ncam):
         b = int(m.cam_bodyid[c])
-        link = r.link_of.get(b)
-        if link is None or link not in r.link_names:
-            if b not in r.dropped:
-                _in_world(r, "camera", c)
+        link = _link(r, "camera", c, b)
+        if link is None:
             continue
         name = r.name("camera", c) or f"camera{c}"
         placed = r.content[b] @ frame(m.cam_pos[c], m.cam_quat[c]) @ _CAMERA_TO_SENSOR
@@ -77,15 +73,21 @@ def read_cameras(r: Reading) -> None:
             )
 
 
-def _in_world(r: Reading, kind: str, index: int) -> None:
-    """A site or camera of the world itself (a scene's), when no link stands for the world."""
-    name = r.name(kind, index) or f"{kind}{index}"
-    r.info(
-        "mjcf-world-frame",
-        f"a {kind} of the world, not of the robot: left out (the robot's root is not fixed to a world link)",
-        f"{kind} {name!r}",
-        r.loc(kind, index),
-    )
+def _link(r: Reading, kind: str, index: int, body: int) -> str | None:
+    """The link that holds a site or camera; None (said, unless its body was left out as a scene
+    object) for one of the world itself when no link stands for the world."""
+    link = r.link_of.get(body)
+    if link is not None and link in r.link_names:
+        return link
+    if body not in r.dropped:
+        name = r.name(kind, index) or f"{kind}{index}"
+        r.info(
+            "mjcf-world-frame",
+            f"a {kind} of the world, not of the robot: left out (the robot's root is not fixed to a world link)",
+            f"{kind} {name!r}",
+            r.loc(kind, index),
+        )
+    return None
 
 
 def read_sensors(r: Reading, sites: set[str]) -> None:

@@ -38,6 +38,13 @@ _REMOVED = {
     "extension": ("mjcf-removed", "plugins load and run native code; no output has it", False),
     "plugin": ("mjcf-removed", "plugins load and run native code; no output has it", False),
     "skin": ("mjcf-removed", "skins are drawn only; no output has it", True),
+    # Information only: a material keeps its 2D texture's image file (the IR's material texture).
+    "texture": (
+        "mjcf-texture",
+        "textures are not decoded; a material's 2D texture is kept as its image file's reference, builtin "
+        "textures and skyboxes (a scene's) are left out",
+        True,
+    ),
     # Deformables read mesh files and allocate per vertex and per count: removed before compiling.
     "flexcomp": ("mjcf-not-held", f"a flexcomp (a deformable body) has no IR form: {_ALL}", False),
     "composite": ("mjcf-not-held", f"a composite (generated bodies) has no IR form: {_ALL}", False),
@@ -216,19 +223,6 @@ def _remove_unsafe(source: MjcfSource, findings: Findings) -> None:
         name = tag(el)
         parent = el.getparent()
         assert parent is not None
-        if name == "texture":
-            if name not in said:
-                findings.info(
-                    "mjcf-texture",
-                    "textures are not decoded: a material's 2D texture is kept as its image file's reference, "
-                    "builtin textures and skyboxes (a scene's) are left out",
-                    element=name,
-                    loc=source.loc(el),
-                    stage=STAGE,
-                )
-                said.add(name)
-            parent.remove(el)
-            continue
         removed = _REMOVED.get(name)
         if name == "flex" and tag(parent) == "equality":
             removed = ("mjcf-equality-not-held", f"a flex equality has no IR form: {_ALL}", False)
@@ -236,7 +230,8 @@ def _remove_unsafe(source: MjcfSource, findings: Findings) -> None:
             code, why, once = removed
             if not once or name not in said:
                 label = el.get("name") or el.get("plugin") or el.get("instance") or ""
-                findings.warn(
+                say = findings.info if code == "mjcf-texture" else findings.warn
+                say(
                     code,
                     f"<{name}{' ' + repr(label) if label else ''}> removed before reading: {why}",
                     element=name,
