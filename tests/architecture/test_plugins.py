@@ -63,7 +63,7 @@ def test_content_decides_between_frontends_of_one_suffix(tmp_path: Path, capsys:
     assert main(["inspect", str(toy), *PLUGIN]) == 0
     assert "arm" in capsys.readouterr().out
     neither = tmp_path / "other.xml"
-    neither.write_text("<mujoco/>")
+    neither.write_text("<scene/>")  # no frontend reads <scene>
     assert main(["inspect", str(neither), *PLUGIN]) == 2
     err = capsys.readouterr().err
     assert "other.xml" in err and "URDF (.urdf, .xml)" in err and "toy robots (.toy)" in err

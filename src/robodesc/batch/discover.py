@@ -1,5 +1,6 @@
 """Which files in a folder are robots, as the frontends say (``Frontend.discover``): URDF and xacro
-files whose root is a named ``<robot>`` and that no other file includes, composition YAML
+files whose root is a named ``<robot>`` and that no other file includes, MJCF files with a body or an
+include that no other file includes (menagerie's ``scene.xml``, not the robot file it includes), composition YAML
 (``robot:`` and ``links:``), ``.holo`` files. Python compositions run when read, so a folder's
 ``.py`` files are robots only with ``--run-python``. Only regular files are read: a named pipe or a
 device in the folder is passed over, never opened for reading."""
@@ -10,16 +11,26 @@ import os
 import stat
 
 from robodesc.batch.jobs import robot_stem
-from robodesc.frontends.contract import Frontend
-from robodesc.frontends.load import frontends
+from robodesc.frontends.contract import Frontend, head_of
+from robodesc.frontends.load import HEAD_BYTES, frontends
 from robodesc.ir.diagnostics import ParseError
 
 _SKIP_DIRS = {"__pycache__", "node_modules", "build", "install", "log"}
 
 
-def _frontend(lower: str, known: list[Frontend]) -> Frontend | None:
+def _frontend(path: str, known: list[Frontend]) -> Frontend | None:
+    lower = path.lower()
     matches = [f for f in known if lower.endswith(f.suffixes)]
-    return max(matches, key=lambda f: max(len(s) for s in f.suffixes if lower.endswith(s)), default=None)
+    longest = max((max(len(s) for s in f.suffixes if lower.endswith(s)) for f in matches), default=0)
+    matches = [f for f in matches if max(len(s) for s in f.suffixes if lower.endswith(s)) == longest]
+    if len(matches) > 1 and _regular(path):
+        # Several formats share the suffix (.xml: URDF and MJCF): the head of the file decides.
+        try:
+            head = head_of(path, HEAD_BYTES)
+        except (ParseError, OSError):
+            return None
+        return next((f for f in matches if f.sniff is not None and f.sniff(head)), matches[0])
+    return matches[0] if matches else None
 
 
 def _regular(path: str) -> bool:
@@ -34,7 +45,7 @@ def is_robot_file(path: str, *, run_python: bool = False) -> bool:
 
 
 def _classify(path: str, known: list[Frontend]) -> tuple[bool, list[str]]:
-    frontend = _frontend(path.lower(), known)
+    frontend = _frontend(path, known)
     if frontend is None or not _regular(path):
         return False, []
     if frontend.discover is None:

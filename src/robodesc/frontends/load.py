@@ -25,6 +25,7 @@ FRONTENDS: dict[str, str] = {
     "yaml": "robodesc.frontends.compose",
     "holo": "robodesc.frontends.holo",
     "python": "robodesc.frontends.compose.python",
+    "mjcf": "robodesc.frontends.mjcf",
 }
 
 # How much of a file the content checks see.

@@ -129,6 +129,19 @@ class Mimic:
 
 
 @dataclass(slots=True)
+class Drive:
+    """The servo the input itself puts on a joint (an MJCF ``position``/``velocity``/``motor``), in SI
+    joint space: ``stiffness`` N·m/rad (N/m), ``damping`` N·m·s/rad (N·s/m). ``kind`` is
+    ``"position"``, ``"velocity"`` or ``"effort"`` (a motor: no gains). Targets use these gains where
+    the user gives none (emit/common/source_drives.py)."""
+
+    kind: str
+    stiffness: float | None = None
+    damping: float | None = None
+    src: SourceLoc | None = None
+
+
+@dataclass(slots=True)
 class SafetyController:
     k_velocity: float
     k_position: float | None = None
@@ -162,6 +175,8 @@ class Joint:
     armature: float | None = None
     # Isaac's URDF extension: keep the child as its own body when fixed joints are merged.
     dont_collapse: bool | None = None
+    # The source's own actuator on this joint (MJCF); None: the input declares none.
+    drive: Drive | None = None
     display_name: str | None = None
     src: SourceLoc | None = None
     extensions: list[Extension] = field(default_factory=list)

@@ -14,6 +14,7 @@ from collections.abc import Collection
 
 from robodesc.emit.common.default_pose import default_pose, given_positions, pose_table, spawn_height
 from robodesc.emit.common.gains import fill_default_gains
+from robodesc.emit.common.source_drives import apply_source_gains
 from robodesc.emit.isaac.settings import IsaacSettings
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
@@ -37,4 +38,6 @@ def apply_defaults(
             settings.init_pos = (x, y, height)
     if settings.target_type != "none" and not ("stiffness" in given and "damping" in given):
         fill_default_gains(robot, settings, given, stance, floating, findings, STAGE)
+    if settings.target_type != "none":
+        apply_source_gains(robot, settings, given)  # the source's own servos (an MJCF's) over derived gains
     return stance.positions

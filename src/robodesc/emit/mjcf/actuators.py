@@ -8,7 +8,9 @@ times pi/180; nothing here converts through degrees (tests/mjcf/test_gains.py).
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
+from collections.abc import Collection
 
+from robodesc.emit.common.source_drives import MJCF_ACTUATOR
 from robodesc.emit.mjcf.context import MjcfContext, num
 from robodesc.ir.model import Joint, JointType
 from robodesc.ir.rules import lookup
@@ -21,6 +23,13 @@ def actuator_kind(ctx: MjcfContext) -> str:
     if "actuator" in ctx.given:
         return ctx.options.actuator
     return FROM_TARGET[ctx.options.target_type]
+
+
+def joint_kind(kind: str, joint: Joint, given: Collection[str]) -> str:
+    """The actuator of ``joint``: the source's own kind (``Joint.drive``) unless the user chose one."""
+    if joint.drive is None or "actuator" in given or "target_type" in given:
+        return kind
+    return MJCF_ACTUATOR.get(joint.drive.kind, kind)
 
 
 def reductions(ctx: MjcfContext) -> dict[str, float]:
@@ -58,7 +67,7 @@ def actuators(ctx: MjcfContext) -> ET.Element | None:
                     joint.src,
                 )
             continue
-        root.append(_actuator(ctx, kind, joint, gears.get(joint.name)))
+        root.append(_actuator(ctx, joint_kind(kind, joint, ctx.given), joint, gears.get(joint.name)))
     return root if len(root) else None
 
 

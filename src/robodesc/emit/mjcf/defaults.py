@@ -22,12 +22,14 @@ def defaults(ctx: MjcfContext, worldbody: ET.Element, actuator: ET.Element | Non
     joint_defaults = _pull(list(worldbody.iter("joint")), _JOINT)
     if joint_defaults:
         ET.SubElement(top, "joint", joint_defaults)
-    if actuator is not None:
-        for kind in ("position", "velocity", "motor"):
-            found = list(actuator.iter(kind))
-            pulled = _pull(found, _ACTUATOR) if found else {}
-            if pulled:
-                ET.SubElement(top, kind, pulled)
+    kinds = [k for k in ("position", "velocity", "motor") if actuator is not None and actuator.find(k) is not None]
+    # A default class holds one actuator default, which <position>, <velocity> and <motor> all write
+    # (each sets the gain and bias): with two kinds present (a source's own motors and servos) the
+    # second would overwrite the first, so nothing is pulled.
+    if actuator is not None and len(kinds) == 1:
+        pulled = _pull(list(actuator.iter(kinds[0])), _ACTUATOR)
+        if pulled:
+            ET.SubElement(top, kinds[0], pulled)
     visual = ET.SubElement(top, "default", {"class": "visual"})
     ET.SubElement(visual, "geom", group="2", contype="0", conaffinity="0")
     collision = ET.SubElement(top, "default", {"class": "collision"})

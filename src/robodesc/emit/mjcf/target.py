@@ -7,7 +7,7 @@ import os
 from typing import TYPE_CHECKING
 
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
-from robodesc.emit.mjcf.actuators import FROM_TARGET
+from robodesc.emit.mjcf.actuators import FROM_TARGET, joint_kind
 from robodesc.emit.mjcf.check import check_mjcf
 from robodesc.emit.mjcf.options import MjcfOptions
 from robodesc.emit.mjcf.scene import scene_name
@@ -30,6 +30,7 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     request.default("init_pos", robot.placement.xyz if robot.placement is not None else None)
     stance = _default_base_and_pose(robot, request, findings)
     _default_gains(robot, request, findings, stance)
+    _source_gains(robot, request, findings)
     if request.world is not None:
         _place_in_world(robot, request, stance)
     files = emit_mjcf(
@@ -112,19 +113,33 @@ def _default_gains(robot: Robot, request: EmitRequest, findings: Findings, stanc
     fill_default_gains(robot, options, request.given, stance, floating, findings, STAGE)
 
 
+def _source_gains(robot: Robot, request: EmitRequest, findings: Findings) -> None:
+    """The source's own servo gains (an MJCF's actuators) over the derived ones, where the user gave none."""
+    from robodesc.emit.common.source_drives import apply_source_gains
+
+    if request.options.target_type == "none":
+        return
+    count = apply_source_gains(robot, request.options, request.given)
+    if count:
+        findings.info(
+            "source-gains",
+            f"{count} joint(s) keep the gains of the source's own actuators (--stiffness/--damping override them)",
+            element=f"robot {robot.name!r}",
+            stage=STAGE,
+        )
+
+
 def _asked_drives(robot: Robot, request: EmitRequest) -> dict[str, tuple[float, float]]:
-    """The (kp, kv) the user's options ask of each position actuator, SI: what validation compares."""
+    """The (kp, kv) the options ask of each position actuator, SI: what validation compares."""
     options: MjcfOptions = request.options
     kind = options.actuator if "actuator" in request.given else FROM_TARGET[options.target_type]
-    if kind != "position":
-        return {}
     return {
         j.name: (
             lookup(options.stiffness, j.name, "stiffness") or 0.0,
             lookup(options.damping, j.name, "damping") or 0.0,
         )
         for j in robot.actuated_joints()
-        if j.type.dof == 1
+        if j.type.dof == 1 and joint_kind(kind, j, request.given) == "position"
     }
 
 

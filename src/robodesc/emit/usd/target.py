@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from robodesc.emit.common.source_drives import apply_source_gains
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
 from robodesc.emit.usd.check import check_usd
 from robodesc.emit.usd.layers import PAYLOAD_DIR
@@ -14,6 +15,9 @@ from robodesc.ir.model import Robot
 def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
     out = request.output("USD is written to a file: give one with -o robot.usda|.usdc|.usd")
     request.default("fix_base", robot.fixed_base)
+    if request.options.target_type != "none":
+        # The source's own servos (an MJCF's) over the constant gains, where the user gave none.
+        apply_source_gains(robot, request.options, request.given)
     from robodesc.emit.usd.emitter import emit_usd  # the writer loads when it writes
 
     findings.extend(emit_usd(robot, out, request.options))
