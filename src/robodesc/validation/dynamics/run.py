@@ -1,8 +1,8 @@
 """Run the scenarios on every file given, in the engine that reads it, and judge the runs.
 
 Which engine reads what: MuJoCo reads URDF and MJCF, Drake reads SDF (and the source URDF, for the
-source comparison), Newton reads USD (in its own interpreter, :mod:`.newton_run`). An engine that
-is not installed is a SKIP row, never a failure.
+source comparison), Newton and PhysX read USD (each in its own interpreter, :mod:`.newton_run`,
+:mod:`.physx_run`). An engine that is not installed is a SKIP row, never a failure.
 """
 
 from __future__ import annotations
@@ -18,8 +18,10 @@ from robodesc.validation.dynamics.verdict import SOURCE, judge
 from robodesc.validation.report import Status
 
 SCENARIOS = ("hold-fixed", "drop", "slide")
-# File kind (a target's name, or the suffix of a file given directly) -> engine.
-READERS = {"urdf": "mujoco", "mjcf": "mujoco", "sdf": "drake", "usd": "newton"}
+# File kind (a target's name, or the suffix of a file given directly) -> the engines that read it,
+# the first the one a file of that kind is compiled for when only that engine is asked.
+READERS = {"urdf": ("mujoco",), "mjcf": ("mujoco",), "sdf": ("drake",), "usd": ("newton", "physx")}
+ENGINES = tuple(dict.fromkeys(e for engines in READERS.values() for e in engines))
 _SUFFIXES = {
     ".urdf": "urdf",
     ".xml": "mjcf",
@@ -38,7 +40,7 @@ def kind_of(path: str) -> str | None:
 
 def engine_for(path: str) -> str | None:
     kind = kind_of(path)
-    return None if kind is None else READERS[kind]
+    return None if kind is None else READERS[kind][0]
 
 
 def run_dynamics(
@@ -58,7 +60,7 @@ def run_dynamics(
     report.info["pose_note"] = opts.defaults or "pose from the given table, else 0 clamped into limits"
     report.info["setup"] = setup.as_dict()
     started = time.perf_counter()
-    wanted = set(opts.engines) or set(READERS.values())
+    wanted = set(opts.engines) or set(ENGINES)
     scenarios = SCENARIOS if setup.floating else tuple(s for s in SCENARIOS if s != "drop")
     if not setup.floating:
         report.add("drop", Status.SKIP, "robot", "not run: fewer than three links touch the ground at the home pose")
@@ -66,10 +68,9 @@ def run_dynamics(
         scenarios = tuple(s for s in scenarios if s != "slide")
         report.add("slide", Status.SKIP, "robot", "not run: the robot has no collider, so no material to slide")
     for kind, path in files.items():
-        engine = READERS.get(kind)
-        if engine is None or engine not in wanted:
-            continue
-        report.runs.extend(_run_engine(engine, robot, path, kind, setup, opts, report, scenarios))
+        for engine in READERS.get(kind, ()):
+            if engine in wanted:
+                report.runs.extend(_run_engine(engine, robot, path, kind, setup, opts, report, scenarios))
         if source_urdf is not None and kind in ("urdf", "mjcf", "sdf"):
             src_engine = "drake" if kind == "sdf" else "mujoco"
             if not any(r.engine == src_engine and r.file == SOURCE for r in report.runs):
@@ -136,6 +137,10 @@ def _runner(engine: str) -> Runner:
         from robodesc.validation.dynamics.drake_run import run_file as drake_file
 
         return drake_file
+    if engine == "physx":
+        from robodesc.validation.dynamics.physx_run import run_file as physx_file
+
+        return physx_file
     from robodesc.validation.dynamics.newton_run import run_file as newton_file
 
     return newton_file
