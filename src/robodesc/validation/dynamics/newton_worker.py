@@ -111,10 +111,17 @@ def _run_robot(req, scenario):
     every = max(1, round(_SAMPLE / dt))
     run = {"scenario": scenario, "ok": True, "error": "", "mu": mu, "trajectory": []}
     contacts = None
+    drives = _drives(model, control, names, pose)
+    peak = {n: 0.0 for n in drives}
     for step in range(steps):
         state0.clear_forces()
         solver.step(state0, state1, control, contacts, dt)
         state0, state1 = state1, state0
+        if drives:
+            jq, jqd = state0.joint_q.numpy(), state0.joint_qd.numpy()
+            for n, (qi, di, ke, kd, target, limit) in drives.items():
+                tau = abs(ke * (target - float(jq[qi])) - kd * float(jqd[di]))
+                peak[n] = max(peak[n], min(tau, limit) if limit > 0 else tau)
         if (step + 1) % every == 0:
             jq = state0.joint_q.numpy()
             if not np.all(np.isfinite(jq)):
@@ -125,12 +132,36 @@ def _run_robot(req, scenario):
     jq = state0.joint_q.numpy()
     final = {n: float(jq[names[n][0]]) for n in pose}
     worst = max(((abs(v - pose[n]), n) for n, v in final.items()), default=(0.0, ""))
-    run.update(final_q=final, drift=worst[0], worst_joint=worst[1])
+    run.update(final_q=final, drift=worst[0], worst_joint=worst[1], peak_effort=peak)
     if floor:
         bq = state0.body_q.numpy()[root_body]
         qx, qy = float(bq[3]), float(bq[4])
         run.update(height=float(bq[2]), tilt=math.acos(max(-1.0, min(1.0, 1.0 - 2.0 * (qx * qx + qy * qy)))))
     return run
+
+
+def _drives(model, control, names, pose):
+    """Joint -> (q index, qd index, ke, kd, target, effort limit) for the driven joints: the drive's
+    effort, ke (target - q) - kd qd, is evaluated after every step (implicit drives apply it at the
+    step's end), clamped to the effort limit Newton read."""
+    ke, kd = getattr(model, "joint_target_ke", None), getattr(model, "joint_target_kd", None)
+    if ke is None or kd is None or control.joint_target_q is None:
+        return {}
+    ke, kd = ke.numpy(), kd.numpy()
+    limits = getattr(model, "joint_effort_limit", None)
+    limits = limits.numpy() if limits is not None else None
+    targets = control.joint_target_q.numpy()  # coordinate layout, as joint_q
+    q_starts, qd_starts = model.joint_q_start.numpy(), model.joint_qd_start.numpy()
+    dof_of_q = {int(q_starts[j]): int(qd_starts[j]) for j in range(len(qd_starts) - 1)}
+    out = {}
+    for n in pose:
+        qi = names[n][0]
+        di = dof_of_q.get(qi)
+        if di is None:
+            continue
+        limit = float(limits[di]) if limits is not None else 0.0
+        out[n] = (qi, di, float(ke[di]), float(kd[di]), float(targets[qi]), limit if limit < 1e30 else 0.0)
+    return out
 
 
 def _block_travel(mu, angle, setup):
