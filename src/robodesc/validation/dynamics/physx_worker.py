@@ -181,6 +181,7 @@ class _Sim:
         import ovphysx
         import ovstage
         from ovphysx import PhysX
+        from ovphysx.types import GlobalConfigKey
 
         if not _registered:
             from ovphysx.samples.python_samples.schema_support import physx_schema_paths
@@ -193,15 +194,19 @@ class _Sim:
             ovstage.population.register_usd_schemas(roots)
             _registered = True
         PhysX.set_cpu_mode(True)
+        # No worker threads: PhysX steps on the calling thread. A 13-link robot then steps in
+        # 0.7 ms instead of 12 ms on a loaded two-core machine (the threads only contend).
+        ovphysx.set_global_config(GlobalConfigKey.NUM_THREADS, 0)
         self.physx = PhysX()
+        self.queries = {}
         self.stage = ovstage.Stage("robodesc-dynamics")
         ovstage.population.open_usd(self.stage, path, ordinal=1, domains=ovstage.PopulationDomain.ALL)
         self.stage.advance_write_floor(ordinal=1).wait()
         self.physx.wait_task(self.physx.attach_ovstage(self.stage, read_ordinal=1))
-        self.physx.warmup()
-        self.physx.wait_all()
 
     def close(self):
+        for query in self.queries.values():
+            query.close().wait()
         if self.physx.is_stage_attached(self.stage):
             self.physx.wait_task(self.physx.detach_ovstage())
         self.stage.destroy()
@@ -213,9 +218,11 @@ class _Sim:
         from ovphysx.types import ObjectScope
 
         out = {a: {} for a in attributes}
-        with self.physx.read_sync(kind, attributes, scope=ObjectScope.ALL) as result:
+        if kind not in self.queries:  # one query per object type: a read per step then costs 1 ms, not 6
+            self.queries[kind] = self.physx.query(kind, scope=ObjectScope.ALL).wait()
+        with self.physx.read(self.queries[kind], attributes).wait() as result:
             paths_of = result.dictionary
-            for group in result.groups:
+            while (group := result.fetch_next().wait()) is not None:
                 if group.is_delete:
                     continue
                 name = attributes[_attr_index(group, attributes, paths_of)]
