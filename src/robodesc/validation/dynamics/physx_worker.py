@@ -19,6 +19,7 @@ linear ones in stage units. The answer is SI (rad, m, N·m).
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import os
@@ -59,7 +60,13 @@ def _inspect(usd, root_name, feet):
         linked = [t for targets in ends for t in targets if stage.GetPrimAtPath(t).HasAPI(UsdPhysics.RigidBodyAPI)]
         if len(linked) == 1:
             world_joints.append(str(prim.GetPath()))
-        kind = "angular" if prim.IsA(UsdPhysics.RevoluteJoint) else "linear" if prim.IsA(UsdPhysics.PrismaticJoint) else None
+        kind = (
+            "angular"
+            if prim.IsA(UsdPhysics.RevoluteJoint)
+            else "linear"
+            if prim.IsA(UsdPhysics.PrismaticJoint)
+            else None
+        )
         if kind is None:
             continue
         joints[str(prim.GetPath())] = (prim.GetMetadata("displayName") or prim.GetName(), kind)
@@ -137,7 +144,11 @@ def _scene_layer(folder, usd, info, weld, floor_mu, gravity=(0.0, 0.0, -9.81)):
         stage.SetDefaultPrim(stage.GetPrimAtPath("/" + info["default_prim"]))
     g = math.sqrt(sum(c * c for c in gravity))
     for scene_path in (info["scenes"] if info else []) or ["/DynamicsScene"]:
-        scene = UsdPhysics.Scene.Define(stage, scene_path) if scene_path == "/DynamicsScene" else UsdPhysics.Scene(stage.GetPrimAtPath(scene_path))
+        scene = (
+            UsdPhysics.Scene.Define(stage, scene_path)
+            if scene_path == "/DynamicsScene"
+            else UsdPhysics.Scene(stage.GetPrimAtPath(scene_path))
+        )
         scene.CreateGravityDirectionAttr().Set(Gf.Vec3f(*(c / g for c in gravity)))
         scene.CreateGravityMagnitudeAttr().Set(g / mpu)
     if info:
@@ -187,10 +198,9 @@ class _Sim:
             from ovphysx.samples.python_samples.schema_support import physx_schema_paths
 
             roots = [str(p) for p in physx_schema_paths()]
-            try:
+            # Without newton-usd-schemas, newton:* attributes (velocity limits) are unknown to the stage.
+            with contextlib.suppress(FileNotFoundError):
                 roots.append(str(ovphysx.newton_schema_root()))
-            except FileNotFoundError:
-                pass  # without newton-usd-schemas, newton:* attributes are unknown to the stage
             ovstage.population.register_usd_schemas(roots)
             _registered = True
         PhysX.set_cpu_mode(True)
@@ -203,10 +213,12 @@ class _Sim:
         ovstage.population.open_usd(self.stage, path, ordinal=1, domains=ovstage.PopulationDomain.ALL)
         self.stage.advance_write_floor(ordinal=1).wait()
         self.physx.wait_task(self.physx.attach_ovstage(self.stage, read_ordinal=1))
+        self.paths = ovstage.PathDictionary(self.stage)
 
     def close(self):
         for query in self.queries.values():
             query.close().wait()
+        self.paths.destroy()
         if self.physx.is_stage_attached(self.stage):
             self.physx.wait_task(self.physx.detach_ovstage())
         self.stage.destroy()
@@ -237,41 +249,28 @@ class _Sim:
         return out
 
     def write(self, kind, values):
-        """``values``: {attribute: {prim path: row or array}}; every mapped prim must be given."""
+        """``values``: {attribute: {prim path: row, or an array of axes for joints}}; a group
+        publishes every prim it maps, so each must be given."""
         import numpy as np
+        from ovphysx.types import SimObjectType
 
         names = list(values)
         with self.physx.write_sync(kind, names) as session:
-            paths_of = self.physx_dictionary()
             for group in session.groups:
                 table = values[names[group.attribute_index]]
-                paths = paths_of.get_path_strings(group.prim_list)
+                paths = self.paths.get_path_strings(group.prim_list)
                 fills = []
                 for i in range(group.prim_count):
                     path = paths[group.prim_offset + i]
                     if path not in table:
                         raise RuntimeError(f"no value to write for {path}")
                     fills.append(np.asarray(table[path], dtype=np.float32))
-                if len(group.tensors) == group.prim_count and kind_is_array(kind):
+                if kind == SimObjectType.ARTICULATION_JOINT:  # one tensor per joint
                     for tensor, fill in zip(group.tensors, fills, strict=True):
                         tensor.assign(fill.reshape(tuple(tensor.shape)))
                 else:
-                    tensor = group.tensors[0]
-                    tensor.assign(np.stack(fills).reshape(tuple(tensor.shape)))
+                    group.tensors[0].assign(np.stack(fills).reshape(tuple(group.tensors[0].shape)))
                 session.commit_sync(group)
-
-    def physx_dictionary(self):
-        import ovstage
-
-        if not hasattr(self, "_paths"):
-            self._paths = ovstage.PathDictionary(self.stage)
-        return self._paths
-
-
-def kind_is_array(kind):
-    from ovphysx.types import SimObjectType
-
-    return kind == SimObjectType.ARTICULATION_JOINT
 
 
 def _attr_index(group, attributes, dictionary):
@@ -286,14 +285,17 @@ def _attr_index(group, attributes, dictionary):
 
 
 def _robot_run(req, scenario, folder):
-    import numpy as np
-    from ovphysx.types import SimObjectType as T
-
     setup = req["setup"]
     floor = scenario == "drop"
     info = _inspect(req["usd"], req["root"], setup.get("feet") or ())
     mu = info["mu"]
-    _, path = _scene_layer(folder, req["usd"], info, weld=not floor, floor_mu=(mu if mu is not None else _PHYSX_DEFAULT_MU) if floor else None)
+    _, path = _scene_layer(
+        folder,
+        req["usd"],
+        info,
+        weld=not floor,
+        floor_mu=(mu if mu is not None else _PHYSX_DEFAULT_MU) if floor else None,
+    )
     sim = _Sim(path)
     try:
         return _simulate(sim, req, info, scenario, floor, mu)
@@ -319,7 +321,10 @@ def _simulate(sim, req, info, scenario, floor, mu):
     if setup["pose"] and not driven:
         return {"scenario": scenario, "ok": False, "error": "none of the robot's driven joints is in the file"}
     every_joint = props["jointPosition"]
-    target = {p: np.array([setup["pose"][driven[p][0]] * driven[p][1]]) if p in driven else np.array(v, copy=True) for p, v in every_joint.items()}
+    target = {
+        p: np.array([setup["pose"][driven[p][0]] * driven[p][1]]) if p in driven else np.array(v, copy=True)
+        for p, v in every_joint.items()
+    }
     zeros = {p: np.zeros_like(v) for p, v in every_joint.items()}
     sim.write(T.ARTICULATION_JOINT, {"jointPosition": target, "jointVelocity": zeros, "jointPositionTarget": target})
     roots = sim.read(T.ARTICULATION, ["rootPosition"])["rootPosition"]
@@ -332,7 +337,11 @@ def _simulate(sim, req, info, scenario, floor, mu):
     # Each drive's torque, from its gains as PhysX read them: PhysX's drive is implicit, so the
     # force it applied over a step is kp (target - q) - kd qd at the step's end, clamped to maxForce.
     gains = {
-        p: (float(props["jointStiffness"][p][0]), float(props["jointDamping"][p][0]), float(props["jointMaxForce"][p][0]))
+        p: (
+            float(props["jointStiffness"][p][0]),
+            float(props["jointDamping"][p][0]),
+            float(props["jointMaxForce"][p][0]),
+        )
         for p in driven
     }
     dt = setup["timestep"]
@@ -340,7 +349,6 @@ def _simulate(sim, req, info, scenario, floor, mu):
     every = max(1, round(_SAMPLE / dt))
     run = {"scenario": scenario, "ok": True, "error": "", "mu": mu, "trajectory": []}
     peak = {driven[p][0]: 0.0 for p in driven}
-    root_path = info["root"]
     heights = []
     for step in range(steps):
         sim.physx.step_sync(dt)

@@ -4,8 +4,8 @@ verdicts drawn from them (:class:`~robodesc.validation.report.Check` rows, as ev
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 from collections.abc import Mapping
+from dataclasses import dataclass, field
 from typing import Any
 
 from robodesc.validation.report import Check, Status

@@ -48,6 +48,9 @@ class Thresholds:
     friction_rel: float = 1e-3
     # output against its source in the same engine (joint trajectories during hold; rad or m).
     source_traj: float = 1e-3
+    # A drive saturates when its peak effort reaches this share of the joint's effort limit (an
+    # engine clamps at the limit itself; 0.99 keeps a float's rounding from hiding it).
+    saturated: float = 0.99
 
 
 @dataclass(slots=True)
