@@ -26,7 +26,8 @@ from typing import Any
 from robodesc.ir.diagnostics import Findings, RobodescError
 from robodesc.ir.model import Robot
 from robodesc.targets import TARGETS, target_spec
-from robodesc.validation.dynamics import READERS, DynamicsOptions, DynamicsReport, kind_of, run_dynamics
+from robodesc.validation.dynamics import READERS, DynamicsOptions, DynamicsReport, run_dynamics
+from robodesc.validation.dynamics.run import folder_files, joining
 from robodesc.validation.dynamics.source import write_source
 
 # Engines run when none are named: cheap to import, and together they read two formats.
@@ -62,9 +63,9 @@ def run_for(
     files: dict[str, str] = {}
     if target in READERS:
         files[target] = out
-    elif target_spec(target).folder and (usd := folder_usd(out)) is not None:
-        files["usd"] = usd
-    also = ("physx",) if "usd" in files else ()
+    elif target_spec(target).folder:
+        files.update(folder_files(out))
+    also = joining(files)
     engines = tuple(opts.engines) or tuple(dict.fromkeys((*DEFAULT_ENGINES, *_engine_of(target), *also)))
     robot = _source_robot(source, options) or robot
     # The checked file's drives are what its target wrote: a target that writes its options'
@@ -179,16 +180,6 @@ def _gains_for(name: str, opts: DynamicsOptions, options: Mapping[str, Any]) -> 
 
 def _engine_of(target: str) -> tuple[str, ...]:
     return READERS.get(target, ())
-
-
-def folder_usd(folder: str) -> str | None:
-    """The USD at the top of a folder output (the Isaac folder's robot), when there is exactly one."""
-    try:
-        names = sorted(os.listdir(folder))
-    except OSError:
-        return None
-    found = [os.path.join(folder, n) for n in names if kind_of(n) == "usd" and os.path.isfile(os.path.join(folder, n))]
-    return found[0] if len(found) == 1 else None
 
 
 def _options_for(main: str, other: str, options: Mapping[str, Any]) -> dict[str, Any]:

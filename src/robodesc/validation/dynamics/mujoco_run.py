@@ -112,13 +112,14 @@ def _simulate(model: Any, data: Any, setup: Setup, run: Run, addr: dict[str, int
     every = max(1, round(_SAMPLE / setup.timestep))
     heights: list[tuple[float, float]] = []
     drives = _drive_joints(model)
-    peak = np.zeros(model.nu)
+    dofs = np.array(list(drives), dtype=int)
+    peak = np.zeros(len(dofs))
     for step in range(steps):
         mujoco.mj_step(model, data)
         if not np.all(np.isfinite(data.qpos)):
             run.ok, run.error = False, f"state not finite after {(step + 1) * setup.timestep:.3g} s"
             return False
-        np.maximum(peak, np.abs(data.actuator_force), out=peak)
+        np.maximum(peak, np.abs(data.qfrc_actuator[dofs]), out=peak)
         if (step + 1) % every == 0:
             run.trajectory.append(((step + 1) * setup.timestep, {n: float(data.qpos[a]) for n, a in addr.items()}))
             if root is not None:
@@ -127,18 +128,21 @@ def _simulate(model: Any, data: Any, setup: Setup, run: Run, addr: dict[str, int
     run.final_q = {n: float(data.qpos[a]) for n, a in addr.items()}
     worst = max(((abs(q - setup.pose[n]), n) for n, q in run.final_q.items()), default=(0.0, ""))
     run.drift, run.worst_joint = worst
-    run.set_peaks({name: float(peak[i]) for i, name in drives.items()}, setup.effort)
+    run.set_peaks({name: float(peak[i]) for i, name in enumerate(drives.values())}, setup.effort)
     return True
 
 
 def _drive_joints(model: Any) -> dict[int, str]:
-    """Actuator index -> the joint it drives (the runner's drives, or an MJCF's own)."""
+    """DOF address -> name of each joint an actuator drives (the runner's drives, or an MJCF's own).
+    Its effort is read from ``qfrc_actuator``: what the joint receives, after the joint's own
+    ``actuatorfrcrange`` (the URDF's effort limit) clamps it; ``actuator_force`` is not clamped."""
     out = {}
     for i in range(model.nu):
         if int(model.actuator_trntype[i]) == int(mujoco.mjtTrn.mjTRN_JOINT):
-            name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, int(model.actuator_trnid[i, 0]))
+            jid = int(model.actuator_trnid[i, 0])
+            name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, jid)
             if name:
-                out[i] = name
+                out[int(model.jnt_dofadr[jid])] = name
     return out
 
 

@@ -22,6 +22,11 @@ SCENARIOS = ("hold-fixed", "drop", "slide")
 # the first the one a file of that kind is compiled for when only that engine is asked.
 READERS = {"urdf": ("mujoco",), "mjcf": ("mujoco",), "sdf": ("drake",), "usd": ("newton", "physx")}
 ENGINES = tuple(dict.fromkeys(e for engines in READERS.values() for e in engines))
+# Engines that join the default ones whenever a file they read is checked: PhysX, Isaac's engine,
+# for every USD (a subprocess, started only then). Newton joins only for its own target.
+JOINS_WHEN_READ = ("physx",)
+# What a folder output offers the engines: the USD at its top (the Isaac folder's robot).
+_FOLDER_KINDS = ("usd",)
 _SUFFIXES = {
     ".urdf": "urdf",
     ".xml": "mjcf",
@@ -36,6 +41,25 @@ _SUFFIXES = {
 def kind_of(path: str) -> str | None:
     """The file kind for a path (by suffix), or None when no engine here reads it."""
     return _SUFFIXES.get(os.path.splitext(path)[1].lower())
+
+
+def folder_files(folder: str) -> dict[str, str]:
+    """kind -> path for the files at the top of a folder output an engine reads (one per kind)."""
+    try:
+        names = sorted(os.listdir(folder))
+    except OSError:
+        return {}
+    found: dict[str, list[str]] = {}
+    for name in names:
+        kind = kind_of(name)
+        if kind in _FOLDER_KINDS and os.path.isfile(os.path.join(folder, name)):
+            found.setdefault(kind, []).append(os.path.join(folder, name))
+    return {kind: paths[0] for kind, paths in found.items() if len(paths) == 1}
+
+
+def joining(files: Mapping[str, str]) -> tuple[str, ...]:
+    """The engines of :data:`JOINS_WHEN_READ` that read one of ``files``' kinds."""
+    return tuple(e for e in JOINS_WHEN_READ if any(e in READERS.get(kind, ()) for kind in files))
 
 
 def engine_for(path: str) -> str | None:
