@@ -45,7 +45,8 @@ def _pendulum(tmp_path: Path, effort: float) -> Path:
 
 # Stiff and overdamped: the arm sags by m g l / kp = 4.9 mrad without ringing, so the drive's peak is
 # the static m g l up to the deceleration of the sag (I q'' of order 1e-3 of m g l).
-GAINS = {"stiffness": 1000.0, "damping": 200.0, "pose": {"hinge": 0.0}}
+KP, KD = 1000.0, 200.0
+GAINS = {"stiffness": KP, "damping": KD, "pose": {"hinge": 0.0}}
 
 
 def test_the_hold_effort_of_a_horizontal_arm_is_m_g_l_in_mujoco_and_drake(tmp_path: Path) -> None:
