@@ -8,9 +8,9 @@ import os
 from typing import Any
 
 from robodesc.ir.model import Robot
-from robodesc.validation.dynamics.result import Run, run_from_json
+from robodesc.validation.dynamics.result import Run
 from robodesc.validation.dynamics.scenarios import Setup
-from robodesc.validation.dynamics.worker import call_worker, warp_cache
+from robodesc.validation.dynamics.worker import run_scenarios
 
 ENGINE = "newton"
 _TIMEOUT = 600.0  # s: a first run compiles warp kernels
@@ -33,14 +33,4 @@ def run_file(
         return (
             "not available: no Newton interpreter (build it with tests/consumers/run.sh, or set ROBODESC_NEWTON_PYTHON)"
         )
-    roots = robot.root_links()
-    request = {
-        "usd": os.path.abspath(path),
-        "root": roots[0].name if roots else "",
-        "scenarios": list(scenarios),
-        "setup": setup.as_dict(),
-    }
-    answer = call_worker(python, "newton_worker.py", request, "Newton", _TIMEOUT, {"WARP_CACHE_PATH": warp_cache()})
-    if isinstance(answer, str):
-        return answer
-    return [run_from_json(ENGINE, kind, raw, setup.effort) for raw in answer["runs"]]
+    return run_scenarios(ENGINE, "Newton", "newton_worker.py", python, robot, path, kind, setup, scenarios, _TIMEOUT)

@@ -13,11 +13,7 @@ USD's own units, converted by Newton), and the colliders' physics materials. The
 
 from __future__ import annotations
 
-import json
 import math
-import sys
-import time
-import traceback
 import warnings
 
 _SAMPLE = 0.01
@@ -191,42 +187,24 @@ def _block_travel(mu, angle, setup):
 
 
 def _slide(req, mu):
-    setup = req["setup"]
+    from worker_loop import slide_run
+
     if mu is None:
         _, mu = _load(req, floating=False)
-    if mu is None:
-        return {"scenario": "slide", "ok": False, "error": "Newton reads no collider from the USD"}
-    stick, slide = math.atan(0.7 * mu), math.atan(1.3 * mu)
-    return {
-        "scenario": "slide",
-        "ok": True,
-        "error": "",
-        "mu": mu,
-        "stick": _block_travel(mu, stick, setup),
-        "slide": _block_travel(mu, slide, setup),
-    }
+    return slide_run("Newton", mu, lambda angle: _block_travel(mu, angle, req["setup"]))
 
 
-def main():
-    req = json.loads(sys.stdin.read())
-    try:
-        import newton
-    except ImportError as exc:
-        print(json.dumps({"error": f"not available: {exc}"}))
-        return
-    runs = []
-    for scenario in req["scenarios"]:
-        started = time.perf_counter()
-        try:
-            known = [r["mu"] for r in runs if r.get("mu") is not None]
-            run = _slide(req, known[0] if known else None) if scenario == "slide" else _run_robot(req, scenario)
-        except Exception as exc:  # one scenario's failure is a row, not the end of the others
-            detail = traceback.format_exception_only(type(exc), exc)[-1].strip()[:300]
-            run = {"scenario": scenario, "ok": False, "error": detail}
-        run["seconds"] = time.perf_counter() - started
-        runs.append(run)
-    print(json.dumps({"newton": newton.__version__, "runs": runs}))
+def _version():
+    import newton
+
+    return newton.__version__
+
+
+def _scenario(req, name, mu):
+    return _slide(req, mu) if name == "slide" else _run_robot(req, name)
 
 
 if __name__ == "__main__":
-    main()
+    from worker_loop import serve
+
+    serve("newton", _version, _scenario)

@@ -8,13 +8,12 @@ ovphysx's write API, never in the file."""
 
 from __future__ import annotations
 
-import os
 from typing import Any
 
 from robodesc.ir.model import Robot
-from robodesc.validation.dynamics.result import Run, run_from_json
+from robodesc.validation.dynamics.result import Run
 from robodesc.validation.dynamics.scenarios import Setup
-from robodesc.validation.dynamics.worker import call_worker, warp_cache
+from robodesc.validation.dynamics.worker import run_scenarios
 from robodesc.validation.physx_python import physx_python
 
 ENGINE = "physx"
@@ -31,15 +30,4 @@ def run_file(
     python = physx_python(getattr(options, "physx_python", None))
     if python is None:
         return NOT_AVAILABLE
-    roots = robot.root_links()
-    request = {
-        "usd": os.path.abspath(path),
-        "root": roots[0].name if roots else "",
-        "scenarios": list(scenarios),
-        "setup": setup.as_dict(),
-    }
-    # ovphysx builds warp arrays for its reads: a cache it can write.
-    answer = call_worker(python, "physx_worker.py", request, "PhysX", _TIMEOUT, {"WARP_CACHE_PATH": warp_cache()})
-    if isinstance(answer, str):
-        return answer
-    return [run_from_json(ENGINE, kind, raw, setup.effort) for raw in answer["runs"]]
+    return run_scenarios(ENGINE, "PhysX", "physx_worker.py", python, robot, path, kind, setup, scenarios, _TIMEOUT)

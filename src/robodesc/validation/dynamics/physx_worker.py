@@ -20,13 +20,9 @@ linear ones in stage units. The answer is SI (rad, m, N·m).
 from __future__ import annotations
 
 import contextlib
-import json
 import math
 import os
-import sys
 import tempfile
-import time
-import traceback
 
 _SAMPLE = 0.01
 _BOX, _BOX_H = 0.05, 0.01  # the slide block's half length and height (mujoco_run: why flat)
@@ -411,20 +407,12 @@ def _block_travel(mu, angle, setup, folder):
 
 
 def _slide(req, mu, folder):
+    from worker_loop import slide_run
+
     setup = req["setup"]
     if mu is None:
         mu = _inspect(req["usd"], req["root"], setup.get("feet") or ())["mu"]
-    if mu is None:
-        return {"scenario": "slide", "ok": False, "error": "PhysX reads no collider from the USD"}
-    stick, slide = math.atan(0.7 * mu), math.atan(1.3 * mu)
-    return {
-        "scenario": "slide",
-        "ok": True,
-        "error": "",
-        "mu": mu,
-        "stick": _block_travel(mu, stick, setup, _sub(folder, "stick")),
-        "slide": _block_travel(mu, slide, setup, _sub(folder, "slide")),
-    }
+    return slide_run("PhysX", mu, lambda angle: _block_travel(mu, angle, setup, _sub(folder, f"{angle:.6f}")))
 
 
 def _sub(folder, name):
@@ -433,30 +421,19 @@ def _sub(folder, name):
     return path
 
 
-def main():
-    req = json.loads(sys.stdin.read())
-    try:
-        import ovphysx
-    except ImportError as exc:
-        print(json.dumps({"error": f"not available: {exc}"}))
-        return
-    runs = []
-    with tempfile.TemporaryDirectory(prefix="robodesc-physx-") as folder:
-        for scenario in req["scenarios"]:
-            started = time.perf_counter()
-            try:
-                if scenario == "slide":
-                    known = [r["mu"] for r in runs if r.get("mu") is not None]
-                    run = _slide(req, known[0] if known else None, _sub(folder, scenario))
-                else:
-                    run = _robot_run(req, scenario, _sub(folder, scenario))
-            except Exception as exc:  # one scenario's failure is a row, not the end of the others
-                detail = traceback.format_exception_only(type(exc), exc)[-1].strip()[:300]
-                run = {"scenario": scenario, "ok": False, "error": detail}
-            run["seconds"] = time.perf_counter() - started
-            runs.append(run)
-    print(json.dumps({"physx": ovphysx.__version__, "runs": runs}))
+def _version():
+    import ovphysx
+
+    return ovphysx.__version__
 
 
 if __name__ == "__main__":
-    main()
+    from worker_loop import serve
+
+    with tempfile.TemporaryDirectory(prefix="robodesc-physx-") as scratch:
+
+        def _scenario(req, name, mu):
+            folder = _sub(scratch, name)
+            return _slide(req, mu, folder) if name == "slide" else _robot_run(req, name, folder)
+
+        serve("physx", _version, _scenario)

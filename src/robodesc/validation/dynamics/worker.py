@@ -9,6 +9,38 @@ import os
 import subprocess
 from typing import Any
 
+from robodesc.ir.model import Robot
+from robodesc.validation.dynamics.result import Run, run_from_json
+from robodesc.validation.dynamics.scenarios import Setup
+
+
+def run_scenarios(
+    engine: str,
+    label: str,
+    worker: str,
+    python: str,
+    robot: Robot,
+    path: str,
+    kind: str,
+    setup: Setup,
+    scenarios: tuple[str, ...],
+    timeout: float,
+) -> list[Run] | str:
+    """The runner contract of :mod:`.run` for an engine whose ``worker`` file runs in ``python``:
+    the runs, or why there are none. Both workers take the same request."""
+    roots = robot.root_links()
+    request = {
+        "usd": os.path.abspath(path),
+        "root": roots[0].name if roots else "",
+        "scenarios": list(scenarios),
+        "setup": setup.as_dict(),
+    }
+    # Warp (Newton's kernels; ovphysx builds warp arrays for its reads) needs a cache it can write.
+    answer = call_worker(python, worker, request, label, timeout, {"WARP_CACHE_PATH": warp_cache()})
+    if isinstance(answer, str):
+        return answer
+    return [run_from_json(engine, kind, raw, setup.effort) for raw in answer["runs"]]
+
 
 def call_worker(
     python: str, worker: str, request: dict[str, Any], engine: str, timeout: float, env: dict[str, str] | None = None
