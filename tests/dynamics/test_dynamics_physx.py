@@ -11,12 +11,14 @@ from pathlib import Path
 import pytest
 
 import robodesc
+from robodesc.validation.dynamics import DynamicsOptions, run_dynamics
+from robodesc.validation.dynamics.run import folder_files, joining
 from robodesc.validation.dynamics.scenarios import Thresholds
 from robodesc.validation.physx_python import physx_python
 from robodesc.validation.report import Status
 
 from ..conftest import EXAMPLES
-from .test_dynamics_saturation import GAINS, HOLD, KD, KP, _pendulum
+from .test_dynamics_saturation import HOLD, KD, KP, _pendulum
 
 needs_physx = pytest.mark.skipif(
     physx_python() is None, reason="no interpreter with ovphysx (tests/consumers/run.sh builds one)"
@@ -65,21 +67,32 @@ def test_the_arm_in_the_isaac_folder_holds_in_physx_as_in_mujoco() -> None:
 
 
 @needs_physx
-def test_the_hold_effort_of_a_horizontal_arm_is_m_g_l_in_physx(tmp_path: Path) -> None:
+def test_the_hold_effort_of_a_horizontal_arm_is_m_g_l_in_physx_and_the_file_is_untouched(tmp_path: Path) -> None:
+    """PhysX reads the USD as written: the scenario's weld, gravity and targets go in a layer over
+    it and through ovphysx's write API, so the file's bytes are the same after the run."""
     urdf = _pendulum(tmp_path, effort=2 * HOLD)
-    # The USD carries the gains (validate --stiffness compiles them into a target that writes drives).
-    dyn = robodesc.check(
-        str(urdf),
-        "usd",
-        stiffness=GAINS["stiffness"],
-        damping=GAINS["damping"],
-        dynamics={"engines": ("physx",), **GAINS},
-    ).dynamics
-    assert dyn is not None
-    hold = _runs(dyn)[("physx", "hold-fixed")]
-    assert hold.peak_effort["hinge"] == pytest.approx(HOLD, rel=0.02)
+    usd = tmp_path / "pendulum.usda"
+    robodesc.compile_to(str(urdf), "usd", str(usd), stiffness=KP, damping=KD)
+    before = usd.read_bytes()
+    robot = robodesc.load(str(urdf))
+    options = DynamicsOptions(engines=("physx",), pose={"hinge": 0.0}, stiffness=KP, damping=KD)
+    dyn = run_dynamics(robot, {"usd": str(usd)}, options)
+    assert usd.read_bytes() == before
+    (hold,) = [r for r in dyn.runs if r.scenario == "hold-fixed"]
+    assert hold.engine == "physx" and hold.peak_effort["hinge"] == pytest.approx(HOLD, rel=0.02)
     assert hold.saturation["hinge"] == pytest.approx(0.5, rel=0.02)
     assert hold.drift == pytest.approx(HOLD / KP * (1.0 - math.exp(-KP / KD)), rel=0.05)
+
+
+def test_the_isaac_folders_usd_is_what_physx_reads(tmp_path: Path) -> None:
+    folder = tmp_path / "robot"
+    folder.mkdir()
+    (folder / "robot.usda").write_text("#usda 1.0\n")
+    (folder / "robot.urdf").write_text("<robot/>")
+    assert folder_files(str(folder)) == {"usd": str(folder / "robot.usda")}
+    assert joining(folder_files(str(folder))) == ("physx",) and joining({"urdf": "x.urdf"}) == ()
+    (folder / "other.usd").write_text("")
+    assert folder_files(str(folder)) == {}  # two USD files: which robot is meant is not known
 
 
 def test_without_an_interpreter_physx_is_a_skip_row_saying_how_to_get_it(
