@@ -16,6 +16,7 @@ import robodesc
 from robodesc.validation.dynamics import Run
 from robodesc.validation.dynamics.result import DynamicsReport
 from robodesc.validation.dynamics.scenarios import Thresholds
+from robodesc.validation.dynamics.verdict import _drop as judge_drop
 from robodesc.validation.dynamics.verdict import _saturation
 from robodesc.validation.report import Status
 
@@ -126,3 +127,21 @@ def test_gains_without_dynamics_are_refused(tmp_path: Path) -> None:
     cmd = [sys.executable, "-m", "robodesc", "validate", str(urdf), "-t", "urdf", "--stiffness", "60"]
     done = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
     assert done.returncode != 0 and "add --dynamics" in done.stderr
+
+
+def _drop(engine: str, height: float, mass: float) -> Run:
+    run = Run(engine, "usd" if engine == "physx" else "urdf", "drop", height=height, tilt=0.0)
+    run.mass = mass
+    return run
+
+
+def test_drops_that_settle_apart_with_different_masses_say_so() -> None:
+    """ANYmal C: PhysX reads 99.5 kg where the URDF says 52.1 (issue 38): the row says mass, not contact."""
+    report = DynamicsReport("r", runs=[_drop("mujoco", 0.4249, 52.13), _drop("physx", 0.4617, 99.51)])
+    judge_drop(report, report.runs, Thresholds())
+    (row,) = [c for c in report.checks if c.name == "agree:drop"]
+    assert row.status is Status.WARN and "different masses" in row.message and "99.51 kg" in row.message
+    report = DynamicsReport("r", runs=[_drop("mujoco", 0.40, 52.13), _drop("physx", 0.46, 52.14)])
+    judge_drop(report, report.runs, Thresholds())
+    (row,) = [c for c in report.checks if c.name == "agree:drop"]
+    assert "contact models differ" in row.message

@@ -213,6 +213,7 @@ def _drop(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
     if kind != "mjcf":
         s.option.integrator = _INTEGRATOR
     model = s.compile()
+    run.mass = float(model.body_mass.sum())
     data = mujoco.MjData(model)
     addr = _start(model, data, setup)
     root = _free_root(model)

@@ -344,6 +344,9 @@ def _simulate(sim, req, info, scenario, floor, mu):
     steps = max(1, round(setup["duration"] / dt))
     every = max(1, round(_SAMPLE / dt))
     run = {"scenario": scenario, "ok": True, "error": "", "mu": mu, "trajectory": []}
+    if floor:  # the total mass PhysX read: a drop that settles apart may weigh apart
+        masses = sim.read(T.ARTICULATION_LINK, ["mass"])["mass"]
+        run["mass"] = float(sum(float(m[0]) for m in masses.values()))
     peak = {driven[p][0]: 0.0 for p in driven}
     heights = []
     for step in range(steps):

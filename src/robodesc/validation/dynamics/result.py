@@ -46,6 +46,7 @@ class Run:
     tilt: float | None = None  # angle between the root's z and the world's, rad
     settle: float | None = None  # drop: time after which the root height stays within SETTLE_BAND of its end, s
     mu: float | None = None  # friction the engine gave the robot's colliders
+    mass: float | None = None  # drop: the robot's total mass as the engine read it, kg
     stick: float | None = None  # slide: distance moved on the "sticks" plane, m
     slide: float | None = None  # slide: distance moved on the "slides" plane, m
     seconds: float = 0.0
@@ -61,6 +62,8 @@ class Run:
         keys = ("engine", "file", "scenario", "ok", "error", "drift", "worst_joint", "height", "tilt", "mu")
         out: dict[str, Any] = {k: getattr(self, k) for k in keys}
         out.update(stick=self.stick, slide=self.slide, settle=self.settle, seconds=round(self.seconds, 3))
+        if self.mass is not None:
+            out["mass"] = round(self.mass, 4)
         if self.peak_effort:
             out["peak_effort"] = {k: round(v, 4) for k, v in self.peak_effort.items()}
             out["saturation"] = {k: round(v, 4) for k, v in self.saturation.items()}
@@ -146,7 +149,7 @@ def _saturation(run: Run) -> str:
 def run_from_json(engine: str, kind: str, raw: Mapping[str, Any], limits: Mapping[str, float]) -> Run:
     """A :class:`Run` from a worker's JSON answer (the Newton and PhysX workers speak the same)."""
     run = Run(engine, kind, str(raw["scenario"]), ok=bool(raw.get("ok")), error=str(raw.get("error", "")))
-    for key in ("drift", "height", "tilt", "mu", "stick", "slide"):
+    for key in ("drift", "height", "tilt", "mu", "stick", "slide", "mass"):
         value = raw.get(key)
         setattr(run, key, None if value is None else float(value))
     run.worst_joint = str(raw.get("worst_joint", ""))

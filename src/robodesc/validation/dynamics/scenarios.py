@@ -51,6 +51,9 @@ class Thresholds:
     # A drive saturates when its peak effort reaches this share of the joint's effort limit (an
     # engine clamps at the limit itself; 0.99 keeps a float's rounding from hiding it).
     saturated: float = 0.99
+    # Two engines read the same robot's total mass when within this (relative); a drop that settles
+    # apart with masses that differ more is reported as a mass difference, not a contact one.
+    mass_rel: float = 0.01
 
 
 @dataclass(slots=True)

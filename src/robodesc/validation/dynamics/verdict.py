@@ -133,10 +133,20 @@ def _drop(report: DynamicsReport, runs: list[Run], th: Thresholds) -> None:
             Status.PASS if ok else Status.WARN,
             f"{a.engine}/{a.file} vs {b.engine}/{b.file}",
             f"settled heights differ by {dh:.3g} m, tilts by {math.degrees(dt):.3g} deg"
-            + ("" if ok else " (contact models differ; a fall from a pose the robot cannot keep is chaotic)"),
+            + ("" if ok else _drop_why(a, b, th)),
             error=max(dh / th.drop_height_agree, dt / th.drop_tilt_agree),
             tolerance=1.0,
         )
+
+
+def _drop_why(a: Run, b: Run, th: Thresholds) -> str:
+    """Why two drops settle apart: the masses the engines read, when those differ, else contact."""
+    if a.mass is not None and b.mass is not None and abs(a.mass - b.mass) > th.mass_rel * max(a.mass, b.mass):
+        return (
+            f" (the engines read different masses: {a.engine}/{a.file} {a.mass:.4g} kg, "
+            f"{b.engine}/{b.file} {b.mass:.4g} kg)"
+        )
+    return " (contact models differ; a fall from a pose the robot cannot keep is chaotic)"
 
 
 def _saturation(report: DynamicsReport, runs: list[Run], th: Thresholds) -> None:
