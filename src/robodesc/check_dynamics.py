@@ -5,6 +5,8 @@ Driver code: it knows targets only through the table. Each engine reads some tar
 checked target get their target compiled beside it in the same scratch folder, with the input and
 pass options and only the target options their class declares. Newton runs only when asked
 (``engines``) or when the checked target is the one it reads: its first import costs seconds.
+PhysX runs whenever the checked target is USD or a folder with a USD at its top (the Isaac folder):
+it reads that file as written (a SKIP row when no interpreter has ovphysx).
 
 Where the caller gives no pose or gains, the scenarios start from the Isaac folder's defaults
 (docs/isaac.md, "Defaults that stand"; :func:`default_stance`): a robot whose root is free gets the
@@ -25,6 +27,7 @@ from robodesc.ir.diagnostics import Findings, RobodescError
 from robodesc.ir.model import Robot
 from robodesc.targets import TARGETS, target_spec
 from robodesc.validation.dynamics import READERS, DynamicsOptions, DynamicsReport, run_dynamics
+from robodesc.validation.dynamics.run import folder_files, joining
 from robodesc.validation.dynamics.source import write_source
 
 # Engines run when none are named: cheap to import, and together they read two formats.
@@ -57,19 +60,22 @@ def run_for(
     compile_to: Callable[..., Any],
 ) -> DynamicsReport:
     """``compile_to`` is the API's (passed in: the API imports this module, not the other way)."""
-    engines = tuple(opts.engines) or tuple(dict.fromkeys((*DEFAULT_ENGINES, *_engine_of(target))))
     files: dict[str, str] = {}
     if target in READERS:
         files[target] = out
+    elif target_spec(target).folder:
+        files.update(folder_files(out))
+    also = joining(files)
+    engines = tuple(opts.engines) or tuple(dict.fromkeys((*DEFAULT_ENGINES, *_engine_of(target), *also)))
     robot = _source_robot(source, options) or robot
     # The checked file's drives are what its target wrote: a target that writes its options'
     # constant gains (-t usd: 100 / 1) is simulated with them everywhere, not with derived ones
     # Newton would not read from that file. Then the pose and the gains the others lack.
     opts = default_stance(robot, _written_gains(target, opts))
     for engine in engines:
-        if any(READERS.get(kind) == engine for kind in files):
+        if any(engine in READERS.get(kind, ()) for kind in files):
             continue
-        name = next((t for t in TARGETS if READERS.get(t) == engine and not target_spec(t).folder), None)
+        name = next((t for t in TARGETS if engine in READERS.get(t, ()) and not target_spec(t).folder), None)
         if name is None:
             continue
         path = target_spec(name).output_name(os.path.join(folder, "dynamics-robot"))
@@ -173,7 +179,7 @@ def _gains_for(name: str, opts: DynamicsOptions, options: Mapping[str, Any]) -> 
 
 
 def _engine_of(target: str) -> tuple[str, ...]:
-    return (READERS[target],) if target in READERS else ()
+    return READERS.get(target, ())
 
 
 def _options_for(main: str, other: str, options: Mapping[str, Any]) -> dict[str, Any]:

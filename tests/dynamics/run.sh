@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The engine tier of validate --dynamics: MuJoCo, Drake and Newton (if its venv exists; build it
-# with tests/consumers/run.sh) on the example arm, the example quadruped and Quad-SDK's Spirit.
+# The engine tier of validate --dynamics: MuJoCo, Drake, Newton and PhysX (each if its venv exists;
+# build them with tests/consumers/run.sh) on the example arm, the example quadruped and Quad-SDK's
+# Spirit; PhysX against MuJoCo (test_dynamics_physx.py) also runs in the plain suite when it can.
 #   tests/dynamics/run.sh [pytest args]
 set -euo pipefail
 cd "$(dirname "$0")/../.."

@@ -1,8 +1,9 @@
-"""The engine tier of ``validate --dynamics`` (#28): MuJoCo, Drake and Newton on the same robots.
+"""The engine tier of ``validate --dynamics`` (#28, #38): MuJoCo, Drake, Newton and PhysX on the
+same robots.
 
 Run by ``tests/dynamics/run.sh`` (it sets ROBODESC_DYNAMICS_TIER=1): Drake costs seconds per
-robot and Newton a subprocess in its own interpreter (built by tests/consumers/run.sh), too slow
-for the CI suite. Engines must agree where the file is all that differs (fixed-base hold, friction
+robot, Newton and PhysX a subprocess each in its own interpreter (built by tests/consumers/run.sh),
+too slow for the CI suite. Engines must agree where the file is all that differs (fixed-base hold, friction
 read back) and each output must behave as its source."""
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ import pytest
 
 import robodesc
 from robodesc.validation.dynamics.newton_run import newton_python
+from robodesc.validation.physx_python import physx_python
 from robodesc.validation.report import Status
 
 from ..conftest import EXAMPLES, SPIRIT_XACRO
@@ -36,6 +38,7 @@ def test_engines_agree(name: str, target: str) -> None:
     if name == "spirit" and not SPIRIT_XACRO.is_file():
         pytest.skip("Quad-SDK corpus not present")
     engines = ("mujoco", "drake") + (("newton",) if target == "usd" and newton_python() else ())
+    engines += ("physx",) if target == "usd" and physx_python() else ()
     result = robodesc.check(path, target, dynamics={"engines": engines, **({"pose": pose} if pose else {})})
     dyn = result.dynamics
     assert dyn is not None and dyn.ok, dyn.to_text()

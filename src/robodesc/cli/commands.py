@@ -192,7 +192,12 @@ def cmd_validate(args: argparse.Namespace) -> int:
     if args.report:
         check_output(args.report, folder=False, source=args.input, what="--report")
     args.json_target = args.target
-    result = api.check(args.input, args.target, dynamics=_dynamics_options(args), **_input_options(args))
+    dynamics, options = _dynamics_options(args), _input_options(args)
+    if isinstance(dynamics, dict):
+        _place_gains(args, dynamics, options)
+    elif args.stiffness or args.damping:
+        raise ConfigError("--stiffness and --damping set the gains --dynamics simulates: add --dynamics")
+    result = api.check(args.input, args.target, dynamics=dynamics, **options)
     report = result.validation
     if report is None:
         raise ConfigError(f"target {args.target!r} has nothing to validate")
@@ -228,6 +233,20 @@ def _dynamics_options(args: argparse.Namespace) -> dict[str, Any] | bool:
         if not sep:
             raise ConfigError(f"--pose {rule!r}: expected REGEX=VALUE")
     return {"engines": args.engines, **({"pose": pose} if pose else {})}
+
+
+def _place_gains(args: argparse.Namespace, dynamics: dict[str, Any], options: dict[str, Any]) -> None:
+    """``--stiffness``/``--damping`` of ``validate --dynamics``: compile options when the checked
+    target writes drives (the file then carries them, as the engine reading it simulates it), else
+    the simulated gains only."""
+    from robodesc.cli.flags import gain_rules
+
+    spec = target_spec(args.target)
+    declared = {f.name for f in dataclasses.fields(spec.options)} if spec.options else set()
+    for name in ("stiffness", "damping"):
+        values = getattr(args, name, None) or []
+        if values:
+            (options if name in declared else dynamics)[name] = gain_rules(values, f"--{name}")
 
 
 def _refuse_output_as_input(path: str) -> None:

@@ -96,6 +96,11 @@ def target_options(args: argparse.Namespace) -> dict[str, Any]:
     return given
 
 
+def gain_rules(values: list[str], flag: str) -> Any:
+    """A gain flag's value (``validate --dynamics --stiffness``): one number, or REGEX=VALUE rules."""
+    return _rules(values, flag, False, functools.partial(_number, flag=flag))
+
+
 def _rules(values: list[str], flag: str, rules_only: bool, parse: Callable[[str], Any]) -> Any:
     """``--stiffness 100``, or ``--stiffness 'knee.*=50' --stiffness '.*=20'``: rules in order, first
     full match wins; a bare value among rules applies to every name the rules leave (it goes last)."""

@@ -358,9 +358,20 @@ def _validate_parser(sub: Any) -> argparse.ArgumentParser:
         metavar="LIST",
         type=lambda text: tuple(e.strip() for e in text.split(",") if e.strip()),
         default=(),
-        help="comma-separated engines for --dynamics: mujoco, drake, newton (default: mujoco, drake and the "
-        "engine that reads the target; newton costs seconds to import and runs only when named or for its target)",
+        help="comma-separated engines for --dynamics: mujoco, drake, newton, physx (default: mujoco, drake and the "
+        "engines that read the target: newton and physx for usd, physx for the Isaac folder; newton costs seconds "
+        "to import and runs only when named or for its target)",
     )
+    for name, unit in (("stiffness", "N·m/rad, N/m"), ("damping", "N·m·s/rad, N·s/m")):
+        dyn.add_argument(
+            f"--{name}",
+            metavar="[REGEX=]VALUE",
+            action="append",
+            default=[],
+            help=f"drive {name} for --dynamics in SI ({unit}): your controller's gains, one number or rules "
+            "(repeatable, first match wins). The checked file is compiled with them when its target takes them; "
+            "default: the target's own, else derived (docs/dynamics.md)",
+        )
     dyn.add_argument(
         "--pose",
         metavar="REGEX=VALUE",

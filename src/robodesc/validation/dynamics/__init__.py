@@ -1,4 +1,4 @@
-"""Behaviour checked by simulation, on CPU: hold, drop and slide in MuJoCo, Drake and Newton.
+"""Behaviour checked by simulation, on CPU: hold, drop and slide in MuJoCo, Drake, Newton and PhysX.
 
 ``run_dynamics(robot, {"urdf": path, ...})`` returns a :class:`DynamicsReport`; docs/dynamics.md
 describes the scenarios and thresholds. Light to import: each engine loads when it runs.

@@ -166,6 +166,8 @@ def _robot_run(robot: Robot, path: str, options: Any, setup: Setup, run: Run, *,
     diagram = builder.Build()
     simulator = Simulator(diagram)
     context = plant.GetMyMutableContextFromRoot(simulator.get_mutable_context())
+    if floor:
+        run.mass = float(plant.CalcTotalMass(context, models))
     for name in setup.pose:
         joint = table.get(name)
         if joint is not None and joint.num_positions() == 1:
@@ -173,7 +175,10 @@ def _robot_run(robot: Robot, path: str, options: Any, setup: Setup, run: Run, *,
     if floor and _floating(root):
         plant.SetFreeBodyPose(context, root, RigidTransform(_vec(0.0, 0.0, setup.stand_height + setup.drop_clearance)))
     height = (lambda: float(plant.EvalBodyPoseInWorld(context, root).translation()[2])) if floor else None
+    peaks = _watch_efforts(simulator, plant, table)
     _advance(simulator, context, table, setup, run, height)
+    if run.ok:
+        run.set_peaks(peaks, setup.effort)
     if run.ok and floor:
         pose = plant.EvalBodyPoseInWorld(context, root)
         run.height = float(pose.translation()[2])
@@ -254,6 +259,33 @@ def _advance(
     run.final_q = q
     run.drift, run.worst_joint = max(((abs(v - setup.pose[n]), n) for n, v in q.items()), default=(0.0, ""))
     run.settle = settle_time(heights) if height is not None else None
+
+
+def _watch_efforts(simulator: Any, plant: Any, table: dict[str, Any]) -> dict[str, float]:
+    """Each driven joint's peak |actuation| (the PD drives' output, effort-limited), filled by a
+    monitor the simulator calls after every discrete step: the 10 ms samples would miss an impact."""
+    from pydrake.systems.framework import EventStatus
+
+    by_joint = {j.index(): n for n, j in table.items()}
+    drives = []
+    for i in plant.GetJointActuatorIndices():
+        actuator = plant.get_joint_actuator(i)
+        name = by_joint.get(actuator.joint().index())
+        if name is not None:
+            drives.append((actuator.input_start(), name))
+    peaks = {name: 0.0 for _, name in drives}
+    if not drives:
+        return peaks
+    port = plant.get_net_actuation_output_port()
+
+    def monitor(root: Any) -> Any:
+        u = port.Eval(plant.GetMyContextFromRoot(root))
+        for start, name in drives:
+            peaks[name] = max(peaks[name], abs(float(u[start])))
+        return EventStatus.Succeeded()
+
+    simulator.set_monitor(monitor)
+    return peaks
 
 
 def _slide(robot: Robot, path: str, options: Any, setup: Setup, run: Run, mu: float | None) -> None:

@@ -111,11 +111,15 @@ def _simulate(model: Any, data: Any, setup: Setup, run: Run, addr: dict[str, int
     steps = max(1, round(setup.duration / setup.timestep))
     every = max(1, round(_SAMPLE / setup.timestep))
     heights: list[tuple[float, float]] = []
+    drives = _drive_joints(model)
+    dofs = np.array(list(drives), dtype=int)
+    peak = np.zeros(len(dofs))
     for step in range(steps):
         mujoco.mj_step(model, data)
         if not np.all(np.isfinite(data.qpos)):
             run.ok, run.error = False, f"state not finite after {(step + 1) * setup.timestep:.3g} s"
             return False
+        np.maximum(peak, np.abs(data.qfrc_actuator[dofs]), out=peak)
         if (step + 1) % every == 0:
             run.trajectory.append(((step + 1) * setup.timestep, {n: float(data.qpos[a]) for n, a in addr.items()}))
             if root is not None:
@@ -124,7 +128,22 @@ def _simulate(model: Any, data: Any, setup: Setup, run: Run, addr: dict[str, int
     run.final_q = {n: float(data.qpos[a]) for n, a in addr.items()}
     worst = max(((abs(q - setup.pose[n]), n) for n, q in run.final_q.items()), default=(0.0, ""))
     run.drift, run.worst_joint = worst
+    run.set_peaks({name: float(peak[i]) for i, name in enumerate(drives.values())}, setup.effort)
     return True
+
+
+def _drive_joints(model: Any) -> dict[int, str]:
+    """DOF address -> name of each joint an actuator drives (the runner's drives, or an MJCF's own).
+    Its effort is read from ``qfrc_actuator``: what the joint receives, after the joint's own
+    ``actuatorfrcrange`` (the URDF's effort limit) clamps it; ``actuator_force`` is not clamped."""
+    out = {}
+    for i in range(model.nu):
+        if int(model.actuator_trntype[i]) == int(mujoco.mjtTrn.mjTRN_JOINT):
+            jid = int(model.actuator_trnid[i, 0])
+            name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, jid)
+            if name:
+                out[int(model.jnt_dofadr[jid])] = name
+    return out
 
 
 def _colliders(spec: Any) -> list[Any]:
@@ -194,6 +213,7 @@ def _drop(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
     if kind != "mjcf":
         s.option.integrator = _INTEGRATOR
     model = s.compile()
+    run.mass = float(model.body_mass.sum())
     data = mujoco.MjData(model)
     addr = _start(model, data, setup)
     root = _free_root(model)

@@ -13,11 +13,7 @@ USD's own units, converted by Newton), and the colliders' physics materials. The
 
 from __future__ import annotations
 
-import json
 import math
-import sys
-import time
-import traceback
 import warnings
 
 _SAMPLE = 0.01
@@ -110,11 +106,20 @@ def _run_robot(req, scenario):
     steps = max(1, round(setup["duration"] / dt))
     every = max(1, round(_SAMPLE / dt))
     run = {"scenario": scenario, "ok": True, "error": "", "mu": mu, "trajectory": []}
+    if floor:
+        run["mass"] = float(model.body_mass.numpy().sum())
     contacts = None
+    drives = _drives(model, control, names, pose)
+    peak = {n: 0.0 for n in drives}
     for step in range(steps):
         state0.clear_forces()
         solver.step(state0, state1, control, contacts, dt)
         state0, state1 = state1, state0
+        if drives:
+            jq, jqd = state0.joint_q.numpy(), state0.joint_qd.numpy()
+            for n, (qi, di, ke, kd, target, limit) in drives.items():
+                tau = abs(ke * (target - float(jq[qi])) - kd * float(jqd[di]))
+                peak[n] = max(peak[n], min(tau, limit) if limit > 0 else tau)
         if (step + 1) % every == 0:
             jq = state0.joint_q.numpy()
             if not np.all(np.isfinite(jq)):
@@ -125,12 +130,36 @@ def _run_robot(req, scenario):
     jq = state0.joint_q.numpy()
     final = {n: float(jq[names[n][0]]) for n in pose}
     worst = max(((abs(v - pose[n]), n) for n, v in final.items()), default=(0.0, ""))
-    run.update(final_q=final, drift=worst[0], worst_joint=worst[1])
+    run.update(final_q=final, drift=worst[0], worst_joint=worst[1], peak_effort=peak)
     if floor:
         bq = state0.body_q.numpy()[root_body]
         qx, qy = float(bq[3]), float(bq[4])
         run.update(height=float(bq[2]), tilt=math.acos(max(-1.0, min(1.0, 1.0 - 2.0 * (qx * qx + qy * qy)))))
     return run
+
+
+def _drives(model, control, names, pose):
+    """Joint -> (q index, qd index, ke, kd, target, effort limit) for the driven joints: the drive's
+    effort, ke (target - q) - kd qd, is evaluated after every step (implicit drives apply it at the
+    step's end), clamped to the effort limit Newton read."""
+    ke, kd = getattr(model, "joint_target_ke", None), getattr(model, "joint_target_kd", None)
+    if ke is None or kd is None or control.joint_target_q is None:
+        return {}
+    ke, kd = ke.numpy(), kd.numpy()
+    limits = getattr(model, "joint_effort_limit", None)
+    limits = limits.numpy() if limits is not None else None
+    targets = control.joint_target_q.numpy()  # coordinate layout, as joint_q
+    q_starts, qd_starts = model.joint_q_start.numpy(), model.joint_qd_start.numpy()
+    dof_of_q = {int(q_starts[j]): int(qd_starts[j]) for j in range(len(qd_starts) - 1)}
+    out = {}
+    for n in pose:
+        qi = names[n][0]
+        di = dof_of_q.get(qi)
+        if di is None:
+            continue
+        limit = float(limits[di]) if limits is not None else 0.0
+        out[n] = (qi, di, float(ke[di]), float(kd[di]), float(targets[qi]), limit if limit < 1e30 else 0.0)
+    return out
 
 
 def _block_travel(mu, angle, setup):
@@ -160,42 +189,24 @@ def _block_travel(mu, angle, setup):
 
 
 def _slide(req, mu):
-    setup = req["setup"]
+    from worker_loop import slide_run
+
     if mu is None:
         _, mu = _load(req, floating=False)
-    if mu is None:
-        return {"scenario": "slide", "ok": False, "error": "Newton reads no collider from the USD"}
-    stick, slide = math.atan(0.7 * mu), math.atan(1.3 * mu)
-    return {
-        "scenario": "slide",
-        "ok": True,
-        "error": "",
-        "mu": mu,
-        "stick": _block_travel(mu, stick, setup),
-        "slide": _block_travel(mu, slide, setup),
-    }
+    return slide_run("Newton", mu, lambda angle: _block_travel(mu, angle, req["setup"]))
 
 
-def main():
-    req = json.loads(sys.stdin.read())
-    try:
-        import newton
-    except ImportError as exc:
-        print(json.dumps({"error": f"not available: {exc}"}))
-        return
-    runs = []
-    for scenario in req["scenarios"]:
-        started = time.perf_counter()
-        try:
-            known = [r["mu"] for r in runs if r.get("mu") is not None]
-            run = _slide(req, known[0] if known else None) if scenario == "slide" else _run_robot(req, scenario)
-        except Exception as exc:  # one scenario's failure is a row, not the end of the others
-            detail = traceback.format_exception_only(type(exc), exc)[-1].strip()[:300]
-            run = {"scenario": scenario, "ok": False, "error": detail}
-        run["seconds"] = time.perf_counter() - started
-        runs.append(run)
-    print(json.dumps({"newton": newton.__version__, "runs": runs}))
+def _version():
+    import newton
+
+    return newton.__version__
+
+
+def _scenario(req, name, mu):
+    return _slide(req, mu) if name == "slide" else _run_robot(req, name)
 
 
 if __name__ == "__main__":
-    main()
+    from worker_loop import serve
+
+    serve("newton", _version, _scenario)

@@ -4,6 +4,7 @@ verdicts drawn from them (:class:`~robodesc.validation.report.Check` rows, as ev
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -34,7 +35,7 @@ def settle_time(heights: list[tuple[float, float]], band: float = SETTLE_BAND) -
 class Run:
     """One scenario in one engine. Quantities are None when the scenario does not measure them."""
 
-    engine: str  # "mujoco", "drake", "newton"
+    engine: str  # "mujoco", "drake", "newton", "physx"
     file: str  # what the engine read: "urdf", "sdf", "usd", "mjcf", or "source" (the input itself)
     scenario: str  # "hold-fixed", "drop", "slide"
     ok: bool = True  # the run finished with a finite state
@@ -45,10 +46,15 @@ class Run:
     tilt: float | None = None  # angle between the root's z and the world's, rad
     settle: float | None = None  # drop: time after which the root height stays within SETTLE_BAND of its end, s
     mu: float | None = None  # friction the engine gave the robot's colliders
+    mass: float | None = None  # drop: the robot's total mass as the engine read it, kg
     stick: float | None = None  # slide: distance moved on the "sticks" plane, m
     slide: float | None = None  # slide: distance moved on the "slides" plane, m
     seconds: float = 0.0
     final_q: dict[str, float] = field(default_factory=dict)
+    # Each driven joint's largest |drive effort| over the run's steps (N·m or N), and that peak as a
+    # share of the joint's effort limit (1 = saturated; joints without a limit are left out).
+    peak_effort: dict[str, float] = field(default_factory=dict)
+    saturation: dict[str, float] = field(default_factory=dict)
     # (time, {joint: q}) samples, for comparing an output with its source in one engine.
     trajectory: list[tuple[float, dict[str, float]]] = field(default_factory=list)
 
@@ -56,7 +62,25 @@ class Run:
         keys = ("engine", "file", "scenario", "ok", "error", "drift", "worst_joint", "height", "tilt", "mu")
         out: dict[str, Any] = {k: getattr(self, k) for k in keys}
         out.update(stick=self.stick, slide=self.slide, settle=self.settle, seconds=round(self.seconds, 3))
+        if self.mass is not None:
+            out["mass"] = round(self.mass, 4)
+        if self.peak_effort:
+            out["peak_effort"] = {k: round(v, 4) for k, v in self.peak_effort.items()}
+            out["saturation"] = {k: round(v, 4) for k, v in self.saturation.items()}
+            out["worst_saturation"] = self.worst_saturation()
         return out
+
+    def set_peaks(self, peaks: Mapping[str, float], limits: Mapping[str, float]) -> None:
+        """Record the peak efforts and their shares of ``limits`` (joint -> effort limit > 0)."""
+        self.peak_effort = {k: float(v) for k, v in peaks.items()}
+        self.saturation = {k: float(v) / limits[k] for k, v in peaks.items() if limits.get(k, 0.0) > 0.0}
+
+    def worst_saturation(self) -> tuple[str, float] | None:
+        """(joint, share) of the most saturated joint, None when no joint has a limit."""
+        if not self.saturation:
+            return None
+        joint = max(self.saturation, key=lambda k: self.saturation[k])
+        return joint, round(self.saturation[joint], 4)
 
 
 @dataclass(slots=True)
@@ -97,7 +121,7 @@ class DynamicsReport:
 
     def to_text(self) -> str:
         lines = [f"dynamics of {self.robot!r} ({self.info.get('pose_note', 'home pose')}):"]
-        head = f"  {'engine':<8} {'file':<7} {'scenario':<11} {'drift':>9} {'height':>8} {'tilt':>7} {'mu':>6} {'moved stick/slide':>18} {'s':>6}"
+        head = f"  {'engine':<8} {'file':<7} {'scenario':<11} {'drift':>9} {'height':>8} {'tilt':>7} {'mu':>6} {'moved stick/slide':>18} {'peak/effort':>20} {'s':>6}"
         lines.append(head)
         for r in self.runs:
             if not r.ok:
@@ -107,13 +131,36 @@ class DynamicsReport:
             tilt = None if r.tilt is None else math.degrees(r.tilt)
             lines.append(
                 f"  {r.engine:<8} {r.file:<7} {r.scenario:<11} {_num(r.drift, 4):>9} {_num(r.height, 3):>8} "
-                f"{_num(tilt, 1):>7} {_num(r.mu, 3):>6} {moved:>18} {r.seconds:>6.2f}"
+                f"{_num(tilt, 1):>7} {_num(r.mu, 3):>6} {moved:>18} {_saturation(r):>20} {r.seconds:>6.2f}"
             )
         for c in sorted(self.checks, key=lambda c: c.status is Status.PASS):
             lines.append(f"  {c.status.value.upper():<4} {c.name} {c.element}: {c.message}")
         verdict = "passed" if self.ok else "FAILED (an output behaves unlike its source)"
         lines.append(f"dynamics {verdict}")
         return "\n".join(lines)
+
+
+def _saturation(run: Run) -> str:
+    """The most saturated joint: its peak effort as a share of its limit, and its name."""
+    worst = run.worst_saturation()
+    return "" if worst is None else f"{worst[1]:.2f} {worst[0][:15]}"
+
+
+def run_from_json(engine: str, kind: str, raw: Mapping[str, Any], limits: Mapping[str, float]) -> Run:
+    """A :class:`Run` from a worker's JSON answer (the Newton and PhysX workers speak the same)."""
+    run = Run(engine, kind, str(raw["scenario"]), ok=bool(raw.get("ok")), error=str(raw.get("error", "")))
+    for key in ("drift", "height", "tilt", "mu", "stick", "slide", "mass"):
+        value = raw.get(key)
+        setattr(run, key, None if value is None else float(value))
+    run.worst_joint = str(raw.get("worst_joint", ""))
+    run.seconds = float(raw.get("seconds", 0.0))
+    run.final_q = {str(k): float(v) for k, v in (raw.get("final_q") or {}).items()}
+    run.trajectory = [(float(t), {str(k): float(v) for k, v in q.items()}) for t, q in raw.get("trajectory", [])]
+    if raw.get("heights"):
+        run.settle = settle_time([(float(t), float(z)) for t, z in raw["heights"]])
+    if raw.get("peak_effort"):
+        run.set_peaks({str(k): float(v) for k, v in raw["peak_effort"].items()}, limits)
+    return run
 
 
 def _num(value: float | None, digits: int) -> str:

@@ -1,8 +1,8 @@
 """Run the scenarios on every file given, in the engine that reads it, and judge the runs.
 
 Which engine reads what: MuJoCo reads URDF and MJCF, Drake reads SDF (and the source URDF, for the
-source comparison), Newton reads USD (in its own interpreter, :mod:`.newton_run`). An engine that
-is not installed is a SKIP row, never a failure.
+source comparison), Newton and PhysX read USD (each in its own interpreter, :mod:`.newton_run`,
+:mod:`.physx_run`). An engine that is not installed is a SKIP row, never a failure.
 """
 
 from __future__ import annotations
@@ -18,8 +18,15 @@ from robodesc.validation.dynamics.verdict import SOURCE, judge
 from robodesc.validation.report import Status
 
 SCENARIOS = ("hold-fixed", "drop", "slide")
-# File kind (a target's name, or the suffix of a file given directly) -> engine.
-READERS = {"urdf": "mujoco", "mjcf": "mujoco", "sdf": "drake", "usd": "newton"}
+# File kind (a target's name, or the suffix of a file given directly) -> the engines that read it,
+# the first the one a file of that kind is compiled for when only that engine is asked.
+READERS = {"urdf": ("mujoco",), "mjcf": ("mujoco",), "sdf": ("drake",), "usd": ("newton", "physx")}
+ENGINES = tuple(dict.fromkeys(e for engines in READERS.values() for e in engines))
+# Engines that join the default ones whenever a file they read is checked: PhysX, Isaac's engine,
+# for every USD (a subprocess, started only then). Newton joins only for its own target.
+JOINS_WHEN_READ = ("physx",)
+# What a folder output offers the engines: the USD at its top (the Isaac folder's robot).
+_FOLDER_KINDS = ("usd",)
 _SUFFIXES = {
     ".urdf": "urdf",
     ".xml": "mjcf",
@@ -36,9 +43,28 @@ def kind_of(path: str) -> str | None:
     return _SUFFIXES.get(os.path.splitext(path)[1].lower())
 
 
+def folder_files(folder: str) -> dict[str, str]:
+    """kind -> path for the files at the top of a folder output an engine reads (one per kind)."""
+    try:
+        names = sorted(os.listdir(folder))
+    except OSError:
+        return {}
+    found: dict[str, list[str]] = {}
+    for name in names:
+        kind = kind_of(name)
+        if kind in _FOLDER_KINDS and os.path.isfile(os.path.join(folder, name)):
+            found.setdefault(kind, []).append(os.path.join(folder, name))
+    return {kind: paths[0] for kind, paths in found.items() if len(paths) == 1}
+
+
+def joining(files: Mapping[str, str]) -> tuple[str, ...]:
+    """The engines of :data:`JOINS_WHEN_READ` that read one of ``files``' kinds."""
+    return tuple(e for e in JOINS_WHEN_READ if any(e in READERS.get(kind, ()) for kind in files))
+
+
 def engine_for(path: str) -> str | None:
     kind = kind_of(path)
-    return None if kind is None else READERS[kind]
+    return None if kind is None else READERS[kind][0]
 
 
 def run_dynamics(
@@ -58,7 +84,7 @@ def run_dynamics(
     report.info["pose_note"] = opts.defaults or "pose from the given table, else 0 clamped into limits"
     report.info["setup"] = setup.as_dict()
     started = time.perf_counter()
-    wanted = set(opts.engines) or set(READERS.values())
+    wanted = set(opts.engines) or set(ENGINES)
     scenarios = SCENARIOS if setup.floating else tuple(s for s in SCENARIOS if s != "drop")
     if not setup.floating:
         report.add("drop", Status.SKIP, "robot", "not run: fewer than three links touch the ground at the home pose")
@@ -66,10 +92,9 @@ def run_dynamics(
         scenarios = tuple(s for s in scenarios if s != "slide")
         report.add("slide", Status.SKIP, "robot", "not run: the robot has no collider, so no material to slide")
     for kind, path in files.items():
-        engine = READERS.get(kind)
-        if engine is None or engine not in wanted:
-            continue
-        report.runs.extend(_run_engine(engine, robot, path, kind, setup, opts, report, scenarios))
+        for engine in READERS.get(kind, ()):
+            if engine in wanted:
+                report.runs.extend(_run_engine(engine, robot, path, kind, setup, opts, report, scenarios))
         if source_urdf is not None and kind in ("urdf", "mjcf", "sdf"):
             src_engine = "drake" if kind == "sdf" else "mujoco"
             if not any(r.engine == src_engine and r.file == SOURCE for r in report.runs):
@@ -136,6 +161,10 @@ def _runner(engine: str) -> Runner:
         from robodesc.validation.dynamics.drake_run import run_file as drake_file
 
         return drake_file
+    if engine == "physx":
+        from robodesc.validation.dynamics.physx_run import run_file as physx_file
+
+        return physx_file
     from robodesc.validation.dynamics.newton_run import run_file as newton_file
 
     return newton_file

@@ -48,6 +48,12 @@ class Thresholds:
     friction_rel: float = 1e-3
     # output against its source in the same engine (joint trajectories during hold; rad or m).
     source_traj: float = 1e-3
+    # A drive saturates when its peak effort reaches this share of the joint's effort limit (an
+    # engine clamps at the limit itself; 0.99 keeps a float's rounding from hiding it).
+    saturated: float = 0.99
+    # Two engines read the same robot's total mass when within this (relative); a drop that settles
+    # apart with masses that differ more is reported as a mass difference, not a contact one.
+    mass_rel: float = 0.01
 
 
 @dataclass(slots=True)
@@ -65,6 +71,7 @@ class DynamicsOptions:
     thresholds: Thresholds = field(default_factory=Thresholds)
     package_paths: Mapping[str, str] = field(default_factory=dict)
     newton_python: str | None = None  # the Newton venv's interpreter (default: the consumer tier's)
+    physx_python: str | None = None  # an interpreter with ovphysx (default: validation.physx_python's search)
     # What chose the pose and gains when the caller gave none (``validate --dynamics`` fills them
     # with the Isaac folder's defaults, robodesc.check_dynamics.default_stance); shown in the report.
     defaults: str | None = None
@@ -85,6 +92,9 @@ class Setup:
     # Mimic joints: follower -> leader. An output that cannot carry a mimic (SDF before 1.11) has
     # already warned at compile time; a trajectory that differs there is that warning, not a new fault.
     mimics: dict[str, str] = field(default_factory=dict)
+    # Each driven joint's effort limit (N·m or N) where the source gives one > 0: the saturation
+    # columns divide the peak drive effort by it.
+    effort: dict[str, float] = field(default_factory=dict)
     duration: float = 1.0
     timestep: float = 0.001
     drop_clearance: float = 0.05
@@ -231,6 +241,17 @@ def _mesh_points(mesh: Mesh) -> NDArray[np.float64] | None:
     return np.frombuffer(data.points, dtype=np.float32).reshape(-1, 3).astype(np.float64)
 
 
+def effort_limits(robot: Robot) -> dict[str, float]:
+    """Driven joint -> its effort limit, for the joints whose source gives one above zero."""
+    joints = robot.joint_map()
+    out: dict[str, float] = {}
+    for name in actuated(robot):
+        lim = joints[name].limit
+        if lim is not None and lim.effort is not None and lim.effort > 0 and math.isfinite(lim.effort):
+            out[name] = float(lim.effort)
+    return out
+
+
 def make_setup(robot: Robot, options: DynamicsOptions) -> Setup:
     pose = home_pose(robot, options.pose)
     floating = stands(robot, pose)
@@ -243,6 +264,7 @@ def make_setup(robot: Robot, options: DynamicsOptions) -> Setup:
         friction=source_friction(robot, standing_on),
         feet=standing_on,
         mimics={j.name: j.mimic.joint for j in robot.joints if j.mimic is not None},
+        effort=effort_limits(robot),
         duration=options.duration,
         timestep=options.timestep,
         drop_clearance=options.drop_clearance,

@@ -8,7 +8,9 @@ Exit 1 (a FAIL check) only where an output contradicts its source:
 - the drives of an output cannot hold the pose (fixed base) while the same gains hold it in another
   engine.
 Everything else that differs between engines (drop height and tilt, a hold both engines fail) is a
-WARN: engines solve contact and stiff drives differently, and the table says how.
+WARN: engines solve contact and stiff drives differently, and the table says how. A drive that reaches
+its effort limit in the hold or the drop is a WARN naming the engines where it does and does not: the
+symptom of a robot that stands in one simulator and sags in another.
 """
 
 from __future__ import annotations
@@ -38,6 +40,8 @@ def judge(report: DynamicsReport, setup: Setup, th: Thresholds) -> None:
     _hold(report, [r for r in outputs if r.scenario == "hold-fixed"], th)
     _drop(report, [r for r in outputs if r.scenario == "drop"], th)
     _slide(report, [r for r in outputs if r.scenario == "slide"], setup, th)
+    for scenario in ("hold-fixed", "drop"):
+        _saturation(report, [r for r in outputs if r.scenario == scenario], th)
 
 
 def _label(r: Run) -> str:
@@ -129,9 +133,45 @@ def _drop(report: DynamicsReport, runs: list[Run], th: Thresholds) -> None:
             Status.PASS if ok else Status.WARN,
             f"{a.engine}/{a.file} vs {b.engine}/{b.file}",
             f"settled heights differ by {dh:.3g} m, tilts by {math.degrees(dt):.3g} deg"
-            + ("" if ok else " (contact models differ; a fall from a pose the robot cannot keep is chaotic)"),
+            + ("" if ok else _drop_why(a, b, th)),
             error=max(dh / th.drop_height_agree, dt / th.drop_tilt_agree),
             tolerance=1.0,
+        )
+
+
+def _drop_why(a: Run, b: Run, th: Thresholds) -> str:
+    """Why two drops settle apart: the masses the engines read, when those differ, else contact."""
+    if a.mass is not None and b.mass is not None and abs(a.mass - b.mass) > th.mass_rel * max(a.mass, b.mass):
+        return (
+            f" (the engines read different masses: {a.engine}/{a.file} {a.mass:.4g} kg, "
+            f"{b.engine}/{b.file} {b.mass:.4g} kg)"
+        )
+    return " (contact models differ; a fall from a pose the robot cannot keep is chaotic)"
+
+
+def _saturation(report: DynamicsReport, runs: list[Run], th: Thresholds) -> None:
+    """A WARN per run whose drives reach their effort limit, naming the runs where they do not."""
+    for r in runs:
+        worst = r.worst_saturation()
+        if worst is None or worst[1] < th.saturated:
+            continue
+        joint, share = worst
+        saturated = sorted(n for n, v in r.saturation.items() if v >= th.saturated)
+        within = [
+            f"{o.engine}/{o.file} {o.saturation.get(joint, 0.0):.2f}"
+            for o in runs
+            if o is not r and joint in o.saturation
+        ]
+        report.add(
+            "saturation",
+            Status.WARN,
+            f"{_label(r)}",
+            f"{len(saturated)} drive(s) reach their effort limit ({', '.join(saturated[:6])}"
+            + (", ..." if len(saturated) > 6 else "")
+            + f"); {joint!r} peaks at {r.peak_effort[joint]:.4g}, {share:.2f} of its limit"
+            + (f"; elsewhere: {', '.join(within)}" if within else ""),
+            error=share,
+            tolerance=th.saturated,
         )
 
 

@@ -1,0 +1,110 @@
+"""PhysX as an engine of ``validate --dynamics`` (#38): ovphysx reads the USD robodesc wrote, on CPU,
+in its own interpreter. Skipped, with the reason, where no interpreter has ovphysx (build the
+consumer tier's with tests/consumers/run.sh, or set ROBODESC_PHYSX_PYTHON). Numbers are compared
+with MuJoCo's within the agreement thresholds; nothing here is timed."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+import robodesc
+from robodesc.validation.dynamics import DynamicsOptions, run_dynamics
+from robodesc.validation.dynamics.run import folder_files, joining
+from robodesc.validation.dynamics.scenarios import Thresholds
+from robodesc.validation.physx_python import physx_python
+from robodesc.validation.report import Status
+
+from ..conftest import EXAMPLES
+from .test_dynamics_saturation import HOLD, KD, KP, _pendulum
+
+needs_physx = pytest.mark.skipif(
+    physx_python() is None, reason="no interpreter with ovphysx (tests/consumers/run.sh builds one)"
+)
+TH = Thresholds()
+
+
+def _runs(dyn: robodesc.validation.dynamics.DynamicsReport) -> dict[tuple[str, str], robodesc.validation.dynamics.Run]:
+    return {(r.engine, r.scenario): r for r in dyn.runs if r.file != "source"}
+
+
+@needs_physx
+def test_the_quadruped_holds_and_lands_in_physx_as_in_mujoco() -> None:
+    dyn = robodesc.check(str(EXAMPLES / "quadruped.yaml"), "usd", dynamics={"engines": ("mujoco", "physx")}).dynamics
+    assert dyn is not None and dyn.ok, dyn.to_text()
+    runs = _runs(dyn)
+    hold_m, hold_p = runs[("mujoco", "hold-fixed")], runs[("physx", "hold-fixed")]
+    assert hold_p.drift == pytest.approx(hold_m.drift, abs=TH.hold_agree)
+    for joint, q in hold_m.final_q.items():
+        assert hold_p.final_q[joint] == pytest.approx(q, abs=TH.hold_agree), joint
+        # The same gravity load on the same drives: the same effort, within 3 %.
+        assert hold_p.peak_effort[joint] == pytest.approx(hold_m.peak_effort[joint], rel=0.03, abs=0.02), joint
+    drop_m, drop_p = runs[("mujoco", "drop")], runs[("physx", "drop")]
+    assert drop_p.height == pytest.approx(drop_m.height, abs=TH.drop_height_agree)
+    assert abs((drop_p.tilt or 0.0) - (drop_m.tilt or 0.0)) < TH.drop_tilt_agree
+    assert math.degrees(drop_p.tilt or 0.0) < 5.0  # lands on its feet
+    # Slide with PhysX's default friction (the source gives none): sticks and slides as tan says.
+    slide = runs[("physx", "slide")]
+    assert (
+        slide.mu == pytest.approx(0.5) and (slide.stick or 1.0) < TH.stick_max and (slide.slide or 0.0) > TH.slide_min
+    )
+    assert [c.status for c in dyn.checks if c.name == "agree:drop"] == [Status.PASS]
+
+
+@needs_physx
+def test_the_arm_in_the_isaac_folder_holds_in_physx_as_in_mujoco() -> None:
+    """The Isaac folder's USD, its derived gains as written: PhysX joins the default engines."""
+    pose = {"shoulder_pitch": 0.8, "elbow": 0.5}
+    dyn = robodesc.check(str(EXAMPLES / "urdf/gripper_arm.urdf"), "isaac", dynamics={"pose": pose}).dynamics
+    assert dyn is not None and dyn.ok, dyn.to_text()
+    runs = _runs(dyn)
+    assert {e for e, _ in runs} == {"mujoco", "drake", "physx"}
+    hold_m, hold_p = runs[("mujoco", "hold-fixed")], runs[("physx", "hold-fixed")]
+    for joint, q in hold_m.final_q.items():
+        assert hold_p.final_q[joint] == pytest.approx(q, abs=TH.hold_agree), joint
+
+
+@needs_physx
+def test_the_hold_effort_of_a_horizontal_arm_is_m_g_l_in_physx_and_the_file_is_untouched(tmp_path: Path) -> None:
+    """PhysX reads the USD as written: the scenario's weld, gravity and targets go in a layer over
+    it and through ovphysx's write API, so the file's bytes are the same after the run."""
+    urdf = _pendulum(tmp_path, effort=2 * HOLD)
+    usd = tmp_path / "pendulum.usda"
+    robodesc.compile_to(str(urdf), "usd", str(usd), stiffness=KP, damping=KD)
+    before = usd.read_bytes()
+    robot = robodesc.load(str(urdf))
+    options = DynamicsOptions(engines=("physx",), pose={"hinge": 0.0}, stiffness=KP, damping=KD)
+    dyn = run_dynamics(robot, {"usd": str(usd)}, options)
+    assert usd.read_bytes() == before
+    (hold,) = [r for r in dyn.runs if r.scenario == "hold-fixed"]
+    assert hold.engine == "physx" and hold.peak_effort["hinge"] == pytest.approx(HOLD, rel=0.02)
+    assert hold.saturation["hinge"] == pytest.approx(0.5, rel=0.02)
+    assert hold.drift == pytest.approx(HOLD / KP * (1.0 - math.exp(-KP / KD)), rel=0.05)
+
+
+def test_the_isaac_folders_usd_is_what_physx_reads(tmp_path: Path) -> None:
+    folder = tmp_path / "robot"
+    folder.mkdir()
+    (folder / "robot.usda").write_text("#usda 1.0\n")
+    (folder / "robot.urdf").write_text("<robot/>")
+    assert folder_files(str(folder)) == {"usd": str(folder / "robot.usda")}
+    assert joining(folder_files(str(folder))) == ("physx",) and joining({"urdf": "x.urdf"}) == ()
+    (folder / "other.usd").write_text("")
+    assert folder_files(str(folder)) == {}  # two USD files: which robot is meant is not known
+
+
+def test_without_an_interpreter_physx_is_a_skip_row_saying_how_to_get_it(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("ROBODESC_CONSUMERS_DIR", str(tmp_path))
+    monkeypatch.delenv("ROBODESC_PHYSX_PYTHON", raising=False)
+    monkeypatch.setattr("robodesc.validation.physx_python.importlib.util.find_spec", lambda name: None)
+    dyn = robodesc.check(
+        str(EXAMPLES / "urdf/gripper_arm.urdf"), "usd", dynamics={"engines": ("mujoco", "physx")}
+    ).dynamics
+    assert dyn is not None and dyn.ok
+    (row,) = [c for c in dyn.checks if c.element == "physx/usd"]
+    assert row.status is Status.SKIP and "robodesc[physx]" in row.message and "tests/consumers/run.sh" in row.message
+    assert {r.engine for r in dyn.runs} == {"mujoco"}
