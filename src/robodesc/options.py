@@ -111,6 +111,7 @@ WORLD_NAMES = {
     "terrain_resolution": "terrain_resolution",
     "spawn": "spawn",
     "model_path": "model_path",
+    "cords": "cords",
 }
 
 
@@ -118,7 +119,7 @@ def _world_value(name: str, value: Any) -> Any:
     import math
     import os
 
-    if name in ("world", "terrain"):
+    if name in ("world", "terrain", "cords"):
         return os.fspath(value)
     if name == "model_path":
         return (os.fspath(value),) if isinstance(value, str | os.PathLike) else tuple(os.fspath(v) for v in value)

@@ -45,6 +45,8 @@ def world_options(args: argparse.Namespace) -> dict[str, Any]:
         out["world"] = world
     if getattr(args, "terrain", None):
         out["terrain"] = args.terrain
+    if getattr(args, "cords", None):
+        out["cords"] = args.cords
     if getattr(args, "terrain_size", None):
         out["terrain_size"] = _numbers(args.terrain_size, "--terrain-size", (3,))
     if getattr(args, "terrain_resolution", None) is not None:

@@ -236,6 +236,12 @@ def add_world_options(p: argparse.ArgumentParser) -> None:
         "without Z its height comes from the ground under its feet",
     )
     g.add_argument(
+        "--cords",
+        metavar="FILE.yaml",
+        help="fields of compliant cords (vines) in the world: chains of capsules on spherical joints hanging "
+        "from anchors (docs/worlds.md, 'Cords'); with no --world, on a plane",
+    )
+    g.add_argument(
         "--contact-sensors",
         nargs="?",
         const="",

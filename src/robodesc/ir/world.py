@@ -87,6 +87,35 @@ class WorldPhysics:
 
 
 @dataclass(slots=True)
+class CordField:
+    """A field of compliant cords (Quad-SDK's "underbrush": vines): ``count`` chains of ``segments``
+    capsules on spherical joints, each hanging from a kinematic anchor placed at random (``seed``)
+    over ``area`` (x0, y0, x1, y1) at a height in ``anchor_height`` (low, high). ``stiffness`` and
+    ``damping`` act at every joint (N·m/rad, N·m·s/rad); ``mass`` is one cord's (kg)."""
+
+    name: str
+    count: int
+    length: float
+    segments: int
+    radius: float
+    stiffness: float
+    damping: float
+    anchor_height: tuple[float, float]
+    area: tuple[float, float, float, float]
+    seed: int = 0
+    mass: float | None = None  # None: the capsules' volume at 1000 kg/m³
+    src: SourceLoc | None = None
+
+    @property
+    def cord_mass(self) -> float:
+        if self.mass is not None:
+            return self.mass
+        import math
+
+        return 1000.0 * math.pi * self.radius**2 * self.length
+
+
+@dataclass(slots=True)
 class World:
     """A world: its static bodies, includes and physics. ``file`` is the world file (or terrain)."""
 
@@ -95,4 +124,5 @@ class World:
     physics: WorldPhysics = field(default_factory=WorldPhysics)
     bodies: list[StaticBody] = field(default_factory=list)
     includes: list[Include] = field(default_factory=list)
+    cords: list[CordField] = field(default_factory=list)
     src: SourceLoc | None = None

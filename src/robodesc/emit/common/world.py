@@ -20,7 +20,7 @@ from robodesc.ir.diagnostics import ConfigError, Findings
 from robodesc.ir.geometry import Box, Mesh, Vec3
 from robodesc.ir.model import Robot
 from robodesc.ir.rigid import Frame, link_frames, pose_frame
-from robodesc.ir.world import HeightImage, Plane, StaticBody, World, WorldCollider
+from robodesc.ir.world import CordField, HeightImage, Plane, StaticBody, World, WorldCollider
 from robodesc.meshes.heightfield import DEFAULT_RESOLUTION, HeightfieldError, HeightGrid, rasterize
 
 STAGE = "world"
@@ -50,6 +50,8 @@ class PlacedWorld:
     spawn: tuple[float, ...] = (0.0, 0.0)  # X, Y or X, Y, Z (m)
     yaw: float = 0.0  # rad, about the world's z
     spawn_source: str = "origin"
+    # Each cord field with its cords' anchor points (world frame), drawn once from its seed.
+    cords: list[tuple[CordField, list[Vec3]]] = field(default_factory=list)
 
     def grid_of(self, collider: WorldCollider) -> TerrainGrid | None:
         return next((g for g in self.grids if g.collider is collider), None)
@@ -132,7 +134,25 @@ def place_world(
             if grid is not None:
                 placed.grids.append(grid)
     _spawn(robot, world, spawn, placed)
+    for cords in world.cords:
+        placed.cords.append((cords, _anchors(placed, cords)))
     return placed
+
+
+def _anchors(placed: PlacedWorld, cords: CordField) -> list[Vec3]:
+    """Anchor points drawn from the field's seed (numpy's PCG64: the same field on every machine),
+    each ``anchor_height`` above the ground under it (z = 0 where there is none)."""
+    rng = np.random.default_rng(cords.seed)
+    x0, y0, x1, y1 = cords.area
+    xs = rng.uniform(x0, x1, cords.count) if x1 > x0 else np.full(cords.count, x0)
+    ys = rng.uniform(y0, y1, cords.count) if y1 > y0 else np.full(cords.count, y0)
+    low, high = cords.anchor_height
+    zs = rng.uniform(low, high, cords.count) if high > low else np.full(cords.count, low)
+    out: list[Vec3] = []
+    for x, y, z in zip(xs.tolist(), ys.tolist(), zs.tolist(), strict=True):
+        ground = placed.ground_height(x, y)
+        out.append((round(x, 6), round(y, 6), round(z + (ground or 0.0), 6)))
+    return out
 
 
 def _grid(body: StaticBody, collider: WorldCollider, resolution: float, findings: Findings) -> TerrainGrid | None:

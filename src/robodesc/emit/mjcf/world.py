@@ -22,9 +22,9 @@ from robodesc.emit.common.world import PlacedWorld, TerrainGrid
 from robodesc.emit.mjcf.contact_params import ROLL, TORSION
 from robodesc.emit.mjcf.scene import SCENE
 from robodesc.ir.diagnostics import Findings
-from robodesc.ir.geometry import Box, Cylinder, Mesh, Sphere
+from robodesc.ir.geometry import Box, Cylinder, Mesh, Sphere, Vec3
 from robodesc.ir.rigid import Frame, pose_frame
-from robodesc.ir.world import HeightImage, Plane, StaticBody, WorldCollider
+from robodesc.ir.world import CordField, HeightImage, Plane, StaticBody, WorldCollider
 
 STAGE = "emit:mjcf"
 BASE = 0.1  # m: the solid below a heightfield's lowest point (MuJoCo's size[3])
@@ -48,9 +48,14 @@ def world_scene_text(robot_file: str, placed: PlacedWorld, findings: Findings, r
     assets = ET.Element("asset")
     world = ET.Element("worldbody")
     ET.SubElement(world, "light", pos="0 0 3", dir="0 0 -1", directional="true")
+    if not placed.world.bodies:
+        # A world of cords alone stands on the scene's usual floor.
+        ET.SubElement(world, "geom", name="floor", size="0 0 0.05", type="plane", material="groundplane")
     for body in placed.world.bodies:
         for collider in body.colliders:
             _collider(placed, body, collider, assets, world, findings, robot)
+    for cords, anchors in placed.cords:
+        _cords(world, cords, anchors)
     text = head.replace("  <asset>", (option + "\n" if option else "") + "  <asset>", 1)
     # The scene's own <asset> (sky, checker) stays; the terrain's hfields go in a second one.
     extra_assets = _indent(assets) if len(assets) else ""
@@ -110,6 +115,50 @@ def _collider(
         )
         return
     ET.SubElement(world, "geom", _placed(attrs, frame))
+
+
+def _cords(world: ET.Element, cords: CordField, anchors: list[Vec3]) -> None:
+    """Each cord a chain of capsule bodies on ball joints (MuJoCo applies a ball joint's stiffness and
+    damping to its rotation), hanging along -z from a body welded to the world at its anchor."""
+    step = cords.length / cords.segments
+    mass = cords.cord_mass / cords.segments
+    for i, anchor in enumerate(anchors):
+        parent = ET.SubElement(world, "body", name=f"{cords.name}_{i}", pos=fmt_vec(anchor))
+        for k in range(cords.segments):
+            attrs = {"name": f"{cords.name}_{i}_{k}"}
+            if k:
+                attrs["pos"] = fmt_vec((0.0, 0.0, -step))
+            segment = ET.SubElement(parent, "body", attrs)
+            ET.SubElement(
+                segment,
+                "joint",
+                name=f"{cords.name}_{i}_{k}",
+                type="ball",
+                stiffness=fmt(cords.stiffness),
+                damping=fmt(cords.damping),
+                # robot.xml's top-level <default> (its joints' damping, friction, armature) holds for
+                # the whole scene: a cord's joints say theirs.
+                armature="0",
+                frictionloss="0",
+            )
+            # Explicit inertia: robot.xml's <compiler inertiafromgeom="false"> holds for the whole scene.
+            # A solid cylinder of the segment's length: the capsule's caps are a few percent more.
+            side = mass * (3 * cords.radius**2 + step**2) / 12
+            ET.SubElement(
+                segment,
+                "inertial",
+                pos=fmt_vec((0.0, 0.0, -step / 2)),
+                mass=fmt(mass),
+                diaginertia=fmt_vec((side, side, mass * cords.radius**2 / 2)),
+            )
+            ET.SubElement(
+                segment,
+                "geom",
+                type="capsule",
+                fromto=fmt_vec((0.0, 0.0, 0.0, 0.0, 0.0, -step)),
+                size=fmt(cords.radius),
+            )
+            parent = segment
 
 
 def _priority(mu: float, robot: RobotSurface, collider: WorldCollider, body: StaticBody, findings: Findings) -> int:

@@ -19,7 +19,7 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     sdf_options.path_mode = request.mesh_paths
     sdf_options.out_dir = os.path.dirname(os.path.abspath(request.out)) if request.out else None
     if request.world is not None:
-        _world(robot, request)
+        _world(robot, request, findings)
     result = build_sdf(robot, sdf_options)
     findings.extend(result.findings)
     emitted = Emitted(
@@ -37,7 +37,7 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     return emitted
 
 
-def _world(robot: Robot, request: EmitRequest) -> None:
+def _world(robot: Robot, request: EmitRequest, findings: Findings) -> None:
     """The world's models, physics and the robot's place in it (a given --init-pos... wins)."""
     from robodesc.emit.common.stance import Stance, complete
     from robodesc.ir.geometry import Pose
@@ -47,6 +47,16 @@ def _world(robot: Robot, request: EmitRequest) -> None:
     assert placed is not None
     options.world = True
     options.placed_world = placed
+    for cords, _ in placed.cords:
+        if cords.stiffness or cords.damping:
+            findings.warn(
+                "sdf-cords-no-spring",
+                f"SDF's ball joint has no axis, so no spring or damping: the {cords.count} cords hang limp in Gazebo "
+                f"(stiffness {cords.stiffness:g} N·m/rad and damping {cords.damping:g} are lost); MJCF and USD keep them",
+                element=f"cords {cords.name!r}",
+                loc=cords.src,
+                stage="emit:sdf",
+            )
     physics = placed.world.physics
     if physics.step is not None:
         options.step_size = physics.step

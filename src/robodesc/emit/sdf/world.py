@@ -51,8 +51,8 @@ def world_element(parent: etree._Element, robots: list[Robot], options: SdfOptio
         from robodesc.emit.sdf.world_models import world_models
 
         world_models(world, options.placed_world, options)
-    else:
-        _ground(world)
+    if options.placed_world is None or not options.placed_world.world.bodies:
+        _ground(world)  # a world of cords alone stands on robodesc's ground plane
     return world
 
 

@@ -12,8 +12,8 @@ from lxml import etree
 from robodesc.emit.common.numbers import fmt, fmt_vec
 from robodesc.emit.common.paths import PathMode, mesh_reference
 from robodesc.emit.sdf.options import SdfOptions
-from robodesc.ir.geometry import Box, Cylinder, Mesh, Pose, Sphere
-from robodesc.ir.world import HeightImage, Plane, WorldCollider
+from robodesc.ir.geometry import Box, Cylinder, Mesh, Pose, Sphere, Vec3
+from robodesc.ir.world import CordField, HeightImage, Plane, WorldCollider
 
 if TYPE_CHECKING:
     from robodesc.emit.common.world import PlacedWorld
@@ -22,6 +22,8 @@ E = etree.SubElement
 
 
 def world_models(world: etree._Element, placed: PlacedWorld, options: SdfOptions) -> None:
+    for cords, anchors in placed.cords:
+        _cords(world, cords, anchors)
     for body in placed.world.bodies:
         model = E(world, "model", name=body.name)
         E(model, "static").text = "true"
@@ -41,6 +43,38 @@ def world_models(world: etree._Element, placed: PlacedWorld, options: SdfOptions
                     E(ode, "mu2").text = fmt(
                         collider.surface.mu2 if collider.surface.mu2 is not None else collider.surface.mu
                     )
+
+
+def _cords(world: etree._Element, cords: CordField, anchors: list[Vec3]) -> None:
+    """Each cord a model: capsule links on ``ball`` joints, the first to the world at the anchor. SDF's
+    ball joint has no axis, so no spring or damping: the bending stiffness is lost (the target warns)."""
+    step = cords.length / cords.segments
+    mass = cords.cord_mass / cords.segments
+    side = mass * (3 * cords.radius**2 + step**2) / 12
+    for i, anchor in enumerate(anchors):
+        model = E(world, "model", name=f"{cords.name}_{i}")
+        E(model, "pose").text = fmt_vec((*anchor, 0.0, 0.0, 0.0))
+        parent = "world"
+        for k in range(cords.segments):
+            name = f"s{k}"
+            link = E(model, "link", name=name)
+            E(link, "pose").text = fmt_vec((0.0, 0.0, -k * step, 0.0, 0.0, 0.0))
+            inertial = E(link, "inertial")
+            E(inertial, "pose").text = fmt_vec((0.0, 0.0, -step / 2, 0.0, 0.0, 0.0))
+            E(inertial, "mass").text = fmt(mass)
+            inertia = E(inertial, "inertia")
+            for tag, value in (("ixx", side), ("iyy", side), ("izz", mass * cords.radius**2 / 2)):
+                E(inertia, tag).text = fmt(value)
+            for tag in ("collision", "visual"):
+                el = E(link, tag, name=tag)
+                E(el, "pose").text = fmt_vec((0.0, 0.0, -step / 2, 0.0, 0.0, 0.0))
+                capsule = E(E(el, "geometry"), "capsule")
+                E(capsule, "radius").text = fmt(cords.radius)
+                E(capsule, "length").text = fmt(step)
+            joint = E(model, "joint", name=f"j{k}", type="ball")
+            E(joint, "parent").text = parent
+            E(joint, "child").text = name
+            parent = name
 
 
 def _geometry(collider: WorldCollider, options: SdfOptions) -> etree._Element | None:

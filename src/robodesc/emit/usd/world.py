@@ -23,7 +23,7 @@ from robodesc.emit.usd.layers import encode, stage_metadata
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.geometry import Box, Cylinder, Mesh, Sphere, Vec3
 from robodesc.ir.rigid import Frame, pose_frame
-from robodesc.ir.world import HeightImage, Plane, StaticBody, WorldCollider
+from robodesc.ir.world import CordField, HeightImage, Plane, StaticBody, WorldCollider
 from robodesc.usdfile.spec import Layer, Payload, Prim
 
 if TYPE_CHECKING:  # the placement reads meshes (numpy); a plain USD compile must not import it
@@ -58,11 +58,19 @@ def write_world(
     world.kind = "assembly"
     _scene(world, placed, contacts)
     material = _terrain_material(world, placed)
+    if not placed.world.bodies:  # a world of cords alone: a ground plane under them
+        ground = world.child("ground", "Plane")
+        ground.attr("width", "double", PLANE_SIZE)
+        ground.attr("length", "double", PLANE_SIZE)
+        ground.attr("axis", "token", "Z", uniform=True)
+        ground.apply("PhysicsCollisionAPI")
     for body in placed.world.bodies:
         body_prim = world.child(_name(body.name), "Xform")
         _xform(body_prim, pose_frame(body.pose))
         for collider in body.colliders:
             _collider(body_prim, body, collider, material, findings)
+    for cords, anchors in placed.cords:
+        _cords(world, cords, anchors)
     robot = world.child(robot_prim, "Xform")
     robot.payloads.append(Payload(f"./{os.path.basename(robot_file)}", f"/{robot_prim}"))
     _xform(robot, Frame(translation=root))
@@ -163,6 +171,64 @@ def _collider(
     if surface is not None and surface.mu is not None:
         prim.apply("MaterialBindingAPI")
         prim.rel("material:binding:physics", [materials[surface.mu]])
+
+
+def _cords(world: Prim, cords: CordField, anchors: list[Vec3]) -> None:
+    """Each cord an articulation: capsule links joined by D6 joints whose translations are locked
+    (a spherical joint) and whose three rotations carry a drive to zero, the cord's bending stiffness
+    and damping per degree (UsdPhysics' spherical joint has no drive, and PhysX springs a ball joint
+    only through D6 drives). The articulation's root is the anchor, a link welded to the world (a
+    fixed-base articulation: PhysX makes the joint from the world to the root rigid, so a first
+    bending joint there would not bend)."""
+    step = cords.length / cords.segments
+    mass = cords.cord_mass / cords.segments
+    side = mass * (3 * cords.radius**2 + step**2) / 12
+    for i, anchor in enumerate(anchors):
+        cord = world.child(f"{cords.name}_{i}", "Xform")
+        _xform(cord, Frame(translation=anchor))
+        cord.apply("PhysicsArticulationRootAPI")
+        cord.apply("PhysxArticulationAPI")
+        cord.attr("physxArticulation:enabledSelfCollisions", "bool", False)
+        root = cord.child("anchor", "Xform")
+        root.apply("PhysicsRigidBodyAPI")
+        root.apply("PhysicsMassAPI")
+        root.attr("physics:mass", "float", mass)  # immovable: any positive mass
+        root.attr("physics:diagonalInertia", "float3", (side, side, side))
+        pin = cord.child("pin", "PhysicsFixedJoint")
+        pin.attr("physics:localPos0", "point3f", anchor)  # no body0: the world
+        pin.rel("physics:body1", [f"/{WORLD}/{cords.name}_{i}/anchor"])
+        pin.attr("physics:localPos1", "point3f", (0.0, 0.0, 0.0))
+        previous = f"/{WORLD}/{cords.name}_{i}/anchor"
+        for k in range(cords.segments):
+            link = cord.child(f"s{k}", "Xform")
+            _xform(link, Frame(translation=(0.0, 0.0, -k * step)))
+            link.apply("PhysicsRigidBodyAPI")
+            link.apply("PhysicsMassAPI")
+            link.attr("physics:mass", "float", mass)
+            link.attr("physics:centerOfMass", "point3f", (0.0, 0.0, -step / 2))
+            link.attr("physics:diagonalInertia", "float3", (side, side, mass * cords.radius**2 / 2))
+            shape = link.child("collision", "Capsule")
+            shape.attr("radius", "double", cords.radius)
+            shape.attr("height", "double", step)
+            shape.attr("axis", "token", "Z", uniform=True)
+            _xform(shape, Frame(translation=(0.0, 0.0, -step / 2)))
+            shape.apply("PhysicsCollisionAPI")
+            joint = cord.child(f"j{k}", "PhysicsJoint")
+            joint.rel("physics:body0", [previous])
+            joint.attr("physics:localPos0", "point3f", (0.0, 0.0, -step if k else 0.0))
+            joint.rel("physics:body1", [f"/{WORLD}/{cords.name}_{i}/s{k}"])
+            joint.attr("physics:localPos1", "point3f", (0.0, 0.0, 0.0))
+            for axis in ("transX", "transY", "transZ"):
+                joint.apply(f"PhysicsLimitAPI:{axis}")  # low above high: locked
+                joint.attr(f"limit:{axis}:physics:low", "float", 1.0)
+                joint.attr(f"limit:{axis}:physics:high", "float", -1.0)
+            for axis in ("rotX", "rotY", "rotZ"):
+                joint.apply(f"PhysicsDriveAPI:{axis}")
+                joint.attr(f"drive:{axis}:physics:type", "token", "force", uniform=True)
+                joint.attr(f"drive:{axis}:physics:stiffness", "float", cords.stiffness * math.pi / 180)
+                joint.attr(f"drive:{axis}:physics:damping", "float", cords.damping * math.pi / 180)
+                joint.attr(f"drive:{axis}:physics:targetPosition", "float", 0.0)
+            previous = f"/{WORLD}/{cords.name}_{i}/s{k}"
 
 
 def _mesh(prim: Prim, shape: Mesh, collider: WorldCollider, body: StaticBody, findings: Findings) -> bool:

@@ -26,6 +26,18 @@ def is_world_file(path: str) -> bool:
 
 def load_world(options: WorldOptions, findings: Findings) -> World | None:
     """The world the options name, or None when they name none."""
+    world = _ground(options, findings)
+    if options.cords is not None:
+        from robodesc.frontends.world.cords import read_cords
+
+        cords = read_cords(_existing(options.cords, "--cords"))
+        if world is None:
+            world = World(name="cords", file=options.cords, src=SourceLoc(options.cords))
+        world.cords.extend(cords)
+    return world
+
+
+def _ground(options: WorldOptions, findings: Findings) -> World | None:
     if options.file is not None and options.terrain is not None:
         raise ConfigError("--world and --terrain both give the ground; give one (a world file names its terrain)")
     if options.file is not None:

@@ -20,7 +20,9 @@ class WorldOptions:
     spawn: tuple[float, ...] | None = None
     # Folders searched for model:// URIs before the Gazebo environment variables.
     model_path: tuple[str, ...] = ()
+    # A YAML file of cord fields (frontends/world/cords.py), added to the world (or to an empty one).
+    cords: str | None = None
 
     @property
     def given(self) -> bool:
-        return self.file is not None or self.terrain is not None
+        return self.file is not None or self.terrain is not None or self.cords is not None
