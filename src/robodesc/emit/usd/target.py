@@ -12,7 +12,6 @@ from robodesc.ir.model import Robot
 
 def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
     out = request.output("USD is written to a file: give one with -o robot.usda|.usdc|.usd")
-    request.default("fix_base", robot.fixed_base)
     from robodesc.emit.usd.emitter import emit_usd  # the writer loads when it writes
 
     findings.extend(emit_usd(robot, out, request.options))
