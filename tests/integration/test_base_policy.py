@@ -111,9 +111,21 @@ def test_summary_line_says_the_base(tmp_path: Path) -> None:
     )
     line = next(x for x in run.stderr.splitlines() if x.startswith("robodesc: usd"))
     assert "; base: floating (the composition's base; --fix-base to weld); validation" in line
+    package = f"--package=robodesc_examples={EXAMPLES / 'urdf'}"
     doc = subprocess.run(
-        [sys.executable, "-m", "robodesc", "compile", ARM, "-t", "sdf", "-o", str(tmp_path / "a.sdf"), "--json"]
-        + [f"--package=robodesc_examples={EXAMPLES / 'urdf'}"],
+        [
+            sys.executable,
+            "-m",
+            "robodesc",
+            "compile",
+            ARM,
+            "-t",
+            "sdf",
+            "-o",
+            str(tmp_path / "a.sdf"),
+            "--json",
+            package,
+        ],
         capture_output=True,
         text=True,
         cwd=ROOT,

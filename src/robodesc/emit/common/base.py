@@ -42,7 +42,9 @@ class BaseChoice:
     def summary(self) -> str:
         """``base: floating (stands on 4 feet; --fix-base to weld)``: what applied, why, and the flag
         that would change it (none when the source's ``world`` root decides)."""
-        other = "" if self.reason == BY_WORLD else ("; --no-fix-base to float" if self.fixed else "; --fix-base to weld")
+        other = (
+            "" if self.reason == BY_WORLD else ("; --no-fix-base to float" if self.fixed else "; --fix-base to weld")
+        )
         why = f"--{'' if self.fixed else 'no-'}fix-base" if self.reason == BY_FLAG else self.reason
         return f"base: {self.word} ({why}{'' if self.reason == BY_FLAG else other})"
 
