@@ -87,12 +87,20 @@ def baseline(source: str, folder: str) -> dict[str, Any]:
         for expr in group["joint_names_expr"]:
             stiffness[expr], damping[expr] = group["stiffness"], group["damping"]
     src = default_stance(robodesc.load(source), DynamicsOptions())
+    assert isinstance(src.stiffness, dict) and isinstance(src.damping, dict)
     return {
         "stiffness": stiffness,
         "damping": damping,
         "spawn": list(module["init_state"]["pos"]),
-        "source": {"pose": src.pose, "stiffness": src.stiffness, "damping": src.damping},
+        "source": {"pose": src.pose, "stiffness": _both(src.stiffness), "damping": _both(src.damping)},
     }
+
+
+def _both(table: dict[str, float]) -> dict[str, float]:
+    """A gain table by source joint name that also matches the USD's names: USD names cannot start with
+    a digit, so Spirit's and Go2's joint ``0`` is written ``a0``, and gain rules match written names
+    (Newton reads the gains from the USD)."""
+    return {(f"a?{k}" if k[:1].isdigit() else k): v for k, v in table.items()}
 
 
 def _api(options: dict[str, Any]) -> dict[str, Any]:
@@ -150,7 +158,8 @@ def other_rows(source: str, options: dict[str, Any], base: dict[str, Any]) -> di
     return rows
 
 
-def run(robot: str, causes: list[str]) -> list[dict[str, Any]]:
+def run(robot: str, causes: list[str], done: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """``done``: rows of an earlier run whose PhysX results are kept (``--physx-from``)."""
     source = ROBOTS[robot]
     rows = []
     with tempfile.TemporaryDirectory(prefix="physx-causes-") as folder:
@@ -159,7 +168,9 @@ def run(robot: str, causes: list[str]) -> list[dict[str, Any]]:
             for variant, options in CAUSES[cause]:
                 print(f"{robot}: {cause}: {variant}", file=sys.stderr, flush=True)
                 row = {"robot": robot, "cause": cause, "variant": variant, "options": dict(options)}
-                row["physx"] = physx_row(source, options, base, os.path.join(folder, re.sub(r"\W+", "_", variant)))
+                kept = next((r for r in done if (r["robot"], r["variant"]) == (robot, variant)), None)
+                where = os.path.join(folder, re.sub(r"\W+", "_", variant))
+                row["physx"] = kept["physx"] if kept else physx_row(source, options, base, where)
                 if cause in OTHER_ENGINES:
                     row.update(other_rows(source, options, base))
                 rows.append(row)
@@ -220,11 +231,16 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--robot", action="append", choices=sorted(ROBOTS))
     parser.add_argument("--cause", action="append", choices=[c for c in CAUSES if c != "baseline"])
+    parser.add_argument("--physx-from", metavar="JSON", help="keep the PhysX rows of an earlier run's JSON")
     parser.add_argument("--json")
     parser.add_argument("--md")
     args = parser.parse_args()
     causes = ["baseline", *(args.cause or [c for c in CAUSES if c != "baseline"])]
-    rows = [row for robot in (args.robot or ["spirit"]) for row in run(robot, causes)]
+    done = []
+    if args.physx_from:
+        with open(args.physx_from, encoding="utf-8") as handle:
+            done = [r for r in json.load(handle) if "error" not in r["physx"]]
+    rows = [row for robot in (args.robot or ["spirit"]) for row in run(robot, causes, done)]
     text = markdown(rows)
     print(text)
     if args.json:
