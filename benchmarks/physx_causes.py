@@ -1,7 +1,11 @@
 """Why a robot that stands in Gazebo saturates in Isaac: Quad-SDK's ranked causes, one at a time, in
 PhysX (issue 38; the causes: ../shared/docs/quad-sdk-prep.md), with MuJoCo, Drake and Newton beside.
 
-    python benchmarks/physx_causes.py [--robot spirit|go2 ...] [--cause NAME ...] [--json F] [--md F]
+    python benchmarks/physx_causes.py [--robot spirit|go2|a1|go1|anymal_c ...] [--cause NAME ...]
+        [--physx-from JSON] [--json F] [--md F]
+
+a1, go1 and anymal_c come from example-robot-data (the test extra), in PhysX only and without the
+armature row (there is no motor table for them).
 
 Each robot is compiled from its xacro with ``--isaac-sim`` and default flags (it floats: docs/isaac.md,
 "The base"), then once per variant with one cause changed. Every variant drives the joints with the
@@ -39,6 +43,7 @@ from typing import Any
 import robodesc
 from robodesc.check_dynamics import default_stance
 from robodesc.passes.options import parse_armature
+from robodesc.validation.corpora import example_robot_data_robots
 from robodesc.validation.dynamics import DynamicsOptions
 from robodesc.validation.physx_python import physx_python
 
@@ -48,6 +53,23 @@ ROBOTS = {
     "spirit": os.path.join(SHARED, "spirit_description/models/spirit/urdf/spirit.urdf.xacro"),
     "go2": os.path.join(SHARED, "go2_description/models/go2/urdf/go2.urdf.xacro"),
 }
+# The corpus's other legged robots (example-robot-data), PhysX only, without the armature row
+# (no motor table for them): --robot a1 ...
+CORPUS = {
+    "a1": "a1_description/urdf/a1",
+    "go1": "go1_description/urdf/go1",
+    "anymal_c": "anymal_c_simple_description/urdf/anymal",
+}
+
+
+def source_of(robot: str) -> tuple[str, dict[str, Any]]:
+    """The robot's file and the input options it needs (package paths)."""
+    if robot in ROBOTS:
+        return ROBOTS[robot], {}
+    found = next(r for r in example_robot_data_robots() if r.name == CORPUS[robot])
+    return found.path, {"package_paths": dict(found.packages)}
+
+
 # Quad-SDK's Spirit armature (J_rotor 1.231e-4 kg·m², gear 6 abad/hip, 12 knee). Go2 has no entry in
 # Quad-SDK; both name their joints alike (abduction 8-11, hip 0/2/4/6, knee 1/3/5/7), so Spirit's
 # rotor stands in for Go2's: the question is whether armature moves a standing robot at all.
@@ -75,18 +97,18 @@ ENGINES = ("mujoco", "drake", "newton")
 DURATION, TIMESTEP, CLEARANCE, FLOOR_MU = 2.0, 0.001, 0.005, 1.0
 
 
-def baseline(source: str, folder: str) -> dict[str, Any]:
+def baseline(source: str, folder: str, given: dict[str, Any]) -> dict[str, Any]:
     """The baseline folder's gains (SI, by the folder's joint names) and spawn; the same stance and
     gains in the source's joint names, for the other engines."""
     out = os.path.join(folder, "baseline")
-    robodesc.compile_for_isaac_sim(source, out, validate=False)
+    robodesc.compile_for_isaac_sim(source, out, validate=False, **given)
     module = runpy.run_path(next(os.path.join(out, f) for f in os.listdir(out) if f.endswith("_isaaclab.py")))["ROBOT"]
     stiffness: dict[str, float] = {}
     damping: dict[str, float] = {}
     for group in module["actuators"].values():
         for expr in group["joint_names_expr"]:
             stiffness[expr], damping[expr] = group["stiffness"], group["damping"]
-    src = default_stance(robodesc.load(source), DynamicsOptions())
+    src = default_stance(robodesc.load(source, **given), DynamicsOptions())
     assert isinstance(src.stiffness, dict) and isinstance(src.damping, dict)
     return {
         "stiffness": stiffness,
@@ -160,18 +182,21 @@ def other_rows(source: str, options: dict[str, Any], base: dict[str, Any]) -> di
 
 def run(robot: str, causes: list[str], done: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """``done``: rows of an earlier run whose PhysX results are kept (``--physx-from``)."""
-    source = ROBOTS[robot]
+    source, given = source_of(robot)
     rows = []
     with tempfile.TemporaryDirectory(prefix="physx-causes-") as folder:
-        base = baseline(source, folder)
+        base = baseline(source, folder, given)
         for cause in causes:
-            for variant, options in CAUSES[cause]:
+            if robot in CORPUS and cause == "armature":
+                continue
+            for variant, cause_options in CAUSES[cause]:
+                options = {**given, **cause_options}
                 print(f"{robot}: {cause}: {variant}", file=sys.stderr, flush=True)
-                row = {"robot": robot, "cause": cause, "variant": variant, "options": dict(options)}
+                row = {"robot": robot, "cause": cause, "variant": variant, "options": dict(cause_options)}
                 kept = next((r for r in done if (r["robot"], r["variant"]) == (robot, variant)), None)
                 where = os.path.join(folder, re.sub(r"\W+", "_", variant))
                 row["physx"] = kept["physx"] if kept else physx_row(source, options, base, where)
-                if cause in OTHER_ENGINES:
+                if cause in OTHER_ENGINES and robot not in CORPUS:
                     row.update(other_rows(source, options, base))
                 rows.append(row)
     return rows
@@ -229,7 +254,7 @@ def markdown(rows: list[dict[str, Any]]) -> str:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--robot", action="append", choices=sorted(ROBOTS))
+    parser.add_argument("--robot", action="append", choices=sorted({*ROBOTS, *CORPUS}))
     parser.add_argument("--cause", action="append", choices=[c for c in CAUSES if c != "baseline"])
     parser.add_argument("--physx-from", metavar="JSON", help="keep the PhysX rows of an earlier run's JSON")
     parser.add_argument("--json")
