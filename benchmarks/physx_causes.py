@@ -210,8 +210,8 @@ def markdown(rows: list[dict[str, Any]]) -> str:
     lines = [
         "# Gazebo-versus-Isaac causes, one at a time, in PhysX (with MuJoCo, Drake, Newton beside)",
         "",
-        "`python benchmarks/physx_causes.py --robot spirit --robot go2 --json benchmarks/results/physx_causes.json"
-        " --md benchmarks/results/physx_causes.md` (method: the script's docstring). Flat ground, floor μ 1,"
+        "`python benchmarks/physx_causes.py --robot ROBOT --json ...` per robot (spirit, go2; a1, anymal_c, go1"
+        " from example-robot-data in PhysX only), merged here (method: the script's docstring). Flat ground, floor μ 1,"
         " 2 s at 1 kHz from the Isaac Lab module's spawn (lowest collider 5 mm up), the baseline's stance and"
         " derived gains in every row. Height: the base's final z; tilt: from upright; joint error: the largest"
         " final |q − target|; peak: the largest drive torque over the run and its share of the effort limit."
