@@ -40,6 +40,8 @@ import tempfile
 import time
 from typing import Any
 
+from results_io import publish
+
 import robodesc
 from robodesc.check_dynamics import default_stance
 from robodesc.passes.options import parse_armature
@@ -266,14 +268,7 @@ def main() -> int:
         with open(args.physx_from, encoding="utf-8") as handle:
             done = [r for r in json.load(handle) if "error" not in r["physx"]]
     rows = [row for robot in (args.robot or ["spirit"]) for row in run(robot, causes, done)]
-    text = markdown(rows)
-    print(text)
-    if args.json:
-        with open(args.json, "w", encoding="utf-8") as handle:
-            json.dump(rows, handle, indent=1)
-    if args.md:
-        with open(args.md, "w", encoding="utf-8") as handle:
-            handle.write(text)
+    publish(markdown(rows), rows, args.json, args.md)
     return 0
 
 
