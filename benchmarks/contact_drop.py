@@ -24,12 +24,13 @@ from __future__ import annotations
 
 import argparse
 import itertools
-import json
 import math
 import os
 import sys
 import time
 from typing import Any
+
+from results_io import publish
 
 import robodesc
 
@@ -173,14 +174,7 @@ def main() -> int:
     parser.add_argument("--md")
     args = parser.parse_args()
     results = [run(robot, preset) for robot in (args.robot or ["spirit"]) for preset in PRESETS]
-    text = markdown(results)
-    print(text)
-    if args.json:
-        with open(args.json, "w", encoding="utf-8") as handle:
-            json.dump(results, handle, indent=1)
-    if args.md:
-        with open(args.md, "w", encoding="utf-8") as handle:
-            handle.write(text)
+    publish(markdown(results), results, args.json, args.md)
     return 0
 
 

@@ -14,13 +14,14 @@ Results: benchmarks/results/contact_survey.md and .json.
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 import tempfile
 import xml.etree.ElementTree as ET
 from collections import Counter
 from typing import Any
+
+from results_io import publish
 
 import robodesc
 from robodesc.frontends.load import load_path
@@ -116,14 +117,7 @@ def main() -> int:
     args = parser.parse_args()
     shared = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "corpus")
     rows = [r for r in (survey(e) for e in all_robots(shared)) if r is not None]
-    text = markdown(rows)
-    print(text)
-    if args.json:
-        with open(args.json, "w", encoding="utf-8") as handle:
-            json.dump(rows, handle, indent=1)
-    if args.md:
-        with open(args.md, "w", encoding="utf-8") as handle:
-            handle.write(text)
+    publish(markdown(rows), rows, args.json, args.md)
     return 0
 
 

@@ -23,6 +23,7 @@ import re
 from collections.abc import Callable, Mapping
 from typing import Any
 
+from robodesc.emit.common.base import choose_base
 from robodesc.ir.diagnostics import Findings, RobodescError
 from robodesc.ir.model import Robot
 from robodesc.targets import TARGETS, target_spec
@@ -46,6 +47,7 @@ def dynamics_options(given: DynamicsOptions | bool | Mapping[str, Any], options:
     opts.damping = opts.damping if opts.damping is not None else options.get("damping")
     opts.pose = opts.pose if opts.pose is not None else options.get("init_joint_pos")
     opts.package_paths = opts.package_paths or dict(options.get("package_paths", {}))
+    opts.fix_base = opts.fix_base if opts.fix_base is not None else options.get("fix_base")
     return opts
 
 
@@ -68,6 +70,8 @@ def run_for(
     also = joining(files)
     engines = tuple(opts.engines) or tuple(dict.fromkeys((*DEFAULT_ENGINES, *_engine_of(target), *also)))
     robot = _source_robot(source, options) or robot
+    # The base every compiled file has (emit/common/base.py): a welded robot is not dropped.
+    opts = dataclasses.replace(opts, fix_base=choose_base(robot, opts.fix_base).fixed)
     # The checked file's drives are what its target wrote: a target that writes its options'
     # constant gains (-t usd: 100 / 1) is simulated with them everywhere, not with derived ones
     # Newton would not read from that file. Then the pose and the gains the others lack.
@@ -111,8 +115,7 @@ def default_stance(robot: Robot, opts: DynamicsOptions) -> DynamicsOptions:
         )
     except RobodescError:
         lowered = copy.deepcopy(robot)
-    roots = lowered.root_links()
-    floating = bool(roots) and roots[0].name != "world"
+    floating = not (opts.fix_base if opts.fix_base is not None else choose_base(robot, None).fixed)
     driven = [j for j in lowered.actuated_joints() if j.type.dof == 1]
     wanted = {}
     if opts.pose is not None:

@@ -18,6 +18,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from robodesc.emit.common.base import BaseChoice, choose_base, report_base
 from robodesc.emit.common.staging import Staging, check_output
 from robodesc.emit.common.target import CheckRequest, EmitRequest, Emitted, Target
 from robodesc.frontends.load import Source, load_source
@@ -64,6 +65,8 @@ class CompileResult:
     source_failures: list[Check] = field(default_factory=list)
     # validate --dynamics: a robodesc.validation.dynamics.DynamicsReport (None when not asked).
     dynamics: Any = None
+    # Welded or floating, and why (emit/common/base.py); None for a target without a base option.
+    base: BaseChoice | None = None
 
     @property
     def warnings(self) -> list[Finding]:
@@ -128,8 +131,11 @@ PASSED_THROUGH = " (passed through unchanged; --invalid-inertia repair fixes it 
 CARRIED = " [a defect of the source, carried through unchanged]"
 
 
-def _request(spec: Target, stage: Staging, options: CompileOptions, findings: Findings) -> EmitRequest:
+def _request(
+    robot: Robot, spec: Target, stage: Staging, options: CompileOptions, findings: Findings
+) -> tuple[EmitRequest, BaseChoice | None]:
     built = None
+    base = None
     if spec.options is not None:
         names = {f.name for f in dataclasses.fields(spec.options)}
         given = {k: v for k, v in options.target_options.items() if k in names}
@@ -152,13 +158,19 @@ def _request(spec: Target, stage: Staging, options: CompileOptions, findings: Fi
                 stage="options",
             )
         built = dataclass_from_mapping(spec.options, {**applied, **given}, spec.name)
-    return EmitRequest(
+        if "fix_base" in names:
+            # One base for every target, decided before the emitter (emit/common/base.py).
+            base = choose_base(robot, given.get("fix_base"))
+            built.fix_base = base.fixed
+            report_base(robot, base, findings)
+    request = EmitRequest(
         out=stage.path,
         options=built,
         mesh_paths=options.mesh_paths,
         given=frozenset(options.target_options),
         final=stage.final,
     )
+    return request, base
 
 
 def compile_robot(
@@ -194,13 +206,16 @@ def compile_robot(
     world = _world(robot, options, findings, progress)
     stage = Staging(out, spec.folder)
     try:
-        request = dataclasses.replace(_request(spec, stage, options, findings), world=world)
+        request, base = _request(robot, spec, stage, options, findings)
+        request = dataclasses.replace(request, world=world)
         if spec.owned is not None and stage.final is not None:
             stage.protect(spec.owned(request.options, stage.final))
         if world is not None and spec.world_files is not None and stage.final is not None:
             stage.protect(spec.world_files(request.options, stage.final))
         emitted = _emit(robot, spec, request, stage, resolved, findings, progress)
-        result = CompileResult(robot=robot, findings=[], target=spec.name, text=emitted.text, files=emitted.files)
+        result = CompileResult(
+            robot=robot, findings=[], target=spec.name, text=emitted.text, files=emitted.files, base=base
+        )
         if options.validate:
             progress("validating")
             _quiet_usd_banner()

@@ -32,7 +32,7 @@ def test_quadruped_floats_and_stands_from_home(source: Path, tmp_path: Path) -> 
         pytest.skip("corpus not present")
     out = tmp_path / "robot.xml"
     result = compile_to_mjcf(str(source), str(out))
-    assert any(f.code == "mjcf-floating-base" for f in result.findings)
+    assert any(f.code == "base-floating" for f in result.findings)
     model = mujoco.MjModel.from_xml_path(str(out))
     assert model.jnt_type[0] == mujoco.mjtJoint.mjJNT_FREE
     home = model.key_qpos[0]
@@ -47,7 +47,7 @@ def test_arm_stays_welded(tmp_path: Path) -> None:
     result = compile_to_mjcf(
         str(EXAMPLES / "urdf/gripper_arm.urdf"), str(out), package_paths={"robodesc_examples": str(EXAMPLES / "urdf")}
     )
-    assert not any(f.code == "mjcf-floating-base" for f in result.findings)
+    assert not any(f.code == "base-floating" for f in result.findings)
     model = mujoco.MjModel.from_xml_path(str(out))
     assert mujoco.mjtJoint.mjJNT_FREE not in list(model.jnt_type)
 

@@ -132,7 +132,8 @@ def summary_line(result: CompileResult, target: str, out: str | None) -> str:
         f"robodesc: {target} {where}: {len(robot.links)} links, {len(robot.joints)} joints, "
         f"{robot.dof} DOF, {mass:.4g} kg"
     )
-    return f"{head}; {verdict(result)}"
+    base = f"; {result.base.summary()}" if result.base is not None else ""
+    return f"{head}{base}; {verdict(result)}"
 
 
 # The numbers validation compares with the source, and their units (simulation metrics such as
@@ -257,6 +258,7 @@ def json_doc(
             "joints": len(robot.joints),
             "dof": robot.dof,
             "mass": robot.total_mass(),
+            "base": None if result.base is None else {"fixed": result.base.fixed, "reason": result.base.reason},
             "validation": verdict(result),
         }
         doc["findings"] = [finding_dict(f) for f in result.findings]

@@ -67,9 +67,9 @@ def declared_flags(cls: type[Any]) -> Iterator[tuple[dataclasses.Field[Any], Fla
 
 # ---- options several targets take: one declaration, so the flag and its help are the same --------
 FIX_BASE = flag(
-    "weld the root link to the world, or float it with --no-fix-base (defaults: SDF floats; MJCF floats a "
-    "robot on three or more legs so it stands in scene.xml; the others fix, as their importers do; a "
-    "composition's own choice wins)",
+    "weld the root link to the world, or float it with --no-fix-base (default, the same in every target: a "
+    "robot on three or more legs floats so it stands on them, anything else is welded; a composition's "
+    "own choice wins over the legs; the summary line says which applied and why)",
     kind="switch",
 )
 DRIVE_TYPE = flag("joint drive type (default force)", choices=("force", "acceleration"))

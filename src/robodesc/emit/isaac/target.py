@@ -18,7 +18,6 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     from robodesc.emit.isaac.folder import write_isaac_folder  # the writers load when they write
 
     out = request.output("the Isaac Sim target writes a folder: give it with -o OUT_DIR")
-    request.default("fix_base", robot.fixed_base)
     # Where the composition put the robot.
     request.default("init_pos", robot.placement.xyz if robot.placement is not None else None)
     settings: IsaacSettings = request.options

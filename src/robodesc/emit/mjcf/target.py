@@ -26,9 +26,8 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
 
     out = request.output("MJCF is written to a file: give one with -o OUT/robot.xml")
     check_depth(robot)  # before the derived gains, which take a while on a tree MuJoCo cannot read
-    request.default("fix_base", robot.fixed_base)
     request.default("init_pos", robot.placement.xyz if robot.placement is not None else None)
-    stance = _default_base_and_pose(robot, request, findings)
+    stance = _default_pose(robot, request, findings)
     _default_gains(robot, request, findings, stance)
     _source_gains(robot, request, findings)
     if request.world is not None:
@@ -46,30 +45,19 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     return Emitted(files=files, extra={"mjcf_options": request.options, "drives": _asked_drives(robot, request)})
 
 
-def _default_base_and_pose(robot: Robot, request: EmitRequest, findings: Findings) -> Stance:
-    """The base and the ``home`` pose where the user gave none (docs/mjcf.md, "Defaults and why").
+def _default_pose(robot: Robot, request: EmitRequest, findings: Findings) -> Stance:
+    """The ``home`` pose where the user gave none (docs/mjcf.md, "Defaults and why").
 
-    A robot that stands on three or more legs floats, so that scene.xml drops it onto its feet; an
-    arm (no legs) stays welded. A floating robot's home keyframe is its stance (the Isaac folder's
-    default pose: named pose, else the legged heuristic), with the root at the stance's spawn height.
-    The body itself stays at the zero pose's height: at qpos0 its straight legs must not start in the floor.
+    The base was decided before the emitter, as for every target (emit/common/base.py: a robot on
+    three or more legs floats, so that scene.xml drops it onto its feet). A floating robot's home
+    keyframe is its stance (the Isaac folder's default pose: named pose, else the legged heuristic),
+    with the root at the stance's spawn height. The body itself stays at the zero pose's height: at
+    qpos0 its straight legs must not start in the floor.
     """
     # Loaded here, not at import: building the CLI's parser imports this module, and these read meshes.
     from robodesc.emit.common.default_pose import default_pose, given_positions, pose_table, spawn_height
-    from robodesc.emit.common.stance import complete, find_legs
 
     options: MjcfOptions = request.options
-    if "fix_base" not in request.given and robot.fixed_base is None and robot.root.name != "world":
-        legs = find_legs(robot, complete(robot, {}))
-        if len(legs) >= 3:
-            options.fix_base = False
-            findings.info(
-                "mjcf-floating-base",
-                f"{len(legs)} legs ({', '.join(leg.foot for leg in legs)}): the root floats (a <freejoint/>) so "
-                "the robot stands on them in scene.xml; --fix-base welds it to the world",
-                element=f"robot {robot.name!r}",
-                stage=STAGE,
-            )
     wanted = given_positions(robot, options.init_joint_pos)
     floating = not options.fix_base and robot.root.name != "world"
     stance = default_pose(robot, wanted, floating, findings, STAGE)

@@ -14,7 +14,6 @@ from robodesc.ir.model import Robot
 
 def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
     out = request.output("USD is written to a file: give one with -o robot.usda|.usdc|.usd")
-    request.default("fix_base", robot.fixed_base)
     if request.options.target_type != "none":
         # The source's own servos (an MJCF's) over the constant gains, where the user gave none.
         apply_source_gains(robot, request.options, request.given)

@@ -87,7 +87,8 @@ def run_dynamics(
     wanted = set(opts.engines) or set(ENGINES)
     scenarios = SCENARIOS if setup.floating else tuple(s for s in SCENARIOS if s != "drop")
     if not setup.floating:
-        report.add("drop", Status.SKIP, "robot", "not run: fewer than three links touch the ground at the home pose")
+        why = "the base is welded" if opts.fix_base else "fewer than three links touch the ground at the home pose"
+        report.add("drop", Status.SKIP, "robot", f"not run: {why}")
     if not any(link.collisions for link in robot.links):
         scenarios = tuple(s for s in scenarios if s != "slide")
         report.add("slide", Status.SKIP, "robot", "not run: the robot has no collider, so no material to slide")

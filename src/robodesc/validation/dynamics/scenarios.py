@@ -72,6 +72,9 @@ class DynamicsOptions:
     package_paths: Mapping[str, str] = field(default_factory=dict)
     newton_python: str | None = None  # the Newton venv's interpreter (default: the consumer tier's)
     physx_python: str | None = None  # an interpreter with ovphysx (default: validation.physx_python's search)
+    # The base the compiled files have (robodesc.emit.common.base.choose_base, which
+    # ``validate --dynamics`` fills): True welds it, and the drop is not run; None: judged by the feet.
+    fix_base: bool | None = None
     # What chose the pose and gains when the caller gave none (``validate --dynamics`` fills them
     # with the Isaac folder's defaults, robodesc.check_dynamics.default_stance); shown in the report.
     defaults: str | None = None
@@ -83,7 +86,8 @@ class Setup:
 
     pose: dict[str, float]  # every actuated 1-DOF joint (mimics excluded)
     gains: dict[str, tuple[float, float]]  # joint -> (kp, kd), SI
-    floating: bool  # the robot stands on three or more links: the drop scenario applies (stands())
+    # The base floats and the robot stands on three or more links: the drop scenario applies (stands()).
+    floating: bool
     stand_height: float  # m: root height at which the lowest collider touches z = 0 at the pose
     friction: float | None  # the source's collider friction (None: not given, engine default)
     # The links the robot stands on at the home pose (feet, wheels), when it stands: the slide's
@@ -254,7 +258,7 @@ def effort_limits(robot: Robot) -> dict[str, float]:
 
 def make_setup(robot: Robot, options: DynamicsOptions) -> Setup:
     pose = home_pose(robot, options.pose)
-    floating = stands(robot, pose)
+    floating = options.fix_base is not True and stands(robot, pose)
     standing_on = feet(robot, pose) if floating else ()
     return Setup(
         pose=pose,

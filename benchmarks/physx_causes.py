@@ -1,0 +1,276 @@
+"""Why a robot that stands in Gazebo saturates in Isaac: Quad-SDK's ranked causes, one at a time, in
+PhysX (issue 38; the causes: ../shared/docs/quad-sdk-prep.md), with MuJoCo, Drake and Newton beside.
+
+    python benchmarks/physx_causes.py [--robot spirit|go2|a1|go1|anymal_c ...] [--cause NAME ...]
+        [--physx-from JSON] [--json F] [--md F]
+
+a1, go1 and anymal_c come from example-robot-data (the test extra), in PhysX only and without the
+armature row (there is no motor table for them).
+
+Each robot is compiled from its xacro with ``--isaac-sim`` and default flags (it floats: docs/isaac.md,
+"The base"), then once per variant with one cause changed. Every variant drives the joints with the
+baseline's gains (the Isaac folder's derived ones, pinned as tables: armature would otherwise change
+the derived damping too) towards the baseline's stance, and spawns the robot where the baseline's
+Isaac Lab module does (its lowest collider 5 mm above the ground).
+
+PhysX: ovphysx 0.7 on CPU, in its own interpreter (``benchmarks/physx_stand.py``): the folder's USD as
+written, over a floor plane of friction 1 (Gazebo's default surface), 2 s at 1 kHz (Quad-SDK's rate),
+TGS (PhysX's default). Reported: the base's final height and tilt, the largest final joint error
+|q - target|, and the peak drive torque over the run (|kp e - kd qd| clamped to the effort limit)
+with its share of that limit: the saturation users report.
+
+MuJoCo (MJCF), Drake (SDF) and Newton (USD, SolverMuJoCo) run the same drop through ``robodesc.check(...,
+dynamics=...)`` (``validate --dynamics``) for the variants their files carry (the baseline, armature,
+damping defaults, ``--preset gazebo_parity``): same stance, same gains, 2 s, from 5 mm. The other causes
+are PhysX attributes (iterations, offsets, combine mode, the PhysX mesh approximations) none of them
+reads; a dash says so. Results: benchmarks/results/physx_causes.{json,md}.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import re
+import runpy
+import subprocess
+import sys
+import tempfile
+import time
+from typing import Any
+
+from results_io import publish
+
+import robodesc
+from robodesc.check_dynamics import default_stance
+from robodesc.passes.options import parse_armature
+from robodesc.validation.corpora import example_robot_data_robots
+from robodesc.validation.dynamics import DynamicsOptions
+from robodesc.validation.physx_python import physx_python
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SHARED = os.path.join(HERE, "..", "..", "shared", "corpus", "quadsdk")
+ROBOTS = {
+    "spirit": os.path.join(SHARED, "spirit_description/models/spirit/urdf/spirit.urdf.xacro"),
+    "go2": os.path.join(SHARED, "go2_description/models/go2/urdf/go2.urdf.xacro"),
+}
+# The corpus's other legged robots (example-robot-data), PhysX only, without the armature row
+# (no motor table for them): --robot a1 ...
+CORPUS = {
+    "a1": "a1_description/urdf/a1",
+    "go1": "go1_description/urdf/go1",
+    "anymal_c": "anymal_c_simple_description/urdf/anymal",
+}
+
+
+def source_of(robot: str) -> tuple[str, dict[str, Any]]:
+    """The robot's file and the input options it needs (package paths)."""
+    if robot in ROBOTS:
+        return ROBOTS[robot], {}
+    found = next(r for r in example_robot_data_robots() if r.name == CORPUS[robot])
+    return found.path, {"package_paths": dict(found.packages)}
+
+
+# Quad-SDK's Spirit armature (J_rotor 1.231e-4 kg·m², gear 6 abad/hip, 12 knee). Go2 has no entry in
+# Quad-SDK; both name their joints alike (abduction 8-11, hip 0/2/4/6, knee 1/3/5/7), so Spirit's
+# rotor stands in for Go2's: the question is whether armature moves a standing robot at all.
+ARMATURE = ("8|9|10|11=4.4316e-3", "0|2|4|6=4.4316e-3", "1|3|5|7=1.77264e-2")
+# cause -> [(variant, compile options)]; the first row of all is the baseline.
+CAUSES: dict[str, list[tuple[str, dict[str, Any]]]] = {
+    "baseline": [("--isaac-sim, default flags", {})],
+    "collider approximation": [
+        (f"--collision-approximation {m}", {"collision_approximation": m})
+        for m in ("none", "convexDecomposition", "sdf")  # convexHull is the baseline's
+    ],
+    "armature": [("Quad-SDK armature on", {"armature": ARMATURE})],  # rules as --armature takes them
+    "solver iterations": [
+        ("64 / 16", {"solver_position_iterations": 64, "solver_velocity_iterations": 16}),
+        ("255 / 16", {"solver_position_iterations": 255, "solver_velocity_iterations": 16}),
+    ],
+    "contact and rest offsets": [("contact 1 mm, rest 0", {"contact_offset": 0.001, "rest_offset": 0.0})],
+    "damping defaults": [("explicit_damping (URDF's unsaid damping = 0)", {"explicit_damping": True})],
+    "friction combine": [(f"--friction-combine {m}", {"friction_combine": m}) for m in ("min", "multiply", "max")],
+    "gazebo_parity": [("--preset gazebo_parity", {"preset": "gazebo_parity"})],
+}
+# The causes whose change reaches a file MuJoCo, Drake or Newton reads.
+OTHER_ENGINES = {"baseline", "armature", "damping defaults", "gazebo_parity"}
+ENGINES = ("mujoco", "drake", "newton")
+DURATION, TIMESTEP, CLEARANCE, FLOOR_MU = 2.0, 0.001, 0.005, 1.0
+
+
+def baseline(source: str, folder: str, given: dict[str, Any]) -> dict[str, Any]:
+    """The baseline folder's gains (SI, by the folder's joint names) and spawn; the same stance and
+    gains in the source's joint names, for the other engines."""
+    out = os.path.join(folder, "baseline")
+    robodesc.compile_for_isaac_sim(source, out, validate=False, **given)
+    module = runpy.run_path(next(os.path.join(out, f) for f in os.listdir(out) if f.endswith("_isaaclab.py")))["ROBOT"]
+    stiffness: dict[str, float] = {}
+    damping: dict[str, float] = {}
+    for group in module["actuators"].values():
+        for expr in group["joint_names_expr"]:
+            stiffness[expr], damping[expr] = group["stiffness"], group["damping"]
+    src = default_stance(robodesc.load(source, **given), DynamicsOptions())
+    assert isinstance(src.stiffness, dict) and isinstance(src.damping, dict)
+    return {
+        "stiffness": stiffness,
+        "damping": damping,
+        "spawn": list(module["init_state"]["pos"]),
+        "source": {"pose": src.pose, "stiffness": _both(src.stiffness), "damping": _both(src.damping)},
+    }
+
+
+def _both(table: dict[str, float]) -> dict[str, float]:
+    """A gain table by source joint name that also matches the USD's names: USD names cannot start with
+    a digit, so Spirit's and Go2's joint ``0`` is written ``a0``, and gain rules match written names
+    (Newton reads the gains from the USD)."""
+    return {(f"a?{k}" if k[:1].isdigit() else k): v for k, v in table.items()}
+
+
+def _api(options: dict[str, Any]) -> dict[str, Any]:
+    """The API's spelling of the options (armature rules parsed, as the CLI parses --armature)."""
+    return {k: tuple(parse_armature(r) for r in v) if k == "armature" else v for k, v in options.items()}
+
+
+def physx_row(source: str, options: dict[str, Any], base: dict[str, Any], folder: str) -> dict[str, Any]:
+    options = _api(options)
+    out = os.path.join(folder, "isaac")
+    robodesc.compile_for_isaac_sim(
+        source, out, validate=False, stiffness=base["stiffness"], damping=base["damping"], **options
+    )
+    usd = next(os.path.join(out, f) for f in os.listdir(out) if f.endswith((".usda", ".usd", ".usdc")))
+    request = {"usd": usd, "spawn": base["spawn"], "duration": DURATION, "timestep": TIMESTEP, "floor_mu": FLOOR_MU}
+    python = physx_python()
+    if python is None:
+        return {"error": "no interpreter with ovphysx (robodesc.validation.physx_python)"}
+    started = time.perf_counter()
+    run = subprocess.run(
+        [python, os.path.join(HERE, "physx_stand.py")],
+        input=json.dumps(request),
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    lines = [line for line in run.stdout.splitlines() if line.startswith("{")]
+    if not lines:
+        return {"error": (run.stderr.strip().splitlines() or ["no answer"])[-1][:300]}
+    row: dict[str, Any] = json.loads(lines[-1])
+    row["seconds"] = round(time.perf_counter() - started, 1)
+    return row
+
+
+def other_rows(source: str, options: dict[str, Any], base: dict[str, Any]) -> dict[str, Any]:
+    """The drop in MuJoCo, Drake and Newton through validate --dynamics, from the same stance and gains."""
+    options = _api(options)
+    src = base["source"]
+    dynamics = DynamicsOptions(
+        engines=ENGINES, pose=src["pose"], duration=DURATION, timestep=TIMESTEP, drop_clearance=CLEARANCE
+    )
+    result = robodesc.check(
+        source, "mjcf", dynamics=dynamics, stiffness=src["stiffness"], damping=src["damping"], **options
+    )
+    rows: dict[str, Any] = {}
+    for r in result.dynamics.runs if result.dynamics is not None else []:
+        if r.scenario == "drop" and r.file != "source":
+            rows[r.engine] = {
+                "height": r.height,
+                "tilt": r.tilt,
+                "joint_error": r.drift,
+                "worst_joint": r.worst_joint,
+                "error": r.error or None,
+            }
+    return rows
+
+
+def run(robot: str, causes: list[str], done: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """``done``: rows of an earlier run whose PhysX results are kept (``--physx-from``)."""
+    source, given = source_of(robot)
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="physx-causes-") as folder:
+        base = baseline(source, folder, given)
+        for cause in causes:
+            if robot in CORPUS and cause == "armature":
+                continue
+            for variant, cause_options in CAUSES[cause]:
+                options = {**given, **cause_options}
+                print(f"{robot}: {cause}: {variant}", file=sys.stderr, flush=True)
+                row = {"robot": robot, "cause": cause, "variant": variant, "options": dict(cause_options)}
+                kept = next((r for r in done if (r["robot"], r["variant"]) == (robot, variant)), None)
+                where = os.path.join(folder, re.sub(r"\W+", "_", variant))
+                row["physx"] = kept["physx"] if kept else physx_row(source, options, base, where)
+                if cause in OTHER_ENGINES and robot not in CORPUS:
+                    row.update(other_rows(source, options, base))
+                rows.append(row)
+    return rows
+
+
+def _f(value: float | None, fmt: str, scale: float = 1.0) -> str:
+    return "–" if value is None else format(value * scale, fmt)
+
+
+def markdown(rows: list[dict[str, Any]]) -> str:
+    lines = [
+        "# Gazebo-versus-Isaac causes, one at a time, in PhysX (with MuJoCo, Drake, Newton beside)",
+        "",
+        "`python benchmarks/physx_causes.py --robot ROBOT --json ...` per robot (spirit, go2; a1, anymal_c, go1"
+        " from example-robot-data in PhysX only), merged here (method: the script's docstring). Flat ground, floor μ 1,"
+        " 2 s at 1 kHz from the Isaac Lab module's spawn (lowest collider 5 mm up), the baseline's stance and"
+        " derived gains in every row. Height: the base's final z; tilt: from upright; joint error: the largest"
+        " final |q − target|; peak: the largest drive torque over the run and its share of the effort limit."
+        " Δ: against the baseline in the same engine. MuJoCo / Drake / Newton: final height (Δ) for the causes"
+        " their files carry; – where the cause is a PhysX attribute they do not read.",
+        "",
+    ]
+    for robot in dict.fromkeys(r["robot"] for r in rows):
+        mine = [r for r in rows if r["robot"] == robot]
+        ref = next((r for r in mine if r["cause"] == "baseline"), None)
+        lines += [
+            f"## {robot}",
+            "",
+            "| cause | variant | PhysX height m | Δ mm | tilt ° | joint error rad | peak N·m (share, joint) | MuJoCo m (Δ mm) | Drake m (Δ mm) | Newton m (Δ mm) |",
+            "|---|---|---|---|---|---|---|---|---|---|",
+        ]
+        for r in mine:
+            p = r["physx"]
+            if "error" in p:
+                lines.append(f"| {r['cause']} | {r['variant']} | failed: {p['error']} | | | | | | | |")
+                continue
+            dz = None if ref is None or "height" not in ref["physx"] else p["height"] - ref["physx"]["height"]
+            cells = []
+            for engine in ENGINES:
+                e = r.get(engine)
+                if not e or e.get("height") is None:
+                    cells.append("–" if not e else f"failed: {e.get('error')}")
+                    continue
+                b = (ref or {}).get(engine) or {}
+                d = None if b.get("height") is None else e["height"] - b["height"]
+                cells.append(f"{e['height']:.4f} ({_f(d, '+.1f', 1e3)})")
+            lines.append(
+                f"| {r['cause']} | {r['variant']} | {p['height']:.4f} | {_f(dz, '+.1f', 1e3)} | "
+                f"{math.degrees(p['tilt']):.2f} | {p['joint_error']:.3f} | {p['peak_torque']:.1f} "
+                f"({p['peak_share']:.0%}, {p['peak_joint']}) | " + " | ".join(cells) + " |"
+            )
+        lines.append("")
+    return "\n".join(lines)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--robot", action="append", choices=sorted({*ROBOTS, *CORPUS}))
+    parser.add_argument("--cause", action="append", choices=[c for c in CAUSES if c != "baseline"])
+    parser.add_argument("--physx-from", metavar="JSON", help="keep the PhysX rows of an earlier run's JSON")
+    parser.add_argument("--json")
+    parser.add_argument("--md")
+    args = parser.parse_args()
+    causes = ["baseline", *(args.cause or [c for c in CAUSES if c != "baseline"])]
+    done = []
+    if args.physx_from:
+        with open(args.physx_from, encoding="utf-8") as handle:
+            done = [r for r in json.load(handle) if "error" not in r["physx"]]
+    rows = [row for robot in (args.robot or ["spirit"]) for row in run(robot, causes, done)]
+    publish(markdown(rows), rows, args.json, args.md)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
