@@ -33,6 +33,9 @@ class ValidateOptions:
     sim_timestep: float = 0.002  # s
     max_speed: float = 100.0  # rad/s or m/s in any degree of freedom counts as an explosion
     penetration_tol: float = 1e-3  # m: deeper contacts between robot geoms at rest are reported
+    # Load USD outputs in PhysX too (validation/physx_usd.py) when a PhysX interpreter exists: a
+    # worker process, about 5 s a robot.
+    physx: bool = True
     # Meshes MuJoCo cannot read (DAE ...) are converted to STL here (default: a folder in the temp dir).
     mesh_cache_dir: str | None = None
     # Package roots for ``package://`` URIs left in the text under validation.
