@@ -306,7 +306,7 @@ def render(
         + ".",
         "",
         "Each robot is read from its source, emitted to every target, and the output is loaded by an",
-        "independent consumer (URDF: MuJoCo, SDF: Drake, USD: usd-core's UsdPhysics parser) and compared with the IR:",
+        "independent consumer (URDF: MuJoCo, SDF: Drake, USD: usd-core's UsdPhysics parser, and PhysX where its interpreter exists) and compared with the IR:",
         "masses, centres of mass, inertia tensors, joint types, axes and limits, and forward kinematics",
         "of every link at random configurations; URDF also gets a 0.5 s simulation. See",
         "[validation.md](validation.md) for the checks and tolerances. Errors at machine precision show",

@@ -130,13 +130,19 @@ def _compile_flags(robot: CorpusRobot) -> list[str]:
     return flags
 
 
-def run_robot(robot: CorpusRobot, envs: str, work: str) -> dict[str, object]:
-    name = str(robot.name)
-    slug = re.sub(r"[^A-Za-z0-9_.-]+", "_", name)
+def _workdir(robot: CorpusRobot, work: str, log_name: str) -> tuple[str, str, str]:
+    """(slug, the robot's folder under ``work``, a fresh log file in it named ``log_name``)."""
+    slug = re.sub(r"[^A-Za-z0-9_.-]+", "_", str(robot.name))
     wdir = os.path.join(work, slug)
     os.makedirs(wdir, exist_ok=True)
-    log = os.path.join(wdir, "log.txt")
+    log = os.path.join(wdir, log_name)
     open(log, "w").close()
+    return slug, wdir, log
+
+
+def run_robot(robot: CorpusRobot, envs: str, work: str) -> dict[str, object]:
+    name = str(robot.name)
+    slug, wdir, log = _workdir(robot, work, "log.txt")
     source = str(robot.path)
     floating = bool(FLOATING.search(name))
     py = [sys.executable, "-m", "robodesc"]
@@ -226,11 +232,7 @@ def run_robot(robot: CorpusRobot, envs: str, work: str) -> dict[str, object]:
 def run_robot_mjcf(robot: CorpusRobot, envs: str, work: str) -> dict[str, object]:
     """The ``newton_mjcf`` column: robot.xml through Newton's add_mjcf against the reference URDF."""
     name = str(robot.name)
-    slug = re.sub(r"[^A-Za-z0-9_.-]+", "_", name)
-    wdir = os.path.join(work, slug)
-    os.makedirs(wdir, exist_ok=True)
-    log = os.path.join(wdir, "log_mjcf.txt")
-    open(log, "w").close()
+    slug, wdir, log = _workdir(robot, work, "log_mjcf.txt")
     source = str(robot.path)
     floating = bool(FLOATING.search(name))
     py = [sys.executable, "-m", "robodesc"]
@@ -299,11 +301,7 @@ def run_robot_physx(robot: CorpusRobot, work: str) -> dict[str, object]:
     verdict on the PhysX rows; ``physx_loads``, ``physx_masses`` and ``physx_drives`` split it (a
     known mismatch still listed in physx_usd.PENDING_FIXES counts as a difference here)."""
     name = str(robot.name)
-    slug = re.sub(r"[^A-Za-z0-9_.-]+", "_", name)
-    wdir = os.path.join(work, slug)
-    os.makedirs(wdir, exist_ok=True)
-    log = os.path.join(wdir, "log_physx.txt")
-    open(log, "w").close()
+    slug, wdir, log = _workdir(robot, work, "log_physx.txt")
     floating = bool(FLOATING.search(name))
     flags = _compile_flags(robot) + (["--no-fix-base"] if floating else [])
     py = [sys.executable, "-m", "robodesc"]

@@ -17,11 +17,9 @@ errors are below 4e-7 on Panda's inertias, see docs/validation.md).
 
 from __future__ import annotations
 
-import json
 import math
 import os
 import re
-import subprocess
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -34,6 +32,7 @@ from robodesc.validation.options import TOKEN_MASS, ValidateOptions
 from robodesc.validation.physx_python import physx_python
 from robodesc.validation.report import Status, Tally, ValidationReport
 from robodesc.validation.usd_physics import match_name, tensor_text, vec_text
+from robodesc.validation.worker import run_worker
 
 CONSUMER = "physx"
 DEG = 180.0 / math.pi
@@ -75,24 +74,10 @@ class PhysxRead:
 def read_physx(usd_path: str, python: str) -> PhysxRead | str:
     """Load ``usd_path`` in PhysX through the worker; what PhysX holds, or why it could not."""
     worker = os.path.join(os.path.dirname(os.path.abspath(__file__)), "physx_read_worker.py")
-    try:
-        done = subprocess.run(
-            [python, worker],
-            input=json.dumps({"usd": os.path.abspath(usd_path)}),
-            capture_output=True,
-            text=True,
-            timeout=_TIMEOUT,
-            check=False,
-            env={**os.environ, "WARP_CACHE_PATH": os.environ.get("WARP_CACHE_PATH", _warp_cache())},
-        )
-    except subprocess.TimeoutExpired:
-        return f"PhysX did not finish loading in {_TIMEOUT:g} s"
-    lines = done.stdout.splitlines()
-    answers = [line for line in lines if line.startswith("{")]
-    if not answers:
-        tail = (done.stderr.strip().splitlines() or ["no output"])[-1]
-        return f"PhysX's worker failed (exit {done.returncode}): {tail[:300]}"
-    answer = json.loads(answers[-1])
+    done = run_worker(python, worker, {"usd": os.path.abspath(usd_path)}, _TIMEOUT, "PhysX")
+    answer, lines = done.answer, done.lines
+    if answer is None:
+        return done.failure
     if "error" in answer:
         return f"PhysX cannot load the USD: {answer['error']}"
     log = [
@@ -120,10 +105,6 @@ def _grouped(log: list[str]) -> dict[str, list[str]]:
 
 
 _PRIM = re.compile(r"(?<= at )/[\w/.-]+")
-
-
-def _warp_cache() -> str:
-    return os.path.join(os.path.expanduser("~/.cache"), "robodesc-warp")
 
 
 def validate_usd_physx(

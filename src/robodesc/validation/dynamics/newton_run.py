@@ -4,14 +4,13 @@ when Newton is asked for. :mod:`.newton_worker` runs there; JSON on its standard
 
 from __future__ import annotations
 
-import json
 import os
-import subprocess
 from typing import Any
 
 from robodesc.ir.model import Robot
 from robodesc.validation.dynamics.result import Run, settle_time
 from robodesc.validation.dynamics.scenarios import Setup
+from robodesc.validation.worker import run_worker
 
 ENGINE = "newton"
 _TIMEOUT = 600.0  # s: a first run compiles warp kernels
@@ -42,30 +41,13 @@ def run_file(
         "setup": setup.as_dict(),
     }
     worker = os.path.join(os.path.dirname(os.path.abspath(__file__)), "newton_worker.py")
-    try:
-        done = subprocess.run(
-            [python, worker],
-            input=json.dumps(request),
-            capture_output=True,
-            text=True,
-            timeout=_TIMEOUT,
-            check=False,
-            env={**os.environ, "WARP_CACHE_PATH": os.environ.get("WARP_CACHE_PATH", _warp_cache())},
-        )
-    except subprocess.TimeoutExpired:
-        return f"Newton did not finish in {_TIMEOUT:g} s"
-    lines = [line for line in done.stdout.splitlines() if line.startswith("{")]
-    if not lines:
-        tail = (done.stderr.strip().splitlines() or ["no output"])[-1]
-        return f"Newton failed (exit {done.returncode}): {tail[:300]}"
-    answer = json.loads(lines[-1])
+    done = run_worker(python, worker, request, _TIMEOUT, "Newton")
+    if done.answer is None:
+        return done.failure
+    answer = done.answer
     if "error" in answer:
         return str(answer["error"])
     return [_run(kind, raw) for raw in answer["runs"]]
-
-
-def _warp_cache() -> str:
-    return os.path.join(os.path.expanduser("~/.cache"), "robodesc-warp")
 
 
 def _run(kind: str, raw: dict[str, Any]) -> Run:
