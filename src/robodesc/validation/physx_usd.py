@@ -28,10 +28,11 @@ import numpy as np
 
 from robodesc.ir.model import Joint, JointType, Link, Robot
 from robodesc.validation.compare import expected_inertial, joint_label, link_label
+from robodesc.validation.mujoco_load import tree_depth
 from robodesc.validation.options import TOKEN_MASS, ValidateOptions
 from robodesc.validation.physx_python import physx_python
 from robodesc.validation.report import Status, Tally, ValidationReport
-from robodesc.validation.usd_physics import match_name, tensor_text, vec_text
+from robodesc.validation.usd_physics import match_name, parser_stack_size, tensor_text, vec_text
 from robodesc.validation.worker import run_worker
 
 CONSUMER = "physx"
@@ -127,6 +128,12 @@ def validate_usd_physx(
             "or build the consumer tier's with tests/consumers/run.sh; ROBODESC_PHYSX_PYTHON names one)",
         )
         return report
+    depth = tree_depth(robot)
+    if parser_stack_size(depth) is None:
+        # PhysX parses the stage with the same recursive UsdPhysics walk as usd-core (usd_physics.py):
+        # past the depth usd-core is given a stack for, it is not asked either.
+        report.add("physx", Status.SKIP, "model", f"not loaded in PhysX: the kinematic tree is {depth} joints deep")
+        return report
     got = read_physx(usd_path, interpreter)
     if isinstance(got, str):
         report.add("physx-load", Status.FAIL, "document", f"{got} ({usd_path})")
@@ -208,7 +215,7 @@ def _compare_articulation(robot: Robot, got: PhysxRead, bodies: Mapping[str, str
         )
         return
     art = got.articulations[0]
-    dofs = sum(j.type.dof for j in robot.joints if not _loop(j))
+    dofs = sum(j.type.dof for j in robot.joints)  # mimic followers too: PhysX gives each its DOF
     problems = []
     if art["dofs"] != dofs:
         problems.append(f"{art['dofs']} degrees of freedom, the source has {dofs}")
@@ -226,10 +233,6 @@ def _compare_articulation(robot: Robot, got: PhysxRead, bodies: Mapping[str, str
             art["path"],
             f"one articulation, {art['links']} links, {dofs} DOFs, {base} base",
         )
-
-
-def _loop(joint: Joint) -> bool:
-    return bool(getattr(joint, "loop", False))
 
 
 # ---- mass properties -------------------------------------------------------------------------------
@@ -336,8 +339,6 @@ def _compare_joints(
         Tally(report, "physx-friction", PHYSX_REL_TOL, "relative"),
     )
     for joint in robot.joints:
-        if _loop(joint):
-            continue
         label = joint_label(joint.name)
         path = joints.get(joint.name)
         axes = got.joints.get(path, []) if path is not None else []
@@ -347,21 +348,11 @@ def _compare_joints(
                     label, f"PhysX gives this {joint.type.value} joint {len(axes)} DOFs, expected {joint.type.dof}"
                 )
             continue
-        if joint.type.dof != 1:
-            t.present.ok()
-            continue
         t.present.ok()
-        _compare_dof(joint, axes[0], authored.get(joint.name), t)
-    for tally, what in (
-        (t.present, "joints"),
-        (t.limits, "joints"),
-        (t.drive, "joints"),
-        (t.max_force, "joints"),
-        (t.armature, "joints"),
-        (t.velocity, "joints"),
-        (t.friction, "joints"),
-    ):
-        tally.finish(what, tally.name)
+        if joint.type.dof == 1:
+            _compare_dof(joint, axes[0], authored.get(joint.name), t)
+    for tally in (t.present, t.limits, t.drive, t.max_force, t.armature, t.velocity, t.friction):
+        tally.finish("joints", tally.name)
 
 
 def _compare_dof(joint: Joint, dof: Mapping[str, Any], authored: tuple[float, float] | None, t: _JointTallies) -> None:
@@ -369,7 +360,7 @@ def _compare_dof(joint: Joint, dof: Mapping[str, Any], authored: tuple[float, fl
     angular = joint.type.is_angular
     unit, unit_name = (DEG, "deg") if angular else (1.0, "m")
     lim = joint.limit
-    lo_px, hi_px = (dof.get("limit") or [None, None]) + [None, None][len(dof.get("limit") or []) :]
+    lo_px, hi_px = [*(dof.get("limit") or []), None, None][:2]
     bounded = (
         joint.type is not JointType.CONTINUOUS and lim is not None and lim.lower is not None and lim.upper is not None
     )
