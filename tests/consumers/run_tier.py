@@ -441,7 +441,9 @@ def markdown(results: dict[str, dict[str, object]]) -> str:
     ]
     for name, r in results.items():
         cells = [
-            str(r.get(k, "not run")).replace("|", "\\|").replace("\n", " ")
+            str(_physx_cell(r, k) if k.startswith("physx") else r.get(k, "not run"))
+            .replace("|", "\\|")
+            .replace("\n", " ")
             for k in (*KINDS, "simready", "newton_mjcf", "physx", "physx_isaac")
         ]
         base = "floating" if r.get("floating") else "fixed"
@@ -449,6 +451,18 @@ def markdown(results: dict[str, dict[str, object]]) -> str:
             base += ", inertia repaired"
         lines.append(f"| {name} | {base} | " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
+
+
+def _physx_cell(row: dict[str, object], kind: str) -> str:
+    """The compile's verdict, then masses and drives in short ("differ: 3 (physx-massless)")."""
+    if kind not in row:
+        return "not run"
+    parts = [str(row[kind])]
+    for what in ("masses", "drives"):
+        value = row.get(f"{kind}_{what}")
+        if value is not None:
+            parts.append(f"{what} {str(value).split('):')[0] + ')' if '):' in str(value) else value}")
+    return "; ".join(parts)
 
 
 def main(argv: list[str] | None = None) -> int:
