@@ -385,14 +385,16 @@ def _compare_dof(joint: Joint, dof: Mapping[str, Any], authored: tuple[float, fl
         t.limits.ok()
     per = f"/{unit_name}"
     if authored is not None:
-        for what, key, want in (("stiffness", "stiffness", authored[0]), ("damping", "damping", authored[1])):
-            have = float(dof.get(key) or 0.0)
-            t.drive.measure(
-                label,
-                abs(have - want) / max(abs(want), 1e-9),
-                f"PhysX drive {what} {have:.9g} {_effort(angular)}{per if what == 'stiffness' else per + '/s'}, "
-                f"the USD authors {want:.9g}",
-            )
+        kp, kd = float(dof.get("stiffness") or 0.0), float(dof.get("damping") or 0.0)
+        effort_unit = _effort(angular)
+        t.drive.measure(
+            label,
+            max(
+                abs(kp - authored[0]) / max(abs(authored[0]), 1e-9), abs(kd - authored[1]) / max(abs(authored[1]), 1e-9)
+            ),
+            f"PhysX drive stiffness {kp:.9g} {effort_unit}{per}, damping {kd:.9g} {effort_unit}{per}/s; "
+            f"the USD authors {authored[0]:.9g} and {authored[1]:.9g}",
+        )
     effort = lim.effort if lim is not None and lim.effort is not None and lim.effort > 0 else None
     _bound(t.max_force, label, dof.get("max_force"), effort, f"maximum {_effort(angular)}", _effort(angular))
     velocity = lim.velocity * unit if lim is not None and lim.velocity is not None and lim.velocity > 0 else None
