@@ -178,3 +178,31 @@ def test_a_file_physx_cannot_load_fails_naming_it(tmp_path: Path) -> None:
     report = validate_usd_physx(Robot(name="r"), str(bad))
     assert [c.name for c in report.failures] == ["physx-load"]
     assert "broken.usda" in report.failures[0].message
+
+
+MIMIC = """<robot name="m">
+  <link name="base"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="a"><inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="b"><inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="lead" type="revolute"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/>
+    <limit lower="0" upper="1" effort="2" velocity="1"/></joint>
+  <joint name="follow" type="revolute"><parent link="a"/><child link="b"/><origin xyz="0.1 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="0" upper="1" effort="0" velocity="0"/><mimic joint="lead"/></joint>
+</robot>
+"""
+
+
+@needs_physx
+def test_a_follower_without_a_drive_has_no_force_bound(tmp_path: Path) -> None:
+    """Romeo's fingers: a mimic follower with URDF effort 0 gets no drive; PhysX reads its force
+    bound as 0, which bounds nothing (22 false failures on romeo before)."""
+    source = tmp_path / "mimic.urdf"
+    source.write_text(MIMIC, encoding="utf-8")
+    out = tmp_path / "mimic.usda"
+    result = compile_to(str(source), "usd", str(out), validate=False)
+    got = read_physx(str(out), str(PYTHON))
+    assert not isinstance(got, str), got
+    follow = next(axes[0] for path, axes in got.joints.items() if path.endswith("/follow"))
+    assert (follow["drive_type"], follow["max_force"]) == (0, 0)
+    report = validate_usd_physx(result.robot, str(out))
+    assert _rows(report, "physx-max-force", Status.PASS) == ["2 joints"], report.to_text()

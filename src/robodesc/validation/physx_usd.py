@@ -396,7 +396,12 @@ def _compare_dof(joint: Joint, dof: Mapping[str, Any], authored: tuple[float, fl
             f"the USD authors {authored[0]:.9g} and {authored[1]:.9g}",
         )
     effort = lim.effort if lim is not None and lim.effort is not None and lim.effort > 0 else None
-    _bound(t.max_force, label, dof.get("max_force"), effort, f"maximum {_effort(angular)}", _effort(angular))
+    max_force = dof.get("max_force")
+    if not dof.get("drive_type") and effort is None:
+        # No drive (a mimic follower without an effort limit): PhysX reads its force bound as 0, and
+        # with nothing driving the joint there is no force to bound.
+        max_force = None
+    _bound(t.max_force, label, max_force, effort, f"maximum {_effort(angular)}", _effort(angular))
     velocity = lim.velocity * unit if lim is not None and lim.velocity is not None and lim.velocity > 0 else None
     _bound(t.velocity, label, dof.get("max_velocity"), velocity, "maximum velocity", f"{unit_name}/s")
     armature = float(joint.armature or 0.0)
