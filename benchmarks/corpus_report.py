@@ -9,8 +9,9 @@ Drake, USD with usd-core's UsdPhysics parser, plus mujoco-usd when installed), e
 as ``robodesc compile ROBOT -t TARGET`` with default flags, on every core
 (``--jobs``); this script only renders the jobs' results. With ``--workdir DIR`` the outputs are kept
 and a rerun redoes only the robots whose files changed. When ``benchmarks/results/consumers.json``
-exists (robot -> {"newton": ..., "newton_isaac": ..., "isaac_importer": ...}, written by the
-consumer benchmarks), its verdicts become extra columns; ``benchmarks/results/dynamics.json``
+exists (robot -> {"newton": ..., "newton_isaac": ..., "isaac_importer": ..., "physx": ...,
+"physx_isaac": ...}, written by the consumer tier, tests/consumers/run_tier.py), its verdicts become
+extra columns; ``benchmarks/results/dynamics.json``
 (``benchmarks/dynamics_corpus.py``: ``validate --dynamics`` per robot) becomes the ``dynamics`` column.
 
 The file is deterministic: robots in corpus order, errors at machine precision printed as "≤1e-12",
@@ -39,7 +40,8 @@ from robodesc.validation.report import Check, Status, ValidationReport
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CONSUMERS = os.path.join(ROOT, "benchmarks", "results", "consumers.json")
-CONSUMER_COLUMNS = ("newton", "newton_isaac", "isaac_importer", "dynamics")
+# physx / physx_isaac: run_tier.py --kinds physx, the USD outputs in PhysX (validation/physx_usd.py).
+CONSUMER_COLUMNS = ("newton", "newton_isaac", "isaac_importer", "physx", "physx_isaac", "dynamics")
 # benchmarks/dynamics_corpus.py: robot -> validate --dynamics verdicts, the "dynamics" column.
 DYNAMICS = os.path.join(ROOT, "benchmarks", "results", "dynamics.json")
 SMALL = (
@@ -211,6 +213,16 @@ def consumer_cell(value: Any) -> str:
     return _short_path(str(value))
 
 
+def physx_cell(verdicts: dict[str, Any], column: str) -> str:
+    """The compile's verdict with what the tier split it into: a mismatch the check still reports as
+    a known one (physx_usd.PENDING_FIXES) passes the compile, and shows here."""
+    verdict = consumer_cell(verdicts.get(column))
+    parts = [
+        f"{what} {verdicts[f'{column}_{what}']}" for what in ("masses", "drives") if f"{column}_{what}" in verdicts
+    ]
+    return "; ".join([verdict, *(_short_path(p) for p in parts)])
+
+
 # ---- rendering ---------------------------------------------------------------------------------
 def _slug(name: str) -> str:
     return "".join(c if c.isalnum() else "_" for c in name)
@@ -294,7 +306,7 @@ def render(
         + ".",
         "",
         "Each robot is read from its source, emitted to every target, and the output is loaded by an",
-        "independent consumer (URDF: MuJoCo, SDF: Drake, USD: usd-core's UsdPhysics parser) and compared with the IR:",
+        "independent consumer (URDF: MuJoCo, SDF: Drake, USD: usd-core's UsdPhysics parser, and PhysX where its interpreter exists) and compared with the IR:",
         "masses, centres of mass, inertia tensors, joint types, axes and limits, and forward kinematics",
         "of every link at random configurations; URDF also gets a 0.5 s simulation. See",
         "[validation.md](validation.md) for the checks and tolerances. Errors at machine precision show",
@@ -373,7 +385,9 @@ def render(
 
     def consumer_cells(r: RobotResult) -> str:
         verdicts = consumers.get(f"{r.robot.corpus}/{r.robot.name}", consumers.get(r.robot.name, {}))
-        return "".join(f" {consumer_cell(verdicts.get(c))} |" for c in extra)
+        return "".join(
+            f" {physx_cell(verdicts, c) if c.startswith('physx') else consumer_cell(verdicts.get(c))} |" for c in extra
+        )
 
     for r in results:
         name = r.robot.name

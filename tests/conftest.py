@@ -76,6 +76,17 @@ def golden(request: pytest.FixtureRequest) -> Golden:
     return Golden(directory, bool(request.config.getoption("--update-golden")))
 
 
+# The tests of PhysX as a structural consumer; every other test compiles USD without it (about 5 s a
+# compile where a PhysX interpreter exists: docs/validation.md, "USD in PhysX").
+PHYSX_CONSUMER_TESTS = {"test_physx_consumer.py", "test_physx_tier.py"}
+
+
+@pytest.fixture(autouse=True)
+def _physx_check_only_where_tested(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> None:
+    if Path(request.node.fspath).name not in PHYSX_CONSUMER_TESTS:
+        monkeypatch.setenv("ROBODESC_VALIDATE_PHYSX", "0")
+
+
 @pytest.fixture(autouse=True)
 def _single_thread_usd(monkeypatch: pytest.MonkeyPatch) -> None:
     # usd-core's physics parser has crashed with many colliders on one body when threaded.

@@ -13,6 +13,10 @@ robot of the corpus (``robodesc.validation.corpora``) it compiles, with this che
 - ``isaac_importer``: Isaac Sim 6.2's URDF importer imports the folder's URDF with the folder's
   ``importer_settings.json``, and Newton compares the imported asset (``physx`` variant) with
   that URDF;
+- ``physx``: ``compile -t usd`` and ``--isaac-sim`` with validation on, and what their PhysX check
+  (validation/physx_usd.py: ovphysx's masses, inertias, limits, drives, armature, velocity and
+  friction against the IR) says: ``physx``/``physx_isaac`` verdicts, ``*_loads``, ``*_masses``,
+  ``*_drives``; ``physx_dynamics`` once ``validate --dynamics --engines physx`` exists;
 - ``newton_mjcf`` (only with ``--kinds newton_mjcf``): ``-t mjcf`` with ``--stiffness 100 --damping
   1`` and the base flag, Newton 1.8's ``add_mjcf`` loads robot.xml and newton_check.py compares it
   with ``add_urdf`` of the source (masses, inertias, joints, limits, actuator gains and force
@@ -52,7 +56,20 @@ FLOATING = re.compile(
 )
 KINDS = ("newton", "newton_isaac", "isaac_importer")
 # newton_mjcf: robodesc's robot.xml through Newton's add_mjcf (--kinds newton_mjcf; docs/mjcf.md).
-ALL_KINDS = (*KINDS, "newton_mjcf")
+# physx: the -t usd output and the Isaac folder's USD in PhysX (ovphysx), robodesc's own check
+# (validation/physx_usd.py) run by the compile a user runs; physx_isaac rides along with it.
+ALL_KINDS = (*KINDS, "newton_mjcf", "physx")
+# The physx check's rows, grouped into the tier's two questions.
+PHYSX_MASSES = ("physx-mass", "physx-massless", "physx-com", "physx-inertia", "physx-total-mass")
+PHYSX_DRIVES = (
+    "physx-dofs",
+    "physx-limits",
+    "physx-drive",
+    "physx-max-force",
+    "physx-armature",
+    "physx-max-velocity",
+    "physx-friction",
+)
 # The MJCF is compiled with the gains the reference URDF is given (newton_check.py's defaults),
 # so actuator kp/kv are compared with what was asked, in SI per radian.
 MJCF_GAINS = ["--stiffness", "100", "--damping", "1"]
@@ -113,13 +130,19 @@ def _compile_flags(robot: CorpusRobot) -> list[str]:
     return flags
 
 
-def run_robot(robot: CorpusRobot, envs: str, work: str) -> dict[str, object]:
-    name = str(robot.name)
-    slug = re.sub(r"[^A-Za-z0-9_.-]+", "_", name)
+def _workdir(robot: CorpusRobot, work: str, log_name: str) -> tuple[str, str, str]:
+    """(slug, the robot's folder under ``work``, a fresh log file in it named ``log_name``)."""
+    slug = re.sub(r"[^A-Za-z0-9_.-]+", "_", str(robot.name))
     wdir = os.path.join(work, slug)
     os.makedirs(wdir, exist_ok=True)
-    log = os.path.join(wdir, "log.txt")
+    log = os.path.join(wdir, log_name)
     open(log, "w").close()
+    return slug, wdir, log
+
+
+def run_robot(robot: CorpusRobot, envs: str, work: str) -> dict[str, object]:
+    name = str(robot.name)
+    slug, wdir, log = _workdir(robot, work, "log.txt")
     source = str(robot.path)
     floating = bool(FLOATING.search(name))
     py = [sys.executable, "-m", "robodesc"]
@@ -209,11 +232,7 @@ def run_robot(robot: CorpusRobot, envs: str, work: str) -> dict[str, object]:
 def run_robot_mjcf(robot: CorpusRobot, envs: str, work: str) -> dict[str, object]:
     """The ``newton_mjcf`` column: robot.xml through Newton's add_mjcf against the reference URDF."""
     name = str(robot.name)
-    slug = re.sub(r"[^A-Za-z0-9_.-]+", "_", name)
-    wdir = os.path.join(work, slug)
-    os.makedirs(wdir, exist_ok=True)
-    log = os.path.join(wdir, "log_mjcf.txt")
-    open(log, "w").close()
+    slug, wdir, log = _workdir(robot, work, "log_mjcf.txt")
     source = str(robot.path)
     floating = bool(FLOATING.search(name))
     py = [sys.executable, "-m", "robodesc"]
@@ -276,6 +295,80 @@ def run_robot_mjcf(robot: CorpusRobot, envs: str, work: str) -> dict[str, object
     return out
 
 
+def run_robot_physx(robot: CorpusRobot, work: str) -> dict[str, object]:
+    """The ``physx`` columns: ``compile -t usd`` and ``--isaac-sim`` as a user runs them (validation
+    on, with the tier's base flag), and what their PhysX check says. ``physx`` is the compile's
+    verdict on the PhysX rows; ``physx_loads``, ``physx_masses`` and ``physx_drives`` split it (a
+    known mismatch still listed in physx_usd.PENDING_FIXES counts as a difference here)."""
+    name = str(robot.name)
+    slug, wdir, log = _workdir(robot, work, "log_physx.txt")
+    floating = bool(FLOATING.search(name))
+    flags = _compile_flags(robot) + (["--no-fix-base"] if floating else [])
+    py = [sys.executable, "-m", "robodesc"]
+    out: dict[str, object] = {}
+    for kind, target, dest in (
+        ("physx", ["-t", "usd"], os.path.join(wdir, "physx", f"{slug}.usda")),
+        ("physx_isaac", ["--isaac-sim"], os.path.join(wdir, "physx_isaac")),
+    ):
+        start = time.perf_counter()
+        proc = _run([*py, "compile", str(robot.path), *target, "-o", dest, "--json", *flags], 900, log)
+        out[f"{kind}_seconds"] = round(time.perf_counter() - start, 1)
+        out.update({f"{kind}{k}": v for k, v in physx_verdict(proc).items()})
+    hook = physx_dynamics(robot, flags, log)
+    if hook is not None:
+        out["physx_dynamics"] = hook
+    return out
+
+
+def physx_verdict(proc: subprocess.CompletedProcess[str]) -> dict[str, object]:
+    """{"": verdict, "_loads": bool, "_masses": .., "_drives": ..} from a compile's --json."""
+    try:
+        summary = json.loads(proc.stdout)
+    except json.JSONDecodeError:
+        return {"": f"not converted: {_last_error(proc)}"}
+    checks = [c for c in (summary.get("validation") or {}).get("checks", []) if c["name"].startswith("physx")]
+    if not checks:
+        errors = [e.get("message", "") for e in summary.get("errors", []) if isinstance(e, dict)]
+        return {"": f"not converted: {errors[0][:300] if errors else _last_error(proc)}"}
+    if any(c["name"] == "physx" and c["status"] == "skip" for c in checks):
+        return {"": "skip: no PhysX interpreter"}
+    loads = any(c["name"] == "physx-load" and c["status"] == "pass" for c in checks)
+
+    def differs(c: dict[str, Any]) -> bool:
+        return c["status"] == "fail" or (c["status"] == "warn" and "known mismatch" in c["message"])
+
+    def group(names: tuple[str, ...]) -> str:
+        bad = [c for c in checks if c["name"] in names and differs(c)]
+        source = [c for c in checks if c["name"] in names and c["status"] == "warn" and "of the source" in c["message"]]
+        if not bad:
+            return "equal" + (f" (source defects: {len(source)} rows)" if source else "")
+        kinds = sorted({c["name"] for c in bad})
+        shown = "; ".join(f"{c['name']} {c['element']}" for c in bad[:3])
+        return f"differ: {len(bad)} ({', '.join(kinds)}): {shown}"
+
+    failed = [c for c in checks if c["status"] == "fail"]
+    verdict = "pass" if not failed else "fail: " + "; ".join(f"{c['name']} {c['element']}" for c in failed[:3])
+    return {"": verdict, "_loads": loads, "_masses": group(PHYSX_MASSES), "_drives": group(PHYSX_DRIVES)}
+
+
+def physx_dynamics(robot: CorpusRobot, flags: list[str], log: str) -> str | None:
+    """Hold and drop in PhysX through ``validate --dynamics --engines physx``, once robodesc's
+    dynamics runner has a PhysX engine (None until then: the column is left out)."""
+    from robodesc.validation.dynamics import run as dynamics
+
+    engines = set(getattr(dynamics, "ENGINES", ())) | set(dynamics.READERS.values())
+    if "physx" not in engines:
+        return None
+    cmd = [sys.executable, "-m", "robodesc", "validate", str(robot.path), "-t", "usd", "--dynamics"]
+    proc = _run([*cmd, "--engines", "physx", "--json", *_compile_flags(robot)], 1800, log)
+    try:
+        report = json.loads(proc.stdout).get("dynamics") or {}
+    except json.JSONDecodeError:
+        return f"fail: {_last_error(proc)}"
+    runs = [c for c in report.get("checks", []) if c.get("status") in ("fail", "warn")]
+    return "pass" if not runs else "; ".join(f"{c['status']} {c['name']} {c['element']}" for c in runs[:3])
+
+
 def simready(usd: str, envs: str, log: str) -> str:
     """``nvidia_usd_validate`` with the physics rules: "pass" or "fail: <rule> at <prims>"."""
     csv_path = usd + ".simready.csv"
@@ -312,6 +405,9 @@ def markdown(results: dict[str, dict[str, object]]) -> str:
         "folder's URDF, its `physx` variant loaded by Newton and compared with that URDF. `newton_mjcf`",
         "(`--kinds newton_mjcf`): `-t mjcf` loaded by Newton's `add_mjcf` and compared with `add_urdf` of the",
         "source (`newton_mjcf_numbers`: the same without the 200-step trajectory; docs/mjcf.md, Consumers).",
+        "`physx` / `physx_isaac` (`--kinds physx`): the `-t usd` output and the Isaac folder's USD loaded in PhysX",
+        "(ovphysx) by robodesc's own check, compiled as a user compiles (validation on); `_masses` and `_drives` in",
+        "the JSON split the verdict (docs/validation.md, PhysX).",
         "",
     ]
     counts = {k: sum(1 for r in results.values() if r.get(k) == "pass") for k in ALL_KINDS}
@@ -325,22 +421,48 @@ def markdown(results: dict[str, dict[str, object]]) -> str:
             f"{numbers} with every number equal, {counts['newton_mjcf']} of them also within tolerance over the "
             "200-step run."
         )
+    for kind, what in (("physx", "`-t usd`"), ("physx_isaac", "the `--isaac-sim` folder's USD")):
+        ran = [r for r in results.values() if kind in r and not str(r[kind]).startswith("skip")]
+        if ran:
+            loads = sum(1 for r in ran if r.get(f"{kind}_loads"))
+            masses = sum(1 for r in ran if str(r.get(f"{kind}_masses", "")).startswith("equal"))
+            drives = sum(1 for r in ran if str(r.get(f"{kind}_drives", "")).startswith("equal"))
+            passed = sum(1 for r in ran if r.get(kind) == "pass")
+            lines.append(
+                f"`{kind}` ({what} in PhysX, robodesc's own check): {len(ran)} robots, {loads} load, {masses} with "
+                f"every mass equal, {drives} with every joint number equal; the compile passes for {passed}."
+            )
     simready_pass = sum(1 for r in results.values() if r.get("simready") == "pass")
     lines.append(f"SimReady physics rules ({', '.join(SIMREADY_RULES)}) on the `-t usd` output: {simready_pass} pass.")
     lines += [
         "",
-        "| robot | base | newton | newton_isaac | isaac_importer | simready | newton_mjcf |",
-        "|---|---|---|---|---|---|---|",
+        "| robot | base | newton | newton_isaac | isaac_importer | simready | newton_mjcf | physx | physx_isaac |",
+        "|---|---|---|---|---|---|---|---|---|",
     ]
     for name, r in results.items():
         cells = [
-            str(r.get(k, "not run")).replace("|", "\\|").replace("\n", " ") for k in (*KINDS, "simready", "newton_mjcf")
+            str(_physx_cell(r, k) if k.startswith("physx") else r.get(k, "not run"))
+            .replace("|", "\\|")
+            .replace("\n", " ")
+            for k in (*KINDS, "simready", "newton_mjcf", "physx", "physx_isaac")
         ]
         base = "floating" if r.get("floating") else "fixed"
         if r.get("repaired"):
             base += ", inertia repaired"
         lines.append(f"| {name} | {base} | " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
+
+
+def _physx_cell(row: dict[str, object], kind: str) -> str:
+    """The compile's verdict, then masses and drives in short ("differ: 3 (physx-massless)")."""
+    if kind not in row:
+        return "not run"
+    parts = [str(row[kind])]
+    for what in ("masses", "drives"):
+        value = row.get(f"{kind}_{what}")
+        if value is not None:
+            parts.append(f"{what} {str(value).split('):')[0] + ')' if '):' in str(value) else value}")
+    return "; ".join(parts)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -403,6 +525,8 @@ def main(argv: list[str] | None = None) -> int:
             start = time.perf_counter()
             if "newton_mjcf" in kinds:
                 row.update(run_robot_mjcf(robot, args.envs, work))
+            if "physx" in kinds:
+                row.update(run_robot_physx(robot, work))
             if set(kinds) & set(KINDS):
                 row.update({k: v for k, v in run_robot(robot, args.envs, work).items() if k in kinds or k not in KINDS})
             print(f"{robot.name}: {time.perf_counter() - start:.0f} s  " + json.dumps(row), flush=True)
@@ -412,7 +536,7 @@ def main(argv: list[str] | None = None) -> int:
         if robot.name in results:
             continue
         start = time.perf_counter()
-        results[robot.name] = run_robot(robot, args.envs, work)
+        results[robot.name] = {**run_robot(robot, args.envs, work), **run_robot_physx(robot, work)}
         print(f"{robot.name}: {time.perf_counter() - start:.0f} s  " + json.dumps(results[robot.name]), flush=True)
         _write(results, args.out)
     return 0

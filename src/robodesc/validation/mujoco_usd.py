@@ -13,6 +13,7 @@ import importlib.util
 from robodesc.ir.model import Robot
 from robodesc.validation.compare import compare_fk, compare_inertials, compare_joints, compare_structure
 from robodesc.validation.options import ValidateOptions
+from robodesc.validation.physx_usd import validate_usd_physx
 from robodesc.validation.report import Status, ValidationReport
 from robodesc.validation.usd_physics import validate_usd_physics
 
@@ -23,11 +24,15 @@ def mujoco_usd_available() -> bool:
     return importlib.util.find_spec("mujoco_usd") is not None
 
 
-def validate_usd(robot: Robot, usd_path: str, options: ValidateOptions | None = None) -> ValidationReport:
+def validate_usd(
+    robot: Robot, usd_path: str, options: ValidateOptions | None = None, target: str = "usd"
+) -> ValidationReport:
     """The usd-physics report, plus the mujoco-usd checks (named ``mujoco-usd <check>``) when
-    mujoco-usd imports, or one skip row saying it does not."""
+    mujoco-usd imports, and PhysX's (``physx-*``) when a PhysX interpreter exists; one skip row for
+    each that is not there."""
     opts = options or ValidateOptions()
     report = validate_usd_physics(robot, usd_path, opts)
+    report.target = target
     mj = validate_usd_mujoco(robot, usd_path, opts)
     if mujoco_usd_available():
         report.consumer = f"{report.consumer} + {MUJOCO_USD}"
@@ -35,6 +40,11 @@ def validate_usd(robot: Robot, usd_path: str, options: ValidateOptions | None = 
             if check.name != MUJOCO_USD:
                 check.name = f"{MUJOCO_USD} {check.name}"
     report.extend(mj)
+    if opts.physx:
+        physx = validate_usd_physx(robot, usd_path, opts, target=target)
+        if "physx" in physx.info:
+            report.consumer = f"{report.consumer} + {physx.consumer}"
+        report.extend(physx)
     return report
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -33,6 +34,10 @@ class ValidateOptions:
     sim_timestep: float = 0.002  # s
     max_speed: float = 100.0  # rad/s or m/s in any degree of freedom counts as an explosion
     penetration_tol: float = 1e-3  # m: deeper contacts between robot geoms at rest are reported
+    # Load USD outputs in PhysX too (validation/physx_usd.py) when a PhysX interpreter exists: a
+    # worker process, about 5 s a robot. ROBODESC_VALIDATE_PHYSX=0 turns the default off (the test
+    # suite does, outside the PhysX consumer's own tests: hundreds of USD compiles would each pay it).
+    physx: bool = field(default_factory=lambda: os.environ.get("ROBODESC_VALIDATE_PHYSX", "1") != "0")
     # Meshes MuJoCo cannot read (DAE ...) are converted to STL here (default: a folder in the temp dir).
     mesh_cache_dir: str | None = None
     # Package roots for ``package://`` URIs left in the text under validation.

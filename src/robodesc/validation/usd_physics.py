@@ -195,7 +195,7 @@ def parse(stage: Any, root: str, robot: Robot) -> Parsed:
     links = {link.name for link in robot.links}
     body_names: dict[str, str] = {}  # body prim path -> link name
     for path, desc in zip(*raw.get("RigidBody", ([], [])), strict=True):
-        name = _match(stage, str(path), links)
+        name = match_name(stage, str(path), links)
         if name is None or name in parsed.bodies:
             parsed.extra_bodies.append(str(path))
         else:
@@ -214,7 +214,7 @@ def parse(stage: Any, root: str, robot: Robot) -> Parsed:
                 _body(desc.body0, body_names),
                 _body(desc.body1, body_names),
             )
-            name = _match(stage, str(path), joint_names)
+            name = match_name(stage, str(path), joint_names)
             if name is None or name in parsed.joints:
                 parsed.extra_joints.append(uj)
             else:
@@ -223,7 +223,8 @@ def parse(stage: Any, root: str, robot: Robot) -> Parsed:
     return parsed
 
 
-def _match(stage: Any, path: str, names: set[str]) -> str | None:
+def match_name(stage: Any, path: str, names: set[str]) -> str | None:
+    """The name in ``names`` the prim at ``path`` stands for: its own, else its ``displayName``."""
     prim = stage.GetPrimAtPath(path)
     if prim.GetName() in names:
         return str(prim.GetName())
@@ -253,7 +254,7 @@ def _frame(pos: Any, rot: Any) -> Mat:
     return m
 
 
-def _vec(v: Any) -> str:
+def vec_text(v: Any) -> str:
     return "(" + ", ".join(f"{float(x):.9g}" for x in v) + ")"
 
 
@@ -306,7 +307,7 @@ def _compare_inertials(robot: Robot, parsed: Parsed, options: ValidateOptions, r
         com.measure(
             label,
             float(np.linalg.norm(c_usd - com_ir)) / max(1.0, float(np.linalg.norm(com_ir))),
-            f"USD centre of mass {_vec(c_usd)}, source {_vec(com_ir)} (link frame, m)",
+            f"USD centre of mass {vec_text(c_usd)}, source {vec_text(com_ir)} (link frame, m)",
         )
         if tensor_ir is None:
             inertia.skip(label, "source gives no inertia tensor")
@@ -322,14 +323,14 @@ def _compare_inertials(robot: Robot, parsed: Parsed, options: ValidateOptions, r
         inertia.measure(
             label,
             float(np.max(np.abs(t_usd - tensor_ir))) / scale,
-            f"USD tensor {_tensor(t_usd)} vs source {_tensor(tensor_ir)} (link frame, kg·m²)",
+            f"USD tensor {tensor_text(t_usd)} vs source {tensor_text(tensor_ir)} (link frame, kg·m²)",
         )
     mass.finish("links", "mass")
     com.finish("links", "com")
     inertia.finish("links", "inertia")
 
 
-def _tensor(t: Mat) -> str:
+def tensor_text(t: Mat) -> str:
     return "[" + ", ".join(f"{float(t[i, j]):.6g}" for i, j in ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))) + "]"
 
 
@@ -368,7 +369,7 @@ def _compare_joints(robot: Robot, parsed: Parsed, options: ValidateOptions, repo
         axes.measure(
             label,
             float(np.linalg.norm(a_usd - a_ir)),
-            f"USD axis {token} turned by localRot1 is {_vec(a_usd)} in the child frame, source {_vec(a_ir)}",
+            f"USD axis {token} turned by localRot1 is {vec_text(a_usd)} in the child frame, source {vec_text(a_ir)}",
         )
         _compare_limit(joint, uj, limits)
     for uj in parsed.extra_joints:

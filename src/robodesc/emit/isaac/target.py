@@ -6,9 +6,9 @@ import os
 
 from robodesc._files import write_atomic
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
+from robodesc.emit.isaac.check import check_isaac
 from robodesc.emit.isaac.defaults import apply_defaults
 from robodesc.emit.isaac.settings import IsaacSettings
-from robodesc.emit.urdf import check_urdf
 from robodesc.ir.diagnostics import Finding, Findings
 from robodesc.ir.model import Robot
 from robodesc.validation.report import ValidationReport
@@ -48,7 +48,7 @@ TARGET = Target(
     folder=True,
     passes={"sanitize_names": True, "unique_materials": True},
     preset="isaac_sim",
-    check=check_urdf,
+    check=check_isaac,
     finish=finish,
     derives_gains=True,
     options_title="USD and Isaac Sim (-t usd, --isaac-sim; see docs/usd.md, docs/isaac.md)",

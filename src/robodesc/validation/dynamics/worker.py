@@ -4,14 +4,13 @@ on standard output. The worker files import nothing of robodesc."""
 
 from __future__ import annotations
 
-import json
 import os
-import subprocess
 from typing import Any
 
 from robodesc.ir.model import Robot
 from robodesc.validation.dynamics.result import Run, run_from_json
 from robodesc.validation.dynamics.scenarios import Setup
+from robodesc.validation.worker import run_worker
 
 
 def run_scenarios(
@@ -35,40 +34,19 @@ def run_scenarios(
         "scenarios": list(scenarios),
         "setup": setup.as_dict(),
     }
-    # Warp (Newton's kernels; ovphysx builds warp arrays for its reads) needs a cache it can write.
-    answer = call_worker(python, worker, request, label, timeout, {"WARP_CACHE_PATH": warp_cache()})
+    answer = call_worker(python, worker, request, label, timeout)
     if isinstance(answer, str):
         return answer
     return [run_from_json(engine, kind, raw, setup.effort) for raw in answer["runs"]]
 
 
-def call_worker(
-    python: str, worker: str, request: dict[str, Any], engine: str, timeout: float, env: dict[str, str] | None = None
-) -> dict[str, Any] | str:
-    """The worker's answer, or why there is none (a message naming ``engine``)."""
+def call_worker(python: str, worker: str, request: dict[str, Any], engine: str, timeout: float) -> dict[str, Any] | str:
+    """The answer of ``worker`` (a file beside this one), or why there is none (naming ``engine``);
+    the consumers' runner (:func:`robodesc.validation.worker.run_worker`) starts it."""
     path = os.path.join(os.path.dirname(os.path.abspath(__file__)), worker)
-    try:
-        done = subprocess.run(
-            [python, path],
-            input=json.dumps(request),
-            capture_output=True,
-            text=True,
-            timeout=timeout,
-            check=False,
-            env={**os.environ, **(env or {})},
-        )
-    except subprocess.TimeoutExpired:
-        return f"{engine} did not finish in {timeout:g} s"
-    lines = [line for line in done.stdout.splitlines() if line.startswith("{")]
-    if not lines:
-        tail = (done.stderr.strip().splitlines() or ["no output"])[-1]
-        return f"{engine} failed (exit {done.returncode}): {tail[:300]}"
-    answer: dict[str, Any] = json.loads(lines[-1])
-    if "error" in answer:
-        return str(answer["error"])
-    return answer
-
-
-def warp_cache() -> str:
-    """Where Warp (Newton's, and ovphysx's for its arrays) compiles: ``WARP_CACHE_PATH`` or robodesc's."""
-    return os.environ.get("WARP_CACHE_PATH", os.path.join(os.path.expanduser("~/.cache"), "robodesc-warp"))
+    done = run_worker(python, path, request, timeout, engine)
+    if done.answer is None:
+        return done.failure
+    if "error" in done.answer:
+        return str(done.answer["error"])
+    return done.answer
