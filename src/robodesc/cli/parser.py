@@ -224,6 +224,13 @@ def _add_pass_flags(comp: argparse.ArgumentParser) -> None:
         help="reflected rotor inertia (kg·m²) for joints matching REGEX, or REGEX=J_ROTOR*N^2 (repeatable, first match wins)",
     )
     ps.add_argument(
+        "--default-armature",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="estimate armature from each revolute joint's effort limit where the source gives none "
+        "(default: on for -t mjcf and the Isaac folder, off elsewhere; docs/passes.md)",
+    )
+    ps.add_argument(
         "--strip",
         metavar="KINDS",
         help="remove gazebo,transmission,ros2_control,dont_collapse,contact,surface (comma list, or all)",

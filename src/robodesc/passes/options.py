@@ -91,6 +91,10 @@ class PassOptions:
     # and is used when ``armature`` is empty (how the quad_sdk preset knows Spirit's motors).
     armature: tuple[ArmatureRule, ...] = ()
     armature_by_robot: Mapping[str, tuple[ArmatureRule, ...]] = field(default_factory=dict)
+    # default_armature: estimate armature from the effort limit where the source gives none
+    # (passes/default_armature.py). None = not said (the presets that simulate say True), so that an
+    # explicit False overrides a preset's True (merge_options keeps what differs from the default).
+    default_armature: bool | None = None
     merge_fixed: bool = False
     isaac_limits: bool = False
     # Isaac: dont_collapse on fixed joints whose child carries a sensor, frame or loop-joint end.

@@ -15,10 +15,18 @@ distance rather than the axis make it the most the joint can meet as the joints 
 
 with ``f`` = 4 Hz, ``zeta`` = 1 (critically damped: the robot settles without rocking) and
 ``E_SAT`` = 0.2 rad. A revolute joint's kp is also at least ``g·sum(m·d) / HOLD_ERROR``: the most
-gravity torque the moved links can put on it, held within ``HOLD_ERROR`` = 0.05 rad (a finger's
+gravity torque the moved links can put on it, held within ``HOLD_ERROR`` = 0.005 rad (a finger's
 inertia is tiny next to the lever arm of a hand held out; without this floor fixed hands and small
-arms sagged ~0.2 rad in Newton). The effort cap still wins: a motor cannot give more. Prismatic joints use the moved mass and N/m. docs/isaac.md shows the numbers for
-Spirit and Go2.
+arms sagged ~0.2 rad in Newton; at 0.05 rad arms sagged 0.02-0.05 rad in MuJoCo, where
+mujoco_menagerie's sag 0.004-0.008, issue 35). The effort cap still wins: a motor cannot give more.
+Prismatic joints use the moved mass and N/m. docs/isaac.md shows the numbers for Spirit and Go2.
+
+No dead actuator: a joint whose links weigh grams (Allegro's URDF has no inertials: 1 g links) got
+kp near 0. kp is at least ``effort / FLOOR_ERROR`` (the motor's limit at an error of FLOOR_ERROR =
+1 rad) wherever the effort is known, but never above ``I_eff·(2 pi F_MAX)^2`` (F_MAX = 20 Hz), which
+keeps the loop stable at MuJoCo's 2 ms step on an almost weightless link. A joint whose actuator
+cannot lift its links (``min(kp·range, effort)`` below the gravity torque) is named in the warning
+``default-gains-dead``.
 """
 
 from __future__ import annotations
@@ -39,7 +47,9 @@ from robodesc.ir.rules import lookup
 NATURAL_FREQUENCY = 4.0  # Hz
 DAMPING_RATIO = 1.0
 E_SAT = 0.2  # rad (or m): the error at which the default stiffness reaches the effort limit
-HOLD_ERROR = 0.05  # rad: the most a revolute joint may sag under gravity at its default stiffness
+HOLD_ERROR = 0.005  # rad: the most a revolute joint may sag under gravity at its default stiffness
+FLOOR_ERROR = 1.0  # rad (or m): the error at which the floor stiffness reaches the effort limit
+F_MAX = 20.0  # Hz: the floor never makes a loop faster than this
 GRAVITY = 9.81  # m/s²
 
 
@@ -51,6 +61,7 @@ class JointGains:
     capped: bool  # the effort limit bounded the stiffness
     gravity_torque: float = 0.0  # g·Σm·d, N·m: the most gravity can load the joint with (revolute)
     weak: bool = False  # gravity_torque exceeds the effort limit: the joint cannot hold its links out
+    dead: bool = False  # the actuator cannot move the joint against gravity over its range (or kp is 0)
 
 
 def derived_gains(
@@ -100,9 +111,27 @@ def derived_gains(
                 kp = float(effort) / E_SAT  # type: ignore[arg-type]
             # The gravity floor, bounded by what the motor can give at the hold error.
             kp = max(kp, (min(torque, effort) if weak and effort else torque) / HOLD_ERROR)
+            # The floor against a dead actuator, bounded by what the loop's inertia takes stably.
+            if effort:
+                fastest = inertia * (2.0 * math.pi * F_MAX) ** 2
+                kp = max(kp, min(float(effort) / FLOOR_ERROR, fastest))
         kd = 2.0 * DAMPING_RATIO * math.sqrt(max(kp, 0.0) * inertia)
-        out[joint.name] = JointGains(kp, kd, inertia, capped, torque, weak)
+        out[joint.name] = JointGains(kp, kd, inertia, capped, torque, weak, _dead(joint, kp, torque))
     return out
+
+
+def _dead(joint: Joint, kp: float, torque: float) -> bool:
+    """The stiffness cannot lift what the joint moves: kp times the joint's range is below the gravity
+    torque on it (or kp is zero). A motor too weak for the load (its effort below the torque) is
+    ``weak``, said apart."""
+    if kp <= 0.0:
+        return True
+    limit = joint.limit
+    if not joint.type.is_angular or torque <= 0.0:
+        return False
+    continuous = joint.type.value == "continuous" or limit is None or limit.lower is None or limit.upper is None
+    span = math.pi if continuous else max(limit.upper - limit.lower, 0.0)  # type: ignore[operator,union-attr]
+    return kp * span < torque
 
 
 def fill_default_gains(
@@ -148,6 +177,15 @@ def fill_default_gains(
             "default-gains-weak",
             f"joints whose effort limit is below the gravity torque of the links they move, at their worst: "
             f"the default stiffness is capped at effort/{HOLD_ERROR:g} rad and they may sag: {listed}",
+            element=f"robot {robot.name!r}",
+            stage=stage,
+        )
+    dead = [n for n, g in gains.items() if g.dead]
+    if dead:
+        listed = ", ".join(f"{n} (kp {sig4(gains[n].stiffness):g}, gravity up to {gains[n].gravity_torque:.3g} N·m)" for n in dead)
+        findings.warn(
+            "default-gains-dead",
+            f"actuators that cannot move their joint against gravity (kp times the joint's range is below the gravity torque of the links it moves): {listed}; give --stiffness, or an effort limit",
             element=f"robot {robot.name!r}",
             stage=stage,
         )
