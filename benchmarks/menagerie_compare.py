@@ -68,14 +68,20 @@ def _hinges(model: Any) -> list[tuple[str, int, int]]:
     out = []
     for j in range(model.njnt):
         if int(model.jnt_type[j]) in (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE)):
-            out.append((mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j), model.jnt_qposadr[j], model.jnt_dofadr[j]))
+            out.append(
+                (mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j), model.jnt_qposadr[j], model.jnt_dofadr[j])
+            )
     return out
 
 
 def _actuated(model: Any) -> set[int]:
     import mujoco
 
-    return {int(model.actuator_trnid[a, 0]) for a in range(model.nu) if int(model.actuator_trntype[a]) == int(mujoco.mjtTrn.mjTRN_JOINT)}
+    return {
+        int(model.actuator_trnid[a, 0])
+        for a in range(model.nu)
+        if int(model.actuator_trntype[a]) == int(mujoco.mjtTrn.mjTRN_JOINT)
+    }
 
 
 def _reset(model: Any, data: Any) -> None:

@@ -80,8 +80,8 @@ def test_named_pose_that_lifts_a_foot_is_not_a_stance(tmp_path: Path) -> None:
 
 
 def test_gravity_floor_is_capped_at_what_the_effort_holds(tmp_path: Path) -> None:
-    """A weak hip (1 N·m) under a 1.5 kg leg: the floor g·Σm·d / 0.05 rad would ask for more torque
-    than the motor has at 0.05 rad; it is capped at effort / 0.05 and the joint is flagged."""
+    """A weak hip (1 N·m) under a 1.5 kg leg: the floor g·Σm·d / HOLD_ERROR would ask for more torque
+    than the motor has at HOLD_ERROR; it is capped at effort / HOLD_ERROR and the joint is flagged."""
     robot = robodesc.load(str(biped(tmp_path, None, effort=1.0)))
     stance = choose_stance(robot, None)
     gains = derived_gains(robot, stance, floating=False)
@@ -96,7 +96,7 @@ def test_gravity_floor_is_capped_at_what_the_effort_holds(tmp_path: Path) -> Non
 
 
 def test_gravity_floor_under_the_effort_is_kept() -> None:
-    """With effort to spare the floor is g·Σm·d / 0.05 rad, above the effort / 0.2 cap of I_eff ω²."""
+    """With effort to spare the floor is g·Σm·d / HOLD_ERROR, above the effort / 0.2 cap of I_eff ω²."""
     from tests.conftest import EXAMPLES
 
     robot = robodesc.load(str(EXAMPLES / "urdf" / "gripper_arm.urdf"))
@@ -144,3 +144,40 @@ def test_a_robot_without_moving_joints_names_no_joint_pattern(tmp_path: Path) ->
     robodesc.compile_for_isaac_sim(str(urdf), tmp_path / "out", fix_base=False)
     module = runpy.run_path(str(next((tmp_path / "out").glob("*_isaaclab.py"))))["ROBOT"]
     assert module["init_state"]["joint_pos"] == {} and module["init_state"]["joint_vel"] == {}
+
+
+def test_no_dead_actuator_on_gram_links() -> None:
+    """Links of 1 g (Allegro's URDF has none: robodesc gives each 1 g) once derived kp near 0. The
+    floor is the effort at 1 rad, bounded by a 20 Hz loop on the inertia it moves; a stiffness that
+    cannot lift the links is named."""
+    from robodesc.ir import Inertia, Inertial, Limit, Pose
+    from robodesc.ir.diagnostics import Findings
+    from tests.passes.pass_helpers import chain
+
+    robot = chain("palm", "f1", "f2", "f3")
+    for link in robot.links:
+        link.inertial = Inertial(mass=1e-3, inertia=Inertia(1e-6, 0, 0, 1e-6, 0, 1e-6))
+    for joint in robot.joints:
+        joint.axis = (1.0, 0.0, 0.0)
+        joint.armature = 5e-4
+    gains = derived_gains(robot, choose_stance(robot, None), floating=False)
+    for g in gains.values():
+        assert g.stiffness == pytest.approx(min(10.0 / 1.0, g.inertia * (2 * math.pi * 20) ** 2))
+        assert g.stiffness > 1.0 and not g.dead
+    heavy = chain("base", "arm")
+    heavy.joints[0].axis = (1.0, 0.0, 0.0)
+    heavy.joints[0].limit = Limit(lower=-1.0, upper=1.0, effort=100.0, velocity=1.0)
+    heavy.links[1].inertial = Inertial(
+        mass=5.0, origin=Pose(xyz=(0.0, 0.5, 0.0)), inertia=Inertia(0.1, 0, 0, 0.1, 0, 0.1)
+    )
+    weak = derived_gains(heavy, choose_stance(heavy, None), floating=False, stiffness={"j0": 1.0})
+    assert weak["j0"].dead  # 1 N·m/rad over 2 rad cannot lift 5 kg at 0.5 m (24.5 N·m)
+    findings = Findings()
+    from robodesc.emit.common.gains import fill_default_gains
+    from robodesc.emit.mjcf.options import MjcfOptions
+
+    fill_default_gains(
+        heavy, MjcfOptions(stiffness=1.0), {"stiffness"}, choose_stance(heavy, None), False, findings, "t"
+    )
+    dead = [f for f in findings.items if f.code == "default-gains-dead"]
+    assert len(dead) == 1 and "j0" in dead[0].message

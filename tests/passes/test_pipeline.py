@@ -27,6 +27,7 @@ def test_pipeline_reads_like_a_table_of_contents() -> None:
         "merge_fixed",
         "strip_tags",
         "armature",
+        "default_armature",
         "explicit_damping",
         "isaac_limits",
         "flat_colliders",

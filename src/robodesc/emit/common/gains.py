@@ -49,6 +49,7 @@ DAMPING_RATIO = 1.0
 E_SAT = 0.2  # rad (or m): the error at which the default stiffness reaches the effort limit
 HOLD_ERROR = 0.005  # rad: the most a revolute joint may sag under gravity at its default stiffness
 FLOOR_ERROR = 1.0  # rad (or m): the error at which the floor stiffness reaches the effort limit
+SPEED_MARGIN = 2.0  # the most a joint is driven over its velocity limit by a full-range step
 F_MAX = 20.0  # Hz: the floor never makes a loop faster than this
 GRAVITY = 9.81  # m/s²
 
@@ -116,8 +117,22 @@ def derived_gains(
                 fastest = inertia * (2.0 * math.pi * F_MAX) ** 2
                 kp = max(kp, min(float(effort) / FLOOR_ERROR, fastest))
         kd = 2.0 * DAMPING_RATIO * math.sqrt(max(kp, 0.0) * inertia)
-        out[joint.name] = JointGains(kp, kd, inertia, capped, torque, weak, _dead(joint, kp, torque))
+        if stiffness is None or joint.name not in stiffness:
+            kd = max(kd, _speed_damping(joint, kp))
+        out[joint.name] = JointGains(kp, kd, inertia, capped, torque, weak, not weak and _dead(joint, kp, torque))
     return out
+
+
+def _speed_damping(joint: Joint, kp: float) -> float:
+    """The damping at which a step across the joint's whole range is driven no faster than
+    SPEED_MARGIN times its velocity limit: a PD loop's speed settles where kd·v = kp·error."""
+    limit = joint.limit
+    if limit is None or not limit.velocity or limit.lower is None or limit.upper is None:
+        return 0.0
+    if joint.type.value == "continuous":
+        return 0.0
+    span = max(limit.upper - limit.lower, 0.0)
+    return kp * span / (SPEED_MARGIN * float(limit.velocity))
 
 
 def _dead(joint: Joint, kp: float, torque: float) -> bool:
@@ -182,7 +197,9 @@ def fill_default_gains(
         )
     dead = [n for n, g in gains.items() if g.dead]
     if dead:
-        listed = ", ".join(f"{n} (kp {sig4(gains[n].stiffness):g}, gravity up to {gains[n].gravity_torque:.3g} N·m)" for n in dead)
+        listed = ", ".join(
+            f"{n} (kp {sig4(gains[n].stiffness):g}, gravity up to {gains[n].gravity_torque:.3g} N·m)" for n in dead
+        )
         findings.warn(
             "default-gains-dead",
             f"actuators that cannot move their joint against gravity (kp times the joint's range is below the gravity torque of the links it moves): {listed}; give --stiffness, or an effort limit",
