@@ -254,9 +254,10 @@ def _add_pass_flags(comp: argparse.ArgumentParser) -> None:
     )
     ps.add_argument(
         "--merge-fixed",
-        action="store_true",
+        action=argparse.BooleanOptionalAction,
         default=None,
-        help="lump fixed-joint children into their parents (kept as fixed frames; dont_collapse respected)",
+        help="lump fixed-joint children into their parents (kept as fixed frames: sites in MJCF; dont_collapse "
+        "respected). Default: on for -t mjcf, off elsewhere; --no-merge-fixed keeps them as bodies",
     )
     ps.add_argument(
         "--copy-meshes", action="store_true", default=None, help="copy meshes into a meshes/ folder next to the output"

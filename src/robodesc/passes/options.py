@@ -95,7 +95,9 @@ class PassOptions:
     # (passes/default_armature.py). None = not said (the presets that simulate say True), so that an
     # explicit False overrides a preset's True (merge_options keeps what differs from the default).
     default_armature: bool | None = None
-    merge_fixed: bool = False
+    # None = not said (the mjcf preset says True: MuJoCo fuses static bodies as menagerie's models
+    # have them), so that an explicit False (--no-merge-fixed) overrides a preset's True.
+    merge_fixed: bool | None = None
     isaac_limits: bool = False
     # Isaac: dont_collapse on fixed joints whose child carries a sensor, frame or loop-joint end.
     keep_bodies: bool = False
