@@ -923,5 +923,6 @@ def read_urdf_string(
         findings=found,
     )
     robot = reader.read(root)
+    robot.package_roots = reader.resolver.roots()
     read_gazebo_contact(robot, found)
     return robot
