@@ -73,3 +73,42 @@ def test_random_control_stays_near_the_velocity_limits(name: str, tmp_path: Path
     assert np.isfinite(data.qpos).all()
     # Before issue 35: panda_joint7 at x19.7 its limit, z1's joint6 at x9.2.
     assert ratio < 2.5
+
+
+def test_fixed_links_are_fused_and_survive_as_sites(tmp_path: Path) -> None:
+    """Fixed links fused by default (menagerie's models have no welded frame bodies); the frame is a
+    site at the same place; --no-merge-fixed keeps the body."""
+    urdf = """<robot name="f">
+      <link name="base"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+      <link name="arm"><inertial><origin xyz="0 0 0.1"/><mass value="0.5"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+      <link name="tool"/>
+      <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 1 0"/>
+        <limit lower="-1" upper="1" effort="20" velocity="2"/></joint>
+      <joint name="mount" type="fixed"><parent link="arm"/><child link="tool"/><origin xyz="0 0 0.3"/></joint>
+    </robot>"""
+    compile_to_mjcf(urdf, str(tmp_path / "a" / "robot.xml"))
+    fused = mujoco.MjModel.from_xml_path(str(tmp_path / "a" / "robot.xml"))
+    assert mujoco.mj_name2id(fused, mujoco.mjtObj.mjOBJ_BODY, "tool") == -1
+    site = mujoco.mj_name2id(fused, mujoco.mjtObj.mjOBJ_SITE, "tool")
+    assert site >= 0
+    np.testing.assert_allclose(fused.site_pos[site], [0.0, 0.0, 0.3], atol=1e-12)
+    compile_to_mjcf(urdf, str(tmp_path / "b" / "robot.xml"), merge_fixed=False)
+    kept = mujoco.MjModel.from_xml_path(str(tmp_path / "b" / "robot.xml"))
+    assert mujoco.mj_name2id(kept, mujoco.mjtObj.mjOBJ_BODY, "tool") >= 0
+    assert fused.nbody == kept.nbody - 1
+
+
+def test_legged_contact_defaults_on_a_floating_quadruped(tmp_path: Path) -> None:
+    """A quadruped gets menagerie's legged contact (elliptic cone, impratio 100, feet with condim 6 and
+    priority 1); an arm keeps MuJoCo's own."""
+    if ERD is None:
+        pytest.skip("example-robot-data is not installed (the test extra)")
+    source = Path(ERD) / "robots" / "go1_description/urdf/go1.urdf"
+    compile_to_mjcf(str(source), str(tmp_path / "robot.xml"), package_paths={"example-robot-data": ERD})
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "scene.xml"))
+    assert model.opt.cone == mujoco.mjtCone.mjCONE_ELLIPTIC and model.opt.impratio == pytest.approx(100.0)
+    feet = [g for g in range(model.ngeom) if model.geom_condim[g] == 6]
+    assert len(feet) >= 4 and all(model.geom_priority[g] == 1 for g in feet)
+    assert all(model.geom_friction[g][0] == pytest.approx(0.8) for g in feet)
+    arm, _ = _compile("z1", tmp_path / "z1")
+    assert arm.opt.cone == mujoco.mjtCone.mjCONE_PYRAMIDAL and arm.opt.impratio == pytest.approx(1.0)

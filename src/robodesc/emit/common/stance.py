@@ -207,6 +207,28 @@ def _pitch_joints(chain: list[Joint], frames: Mapping[str, Frame], robot: Robot)
     return out
 
 
+def lowest_collider(link: Link, frame: Frame, meshes: MeshCache) -> int:
+    """The index of the link's lowest collider with the link at ``frame``: a foot's sole or toe."""
+
+    def low(i: int) -> float:
+        c = link.collisions[i]
+        z = _shape_lowest(c.geometry, frame @ pose_frame(c.origin), False, meshes)
+        return math.inf if z is None else z
+
+    return min(range(len(link.collisions)), key=low)
+
+
+def foot_colliders(robot: Robot, stance: Stance) -> dict[str, int]:
+    """Each leg's foot link and the index of its collider that touches the ground in the stance."""
+    frames = link_frames(robot, stance.positions)
+    meshes = MeshCache()
+    return {
+        leg.foot: lowest_collider(robot.link(leg.foot), frames[leg.foot], meshes)
+        for leg in stance.legs
+        if robot.link(leg.foot).collisions
+    }
+
+
 def _foot_point(link: Link, frame: Frame, meshes: MeshCache) -> Vec3:
     """Where the foot stands, in its link's frame: the centre of a sphere or box (a point foot
     rolls about its centre; a sole's middle), the lower end of a capsule's or cylinder's axis (a
@@ -215,12 +237,7 @@ def _foot_point(link: Link, frame: Frame, meshes: MeshCache) -> Vec3:
     shin's box)."""
     if not link.collisions:
         return (0.0, 0.0, 0.0)
-
-    def low(c: Collision) -> float:
-        z = _shape_lowest(c.geometry, frame @ pose_frame(c.origin), False, meshes)
-        return math.inf if z is None else z
-
-    collision = min(link.collisions, key=low)
+    collision = link.collisions[lowest_collider(link, frame, meshes)]
     local = pose_frame(collision.origin)
     geometry = collision.geometry
     if isinstance(geometry, Capsule | Cylinder):

@@ -213,7 +213,7 @@ class BodyWriter:
             given = link.collision_contact(collision)
             # A foot gets menagerie's foot class only where the source says nothing of its contact:
             # Talos's Gazebo soles (kd 1: damping ratio 0.03) with priority over the floor tipped it over.
-            foot = link.name in self.ctx.options.feet and given is None
+            foot = self.ctx.options.feet.get(link.name) == i and given is None
             for geom in self._collision_geoms(link, collision.geometry, f"{label} collision {i}"):
                 geom.set("class", "foot" if foot else "collision")
                 _place(geom, collision.origin)

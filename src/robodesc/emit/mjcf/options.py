@@ -62,9 +62,10 @@ class MjcfOptions:
     impratio: float | None = field(
         default=None, metadata=flag("MuJoCo's frictional-to-normal impedance ratio", name="--mjcf-impratio", type=float)
     )
-    # Not a flag: the links a floating robot stands on (its stance's feet), whose colliders get the
-    # "foot" class (condim 6, priority 1, menagerie's foot friction where the source gives none).
-    feet: tuple[str, ...] = ()
+    # Not a flag: the colliders a floating robot stands on (its stance's feet: link -> the index of
+    # the collider that touches the ground), which get the "foot" class (condim 6, priority 1,
+    # menagerie's foot friction where the source gives none).
+    feet: Mapping[str, int] = field(default_factory=dict)
     # Not a flag: the root height of a floating robot's home keyframe, set by the target from the
     # stance it chose (the body stays at its zero-pose height); None keeps the body's position.
     home_height: float | None = None

@@ -87,7 +87,9 @@ def _contact_defaults(robot: Robot, request: EmitRequest, stance: Stance, findin
     # second and it stood as well without (docs/mjcf.md).
     if len(stance.legs) < 3:
         return
-    options.feet = tuple(leg.foot for leg in stance.legs)
+    from robodesc.emit.common.stance import foot_colliders
+
+    options.feet = foot_colliders(robot, stance)
     if "cone" not in request.given:
         options.cone = "elliptic"
     if "impratio" not in request.given:
