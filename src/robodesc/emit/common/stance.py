@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 
 from robodesc.emit.common.named_pose import named_pose
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Mesh, Pose, Sphere, Vec3
-from robodesc.ir.model import Collision, Joint, JointType, Link, Robot
+from robodesc.ir.model import Joint, JointType, Link, Robot
 from robodesc.ir.rigid import Frame, apply, joint_motion, link_frames, pose_frame, resolve_mimic
 from robodesc.meshes.buffers import MeshReadError
 from robodesc.meshes.data import MeshCache
