@@ -112,3 +112,13 @@ def test_legged_contact_defaults_on_a_floating_quadruped(tmp_path: Path) -> None
     assert all(model.geom_friction[g][0] == pytest.approx(0.8) for g in feet)
     arm, _ = _compile("z1", tmp_path / "z1")
     assert arm.opt.cone == mujoco.mjtCone.mjCONE_PYRAMIDAL and arm.opt.impratio == pytest.approx(1.0)
+
+
+def test_welded_arm_starts_from_its_named_pose(tmp_path: Path) -> None:
+    """An arm's home is the pose its SRDF names (panda.srdf's 'default'), as a leg robot's is; before,
+    zeros clamped into the ranges (panda_joint4's range excludes 0)."""
+    model, _ = _compile("panda", tmp_path)
+    home = model.key_qpos[0]
+    joint4 = model.jnt_qposadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "panda_joint4")]
+    joint6 = model.jnt_qposadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "panda_joint6")]
+    assert home[joint4] == pytest.approx(-2.35619) and home[joint6] == pytest.approx(1.5707)

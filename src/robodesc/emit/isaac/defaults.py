@@ -29,12 +29,12 @@ def apply_defaults(
     wanted = given_positions(robot, settings.init_joint_pos)
     floating = not settings.fix_base
     stance = default_pose(robot, wanted, floating, findings, STAGE)
-    if floating:
-        if "init_joint_pos" not in given and not wanted:
-            settings.init_joint_pos = pose_table(robot, stance)
-        if "init_pos" not in given and robot.placement is None and (height := spawn_height(stance)) is not None:
-            x, y, _ = settings.init_pos
-            settings.init_pos = (x, y, height)
+    if "init_joint_pos" not in given and not wanted and (floating or stance.source != "zeros"):
+        settings.init_joint_pos = pose_table(robot, stance)
+    placed = "init_pos" in given or robot.placement is not None
+    if floating and not placed and (height := spawn_height(stance)) is not None:
+        x, y, _ = settings.init_pos
+        settings.init_pos = (x, y, height)
     if settings.target_type != "none" and not ("stiffness" in given and "damping" in given):
         fill_default_gains(robot, settings, given, stance, floating, findings, STAGE)
     return stance.positions

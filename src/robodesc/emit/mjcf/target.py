@@ -69,9 +69,9 @@ def _default_base_and_pose(robot: Robot, request: EmitRequest, findings: Finding
     wanted = given_positions(robot, options.init_joint_pos)
     floating = not options.fix_base and robot.root.name != "world"
     stance = default_pose(robot, wanted, floating, findings, STAGE)
+    if not wanted and (floating or stance.source != "zeros"):
+        options.init_joint_pos = pose_table(robot, stance)
     if floating:
-        if not wanted:
-            options.init_joint_pos = pose_table(robot, stance)
         if options.init_pos is None:
             options.home_height = spawn_height(stance)
         _contact_defaults(robot, request, stance, findings)
