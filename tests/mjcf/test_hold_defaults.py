@@ -122,3 +122,24 @@ def test_welded_arm_starts_from_its_named_pose(tmp_path: Path) -> None:
     joint4 = model.jnt_qposadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "panda_joint4")]
     joint6 = model.jnt_qposadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "panda_joint6")]
     assert home[joint4] == pytest.approx(-2.35619) and home[joint6] == pytest.approx(1.5707)
+
+
+def test_the_folder_is_self_contained(tmp_path: Path) -> None:
+    """Every mesh under OUT/meshes with a relative path, named by content (one file per distinct
+    content), so the folder loads after it is moved; --mesh-paths absolute references them in place."""
+    import shutil
+
+    from robodesc.emit.common.paths import PathMode
+    from tests.conftest import EXAMPLES
+
+    compile_to_mjcf(str(EXAMPLES / "urdf" / "gripper_arm.urdf"), str(tmp_path / "a" / "robot.xml"))
+    files = [m.get("file", "") for m in ET.parse(tmp_path / "a" / "robot.xml").getroot().iter("mesh")]
+    assert files and all(f.startswith("meshes/") for f in files)
+    assert len(list((tmp_path / "a" / "meshes").iterdir())) == len(set(files))
+    shutil.move(str(tmp_path / "a"), str(tmp_path / "moved"))
+    assert mujoco.MjModel.from_xml_path(str(tmp_path / "moved" / "scene.xml")).nmesh == len(files)
+    compile_to_mjcf(
+        str(EXAMPLES / "urdf" / "gripper_arm.urdf"), str(tmp_path / "b" / "robot.xml"), mesh_paths=PathMode.ABSOLUTE
+    )
+    absolute = [m.get("file", "") for m in ET.parse(tmp_path / "b" / "robot.xml").getroot().iter("mesh")]
+    assert all(Path(f).is_absolute() for f in absolute) and not (tmp_path / "b" / "meshes").exists()
