@@ -181,3 +181,27 @@ def test_no_dead_actuator_on_gram_links() -> None:
     )
     dead = [f for f in findings.items if f.code == "default-gains-dead"]
     assert len(dead) == 1 and "j0" in dead[0].message
+
+
+def test_a_welded_robot_below_the_ground_is_raised(tmp_path: Path) -> None:
+    """Isaac Lab scenes have a ground at z = 0: a welded robot with a collider below it at its start
+    pose (Allegro's thumb, 4.6 cm) is raised until none is, 5 mm above; one above it stays put."""
+    from robodesc.emit.isaac.defaults import apply_defaults
+    from robodesc.emit.isaac.settings import IsaacSettings
+    from robodesc.ir.diagnostics import Findings
+
+    urdf = tmp_path / "hand.urdf"
+    urdf.write_text(
+        '<robot name="hand"><link name="palm"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>'
+        '<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'
+        "</link></robot>"
+    )
+    robot = robodesc.load(str(urdf))
+    settings = IsaacSettings(fix_base=True)
+    findings = Findings()
+    apply_defaults(robot, settings, set(), findings)
+    assert settings.init_pos[2] == pytest.approx(0.055)
+    assert [f.code for f in findings.items if f.code == "isaac-welded-raised"] == ["isaac-welded-raised"]
+    settings = IsaacSettings(fix_base=True, init_pos=(0.0, 0.0, 1.0))
+    apply_defaults(robot, settings, {"init_pos"}, Findings())
+    assert settings.init_pos[2] == 1.0
