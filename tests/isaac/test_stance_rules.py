@@ -205,3 +205,27 @@ def test_a_welded_robot_below_the_ground_is_raised(tmp_path: Path) -> None:
     settings = IsaacSettings(fix_base=True, init_pos=(0.0, 0.0, 1.0))
     apply_defaults(robot, settings, {"init_pos"}, Findings())
     assert settings.init_pos[2] == 1.0
+
+
+def test_anymal_c_hind_knees_mirror_the_front_ones() -> None:
+    """The legged heuristic bends each knee as its leg is built: ANYmal C's hind legs are its front
+    ones turned half a turn, and its SRDF and Isaac Lab's own config bend their knees forward."""
+    from robodesc.emit.common.stance import legged_pose
+    from robodesc.ir.rigid import link_frames
+    from robodesc.validation.corpora import example_robot_data_root
+
+    root = example_robot_data_root()
+    if root is None:
+        pytest.skip("example-robot-data is not installed (the test extra)")
+    robot = robodesc.load(
+        f"{root}/robots/anymal_c_simple_description/urdf/anymal.urdf", package_paths={"example-robot-data": root}
+    )
+    found = legged_pose(robot)
+    assert found is not None
+    q, legs = found
+    frames = link_frames(robot, q)
+    ahead = {}
+    for leg in legs:
+        knee = robot.joint(next(j for j in leg.joints if j.endswith("KFE")))
+        ahead[leg.foot] = frames[knee.child].translation[0] > frames[leg.foot].translation[0]
+    assert ahead == {"LF_FOOT": False, "RF_FOOT": False, "LH_FOOT": True, "RH_FOOT": True}

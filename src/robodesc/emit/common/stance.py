@@ -294,6 +294,8 @@ def _solve_leg(
     ankle = pitch[2] if len(pitch) >= 3 else None
     frames0 = _chain_frames(path, q)
     sign = {j.name: math.copysign(1.0, apply(frames0[j.name].rotation, j.effective_axis)[1]) for j in pitch}
+    # The leg's own forward: its first joint's x (ANYmal's hind HAA frames are yawed half a turn).
+    facing = -1.0 if apply(frames0[chain[0].name].rotation, (1.0, 0.0, 0.0))[0] < -1e-6 else 1.0
     # One turn at most: a continuous knee or a +-2 pi range would offer the same bend twice.
     lo, hi = max(limits(knee)[0], -math.pi), min(limits(knee)[1], math.pi)
     candidates: list[tuple[float, float, dict[str, float]]] = []
@@ -315,8 +317,11 @@ def _solve_leg(
         frames = _chain_frames(path, trial)
         knee_x = frames[knee.name].translation[0]
         foot_x = frames[""].translation[0]
-        # Ties between the two knee directions go to the knee behind the foot (dog-like legs).
-        candidates.append((length, 0.0 if knee_x <= foot_x else 1.0, trial))
+        # Ties between the two knee directions go to the knee behind the foot (dog-like legs),
+        # "behind" as the leg is built: along its first joint's own x. ANYmal C's hind hips are its front ones
+        # turned half a turn, and its hind knees point forward (as its SRDF and Isaac Lab's config bend
+        # them); in the robot's frame all four knees bent backward.
+        candidates.append((length, 0.0 if (knee_x - foot_x) * facing <= 0.0 else 1.0, trial))
     if not candidates:
         return None
     target = reach * max(c[0] for c in candidates)
