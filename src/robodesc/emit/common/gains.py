@@ -11,8 +11,11 @@ loop with natural frequency ``f`` and damping ratio ``zeta`` on the inertia it c
 (d: the link's centre of mass from the joint, at the default pose; the largest moment and the
 distance rather than the axis make it the most the joint can meet as the joints beyond it move)
     kp    = I_eff·(2 pi f)^2, then at most effort / E_SAT (an error of E_SAT rad saturates it)
-    kd    = 2·zeta·sqrt(kp·I_eff)
+    kd    = 2·zeta·sqrt(kp·I_eff), at least kp·range / (SPEED_MARGIN·velocity limit)
 
+(the second term: a PD loop's speed settles where kd·v = kp·error, so a step across the joint's whole
+range is driven at no more than SPEED_MARGIN = 2 times its velocity limit; without it, random control
+drove panda_joint7 at 19.7 times its limit in MuJoCo, issue 35)
 with ``f`` = 4 Hz, ``zeta`` = 1 (critically damped: the robot settles without rocking) and
 ``E_SAT`` = 0.2 rad. A revolute joint's kp is also at least ``g·sum(m·d) / HOLD_ERROR``: the most
 gravity torque the moved links can put on it, held within ``HOLD_ERROR`` = 0.005 rad (a finger's
@@ -178,7 +181,7 @@ def fill_default_gains(
     findings.info(
         "default-gains",
         f"drive gains derived per joint (kp = I_eff·(2π·{NATURAL_FREQUENCY:g} Hz)², at most effort/{E_SAT:g}; "
-        f"kd = 2·{DAMPING_RATIO:g}·√(kp·I_eff)); kp/kd SI: {rows}",
+        f"kd = 2·{DAMPING_RATIO:g}·√(kp·I_eff), at least kp·range/({SPEED_MARGIN:g}·velocity limit)); kp/kd SI: {rows}",
         element=f"robot {robot.name!r}",
         stage=stage,
     )
