@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import robodesc
@@ -185,8 +186,14 @@ def _spirit_toe_geoms(path: Path) -> list[tuple[float, float, float]]:
     model = mujoco.MjModel.from_xml_path(str(path))
     out = []
     for toe in TOES:
-        body = model.body(toe).id
-        (geom,) = [g for g in range(model.ngeom) if model.geom_bodyid[g] == body and model.geom_group[g] == 3]
+        # Fixed links are fused by default: the toe is a site on the lower leg, its sphere a geom there.
+        site = model.site(toe)
+        body = int(site.bodyid[0])
+        (geom,) = [
+            g
+            for g in range(model.ngeom)
+            if model.geom_bodyid[g] == body and model.geom_group[g] == 3 and np.allclose(model.geom_pos[g], site.pos)
+        ]
         out.append((float(model.geom_friction[geom][0]), *map(float, model.geom_solref[geom])))
     return out
 

@@ -13,7 +13,7 @@ import pytest
 from pxr import Usd, UsdPhysics
 
 import robodesc
-from robodesc.emit.common.gains import derived_gains
+from robodesc.emit.common.gains import HOLD_ERROR, derived_gains
 from robodesc.emit.common.stance import choose_stance, legged_pose, limits
 from robodesc.ir.geometry import Inertia
 from robodesc.ir.model import Robot
@@ -134,10 +134,14 @@ def test_derived_gains_follow_the_formula() -> None:
     omega = 2 * math.pi * 4.0
     for name, g in gains.items():
         effort = robot.joint(name).limit.effort  # type: ignore[union-attr]
-        # I_eff ω² under the effort cap, and at least the gravity floor (bounded by the effort).
-        floor = min(g.gravity_torque, effort) / 0.05
+        # I_eff ω² under the effort cap, and at least the gravity floor (bounded by the effort) and the
+        # dead-actuator floor (effort at 1 rad, bounded by a 20 Hz loop).
+        floor = max(min(g.gravity_torque, effort) / HOLD_ERROR, min(effort / 1.0, g.inertia * (2 * math.pi * 20) ** 2))
         assert g.stiffness == pytest.approx(max(min(g.inertia * omega**2, effort / 0.2), floor))
-        assert g.damping == pytest.approx(2 * math.sqrt(g.stiffness * g.inertia))
+        # Critical damping, or more: a full-range step driven at no more than twice the velocity limit.
+        limit = robot.joint(name).limit
+        speed = g.stiffness * (limit.upper - limit.lower) / (2 * limit.velocity)  # type: ignore[union-attr,operator]
+        assert g.damping == pytest.approx(max(2 * math.sqrt(g.stiffness * g.inertia), speed))
         assert g.capped == (g.inertia * omega**2 > effort / 0.2)
         assert g.gravity_torque > 0 and not g.weak
 

@@ -80,8 +80,8 @@ def test_named_pose_that_lifts_a_foot_is_not_a_stance(tmp_path: Path) -> None:
 
 
 def test_gravity_floor_is_capped_at_what_the_effort_holds(tmp_path: Path) -> None:
-    """A weak hip (1 N·m) under a 1.5 kg leg: the floor g·Σm·d / 0.05 rad would ask for more torque
-    than the motor has at 0.05 rad; it is capped at effort / 0.05 and the joint is flagged."""
+    """A weak hip (1 N·m) under a 1.5 kg leg: the floor g·Σm·d / HOLD_ERROR would ask for more torque
+    than the motor has at HOLD_ERROR; it is capped at effort / HOLD_ERROR and the joint is flagged."""
     robot = robodesc.load(str(biped(tmp_path, None, effort=1.0)))
     stance = choose_stance(robot, None)
     gains = derived_gains(robot, stance, floating=False)
@@ -96,7 +96,7 @@ def test_gravity_floor_is_capped_at_what_the_effort_holds(tmp_path: Path) -> Non
 
 
 def test_gravity_floor_under_the_effort_is_kept() -> None:
-    """With effort to spare the floor is g·Σm·d / 0.05 rad, above the effort / 0.2 cap of I_eff ω²."""
+    """With effort to spare the floor is g·Σm·d / HOLD_ERROR, above the effort / 0.2 cap of I_eff ω²."""
     from tests.conftest import EXAMPLES
 
     robot = robodesc.load(str(EXAMPLES / "urdf" / "gripper_arm.urdf"))
@@ -144,3 +144,88 @@ def test_a_robot_without_moving_joints_names_no_joint_pattern(tmp_path: Path) ->
     robodesc.compile_for_isaac_sim(str(urdf), tmp_path / "out", fix_base=False)
     module = runpy.run_path(str(next((tmp_path / "out").glob("*_isaaclab.py"))))["ROBOT"]
     assert module["init_state"]["joint_pos"] == {} and module["init_state"]["joint_vel"] == {}
+
+
+def test_no_dead_actuator_on_gram_links() -> None:
+    """Links of 1 g (Allegro's URDF has none: robodesc gives each 1 g) once derived kp near 0. The
+    floor is the effort at 1 rad, bounded by a 20 Hz loop on the inertia it moves; a stiffness that
+    cannot lift the links is named."""
+    from robodesc.ir import Inertia, Inertial, Limit, Pose
+    from robodesc.ir.diagnostics import Findings
+    from tests.passes.pass_helpers import chain
+
+    robot = chain("palm", "f1", "f2", "f3")
+    for link in robot.links:
+        link.inertial = Inertial(mass=1e-3, inertia=Inertia(1e-6, 0, 0, 1e-6, 0, 1e-6))
+    for joint in robot.joints:
+        joint.axis = (1.0, 0.0, 0.0)
+        joint.armature = 5e-4
+    gains = derived_gains(robot, choose_stance(robot, None), floating=False)
+    for g in gains.values():
+        assert g.stiffness == pytest.approx(min(10.0 / 1.0, g.inertia * (2 * math.pi * 20) ** 2))
+        assert g.stiffness > 1.0 and not g.dead
+    heavy = chain("base", "arm")
+    heavy.joints[0].axis = (1.0, 0.0, 0.0)
+    heavy.joints[0].limit = Limit(lower=-1.0, upper=1.0, effort=100.0, velocity=1.0)
+    heavy.links[1].inertial = Inertial(
+        mass=5.0, origin=Pose(xyz=(0.0, 0.5, 0.0)), inertia=Inertia(0.1, 0, 0, 0.1, 0, 0.1)
+    )
+    weak = derived_gains(heavy, choose_stance(heavy, None), floating=False, stiffness={"j0": 1.0})
+    assert weak["j0"].dead  # 1 N·m/rad over 2 rad cannot lift 5 kg at 0.5 m (24.5 N·m)
+    findings = Findings()
+    from robodesc.emit.common.gains import fill_default_gains
+    from robodesc.emit.mjcf.options import MjcfOptions
+
+    fill_default_gains(
+        heavy, MjcfOptions(stiffness=1.0), {"stiffness"}, choose_stance(heavy, None), False, findings, "t"
+    )
+    dead = [f for f in findings.items if f.code == "default-gains-dead"]
+    assert len(dead) == 1 and "j0" in dead[0].message
+
+
+def test_a_welded_robot_below_the_ground_is_raised(tmp_path: Path) -> None:
+    """Isaac Lab scenes have a ground at z = 0: a welded robot with a collider below it at its start
+    pose (Allegro's thumb, 4.6 cm) is raised until none is, 5 mm above; one above it stays put."""
+    from robodesc.emit.isaac.defaults import apply_defaults
+    from robodesc.emit.isaac.settings import IsaacSettings
+    from robodesc.ir.diagnostics import Findings
+
+    urdf = tmp_path / "hand.urdf"
+    urdf.write_text(
+        '<robot name="hand"><link name="palm"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>'
+        '<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'
+        "</link></robot>"
+    )
+    robot = robodesc.load(str(urdf))
+    settings = IsaacSettings(fix_base=True)
+    findings = Findings()
+    apply_defaults(robot, settings, set(), findings)
+    assert settings.init_pos[2] == pytest.approx(0.055)
+    assert [f.code for f in findings.items if f.code == "isaac-welded-raised"] == ["isaac-welded-raised"]
+    settings = IsaacSettings(fix_base=True, init_pos=(0.0, 0.0, 1.0))
+    apply_defaults(robot, settings, {"init_pos"}, Findings())
+    assert settings.init_pos[2] == 1.0
+
+
+def test_anymal_c_hind_knees_mirror_the_front_ones() -> None:
+    """The legged heuristic bends each knee as its leg is built: ANYmal C's hind legs are its front
+    ones turned half a turn, and its SRDF and Isaac Lab's own config bend their knees forward."""
+    from robodesc.emit.common.stance import legged_pose
+    from robodesc.ir.rigid import link_frames
+    from robodesc.validation.corpora import example_robot_data_root
+
+    root = example_robot_data_root()
+    if root is None:
+        pytest.skip("example-robot-data is not installed (the test extra)")
+    robot = robodesc.load(
+        f"{root}/robots/anymal_c_simple_description/urdf/anymal.urdf", package_paths={"example-robot-data": root}
+    )
+    found = legged_pose(robot)
+    assert found is not None
+    q, legs = found
+    frames = link_frames(robot, q)
+    ahead = {}
+    for leg in legs:
+        knee = robot.joint(next(j for j in leg.joints if j.endswith("KFE")))
+        ahead[leg.foot] = frames[knee.child].translation[0] > frames[leg.foot].translation[0]
+    assert ahead == {"LF_FOOT": False, "RF_FOOT": False, "LH_FOOT": True, "RH_FOOT": True}

@@ -135,7 +135,8 @@ def test_obj_layout_detection(faces: str, mixed: bool, tmp_path: Path) -> None:
 def test_jointed_body_with_welded_mass_has_an_inertial(tmp_path: Path) -> None:
     """A jointed link without mass whose mass its welded child carries: MuJoCo takes the child's mass
     as the body's, and writes no token mass; Newton's add_mjcf (with inertiafromgeom="false") refuses
-    a jointed body without <inertial>, so a zero one is written."""
+    a jointed body without <inertial>, so a zero one is written. (With fixed links kept as bodies:
+    by default the payload is fused into the carrier, which then carries the mass itself.)"""
     urdf = f"""<robot name="w">
       <link name="base"><inertial><mass value="1"/>{INERTIA}</inertial></link>
       <link name="carrier"/>
@@ -144,7 +145,7 @@ def test_jointed_body_with_welded_mass_has_an_inertial(tmp_path: Path) -> None:
         <limit lower="-1" upper="1" effort="5" velocity="1"/></joint>
       <joint name="weld" type="fixed"><parent link="carrier"/><child link="payload"/></joint>
     </robot>"""
-    result = compile_to_mjcf(urdf, str(tmp_path / "robot.xml"))
+    result = compile_to_mjcf(urdf, str(tmp_path / "robot.xml"), merge_fixed=False)
     assert result.validation is not None and result.validation.ok
     assert "mjcf-massless-body" not in {f.code for f in result.warnings}
     root = ET.parse(tmp_path / "robot.xml").getroot()

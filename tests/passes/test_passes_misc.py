@@ -29,7 +29,7 @@ from robodesc.ir import (
 from robodesc.ir.verify import check
 from robodesc.passes.armature import armature
 from robodesc.passes.isaac_limits import isaac_limits
-from robodesc.passes.options import ArmatureRule, parse_armature
+from robodesc.passes.options import ArmatureRule, PassOptions, options_from_mapping, parse_armature
 from robodesc.passes.strip_tags import strip_tags
 from robodesc.passes.unique_materials import unique_materials
 from robodesc.passes.zero_pose import zero_pose
@@ -167,6 +167,38 @@ def test_mimic_joints_are_not_actuated() -> None:
     c = ctx(armature=(ArmatureRule("^x$", 1.0),))
     armature(robot, c)
     assert "armature-unmatched" not in codes(c)
+
+
+def test_default_armature_from_effort_and_source_values_win() -> None:
+    """effort^1.5·1e-4: 23.7 N·m (Go1's hip, menagerie 0.01) gives 0.0115; a source value and a
+    prismatic joint are left alone, a joint without effort is listed."""
+    from robodesc.passes.default_armature import default_armature
+
+    robot = chain("a", "b", "c", "d", "e", joint_names=["hip", "given", "slide", "free"])
+    robot.joints[0].limit = Limit(lower=-1.0, upper=1.0, effort=23.7, velocity=30.0)
+    robot.joints[1].limit = Limit(lower=-1.0, upper=1.0, effort=87.0, velocity=2.0)
+    robot.joints[1].armature = 0.5
+    robot.joints[2].type = JointType.PRISMATIC
+    robot.joints[2].limit = Limit(lower=0.0, upper=0.04, effort=100.0, velocity=0.2)
+    robot.joints[3].limit = Limit(lower=-1.0, upper=1.0, effort=None, velocity=1.0)
+    c = ctx(default_armature=True)
+    default_armature(robot, c)
+    assert robot.joints[0].armature == pytest.approx(1e-4 * 23.7**1.5, rel=5e-3)  # three digits
+    assert robot.joints[0].armature == pytest.approx(0.0115, rel=1e-2)
+    assert robot.joints[1].armature == 0.5
+    assert robot.joints[2].armature is None and robot.joints[3].armature is None
+    assert codes(c) == ["armature-default", "armature-default-skipped"]
+    assert "slide" in c.findings.items[-1].message and "free" in c.findings.items[-1].message
+
+
+def test_default_armature_preset_on_and_option_turns_it_off() -> None:
+    from robodesc.passes.pipeline import enabled_passes, resolve_options
+
+    assert "default_armature" in enabled_passes(resolve_options("mjcf", None))
+    assert "default_armature" in enabled_passes(resolve_options("isaac_sim", None))
+    assert "default_armature" not in enabled_passes(resolve_options("ros2", None))
+    off = options_from_mapping({"default_armature": False}, PassOptions())
+    assert "default_armature" not in enabled_passes(resolve_options("mjcf", off))
 
 
 # ---- isaac_limits and zero_pose ----------------------------------------------------------

@@ -27,6 +27,7 @@ def test_pipeline_reads_like_a_table_of_contents() -> None:
         "merge_fixed",
         "strip_tags",
         "armature",
+        "default_armature",
         "explicit_damping",
         "isaac_limits",
         "flat_colliders",
@@ -122,3 +123,27 @@ def test_copy_meshes_collision_free_names_and_conversion(tmp_path: Path) -> None
     converted = trimesh.load(out / "meshes" / "shell.obj", force="mesh")
     assert converted.volume == pytest.approx(1.0, rel=1e-6)
     assert "mesh-converted" in codes(ctx) and "meshes-copied" in codes(ctx)
+
+
+def test_copy_meshes_takes_meshes_of_a_given_package_reached_through_find(tmp_path: Path) -> None:
+    """moveit_resources' Panda reaches its meshes through xacro's $(find pkg): absolute paths outside
+    the input's folder, under a package given with --package. They are the robot's own: copied."""
+    import shutil
+
+    import robodesc
+    from tests.conftest import EXAMPLES
+
+    pkg = tmp_path / "elsewhere" / "my_description"
+    (pkg / "meshes").mkdir(parents=True)
+    shutil.copy(EXAMPLES / "urdf" / "meshes" / "finger.stl", pkg / "meshes" / "finger.stl")
+    src = tmp_path / "config" / "robot.urdf.xacro"
+    src.parent.mkdir()
+    src.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a"><visual><geometry>'
+        '<mesh filename="$(find my_description)/meshes/finger.stl"/></geometry></visual></link></robot>'
+    )
+    out = tmp_path / "out" / "robot.urdf"
+    result = robodesc.compile_to_urdf(str(src), str(out), package_paths={"my_description": str(pkg)}, copy_meshes=True)
+    assert "mesh-not-copied" not in [f.code for f in result.findings]
+    assert (tmp_path / "out" / "meshes" / "finger.stl").read_bytes() == (pkg / "meshes" / "finger.stl").read_bytes()
+    assert 'filename="meshes/finger.stl"' in out.read_text()

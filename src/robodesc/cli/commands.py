@@ -82,6 +82,7 @@ def _pass_options(args: argparse.Namespace) -> dict[str, Any]:
         "sanitize_names": args.sanitize_names,
         "unique_materials": args.unique_materials,
         "merge_fixed": args.merge_fixed,
+        "default_armature": args.default_armature,
         "copy_meshes": args.copy_meshes,
     }
     return {k: v for k, v in given.items() if v is not None}

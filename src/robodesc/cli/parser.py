@@ -281,6 +281,13 @@ def _add_pass_flags(comp: argparse.ArgumentParser) -> None:
         help="reflected rotor inertia (kg·m²) for joints matching REGEX, or REGEX=J_ROTOR*N^2 (repeatable, first match wins)",
     )
     ps.add_argument(
+        "--default-armature",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="estimate armature from each revolute joint's effort limit where the source gives none "
+        "(default: on for -t mjcf and the Isaac folder, off elsewhere; docs/passes.md)",
+    )
+    ps.add_argument(
         "--strip",
         metavar="KINDS",
         help="remove gazebo,transmission,ros2_control,dont_collapse,contact,surface (comma list, or all)",
@@ -304,9 +311,10 @@ def _add_pass_flags(comp: argparse.ArgumentParser) -> None:
     )
     ps.add_argument(
         "--merge-fixed",
-        action="store_true",
+        action=argparse.BooleanOptionalAction,
         default=None,
-        help="lump fixed-joint children into their parents (kept as fixed frames; dont_collapse respected)",
+        help="lump fixed-joint children into their parents (kept as fixed frames: sites in MJCF; dont_collapse "
+        "respected). Default: on for -t mjcf, off elsewhere; --no-merge-fixed keeps them as bodies",
     )
     ps.add_argument(
         "--copy-meshes", action="store_true", default=None, help="copy meshes into a meshes/ folder next to the output"

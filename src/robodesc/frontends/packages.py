@@ -64,6 +64,12 @@ class PackageResolver:
             self._cache[name] = self._find(name)
         return self._cache[name]
 
+    def roots(self) -> list[str]:
+        """The root folders of the packages given with --package and of every package looked up and found."""
+        found = [os.path.abspath(d) for d in self.explicit.values()]
+        found += [hit[0] for hit in self._cache.values() if hit is not None]
+        return list(dict.fromkeys(found))
+
     def _find(self, name: str) -> tuple[str, str] | None:
         if name in self.explicit:
             return os.path.abspath(self.explicit[name]), "given with --package"

@@ -622,6 +622,19 @@ class UrdfReader:
                 loc=self._loc(limit_el) if limit_el is not None else joint.src,
                 stage=STAGE,
             )
+        limit = joint.limit
+        if limit is not None and limit.lower is not None and limit.upper is not None and limit.lower > limit.upper:
+            # pybullet (pybullet_data's biped2d_pybullet.urdf) reads lower > upper as "no limit"; urdfdom
+            # keeps the numbers and every engine then clamps to nothing. Read as pybullet reads it.
+            self.findings.warn(
+                "limit-inverted",
+                f"lower limit {limit.lower:g} is above upper limit {limit.upper:g}: read as pybullet reads it, "
+                "an unlimited joint (the effort and velocity limits are kept); --strict refuses it",
+                element=label,
+                loc=limit.src or joint.src,
+                stage=STAGE,
+            )
+            limit.lower = limit.upper = None
         dyn_el = self._one(el, "dynamics", label)
         if dyn_el is not None:
             joint.dynamics = Dynamics(
@@ -910,5 +923,6 @@ def read_urdf_string(
         findings=found,
     )
     robot = reader.read(root)
+    robot.package_roots = reader.resolver.roots()
     read_gazebo_contact(robot, found)
     return robot

@@ -348,6 +348,10 @@ class Robot:
     src: SourceLoc | None = None
     # The file the robot was read from; relative mesh paths were resolved against its folder.
     source_file: str | None = None
+    # Root folders of the packages the input's references were found in (--package folders,
+    # $(find pkg) and package:// look-ups): meshes under them may be copied into an output even when
+    # a path reached them without naming the package (xacro's $(find) gives absolute paths).
+    package_roots: list[str] = field(default_factory=list)
     # Where the input placed the root link in its world (compositions give world poses); ``None``
     # = at the world origin. URDF cannot say this; world-aware targets (SDF, USD) can.
     placement: Pose | None = None

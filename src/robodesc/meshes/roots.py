@@ -2,7 +2,8 @@
 (which copies the file) and the USD writer (which embeds its geometry).
 
 A file is used when its real path (every symlink followed) lies inside the input's folder or the
-root of a package the robot's ``package://`` references resolved to. A file outside them, however
+root of a package the loader found: given with ``--package``, found for a ``package://`` reference
+or for xacro's ``$(find pkg)``. A file outside them, however
 it is reached (an absolute path, ``../``, a symlinked folder), is not read: the caller keeps the
 reference (URDF, SDF) or leaves the shape out (USD), with a warning.
 """
@@ -16,11 +17,14 @@ from robodesc.ir.model import Robot
 
 
 def allowed_roots(robot: Robot) -> list[str]:
-    """Real paths of the folders files may be read from: the input's folder and the root of every
-    package a mesh or texture was found in."""
+    """Real paths of the folders files may be read from: the input's folder, the root of every
+    package a mesh or texture was found in, and of every package the loader found."""
     roots: list[str] = []
     if robot.source_file:
         roots.append(os.path.dirname(os.path.abspath(robot.source_file)))
+    # Packages the loader found (--package, $(find), package://): a mesh under one is inside it
+    # whatever path named it (moveit_resources' Panda reaches its meshes through $(find)).
+    roots.extend(robot.package_roots)
     for link in robot.links:
         geometries = [v.geometry for v in link.visuals] + [c.geometry for c in link.collisions]
         for geom in geometries:

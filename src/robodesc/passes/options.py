@@ -91,7 +91,13 @@ class PassOptions:
     # and is used when ``armature`` is empty (how the quad_sdk preset knows Spirit's motors).
     armature: tuple[ArmatureRule, ...] = ()
     armature_by_robot: Mapping[str, tuple[ArmatureRule, ...]] = field(default_factory=dict)
-    merge_fixed: bool = False
+    # default_armature: estimate armature from the effort limit where the source gives none
+    # (passes/default_armature.py). None = not said (the presets that simulate say True), so that an
+    # explicit False overrides a preset's True (merge_options keeps what differs from the default).
+    default_armature: bool | None = None
+    # None = not said (the mjcf preset says True: MuJoCo fuses static bodies as menagerie's models
+    # have them), so that an explicit False (--no-merge-fixed) overrides a preset's True.
+    merge_fixed: bool | None = None
     isaac_limits: bool = False
     # Isaac: dont_collapse on fixed joints whose child carries a sensor, frame or loop-joint end.
     keep_bodies: bool = False

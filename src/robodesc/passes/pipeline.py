@@ -42,9 +42,11 @@ PASSES: tuple[Pass, ...] = (
     Pass("geometric_inertia", lambda o: o.fill_inertia),
     Pass("repair_inertia", lambda o: o.repair_inertia is not None),
     # Before strip_tags: merging must still see dont_collapse.
-    Pass("merge_fixed", lambda o: o.merge_fixed),
+    Pass("merge_fixed", lambda o: bool(o.merge_fixed)),
     Pass("strip_tags", lambda o: bool(o.strip)),
     Pass("armature", lambda o: bool(o.armature or o.armature_by_robot)),
+    # After armature: the rules (and the source) win; this fills what they leave unset.
+    Pass("default_armature", lambda o: bool(o.default_armature)),
     Pass("explicit_damping", lambda o: o.explicit_damping),
     Pass("isaac_limits", lambda o: o.isaac_limits),
     # Isaac lowering too: a flat collision mesh has no hull for PhysX or Newton.

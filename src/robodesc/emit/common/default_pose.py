@@ -1,6 +1,7 @@
 """The pose a target starts a robot in where the user gave none, shared by the targets that choose
 one (the Isaac folder's initial state, MJCF's home keyframe): the given joints, else for a floating
-robot its stance (emit/common/stance.py), said in a finding, with the spawn height it needs."""
+robot its stance (emit/common/stance.py), said in a finding, with the spawn height it needs, and for
+a welded one the pose its source names (an SRDF group_state, ros2_control initial values)."""
 
 from __future__ import annotations
 
@@ -8,6 +9,7 @@ import re
 from collections.abc import Mapping
 
 from robodesc.emit.common.gains import sig4
+from robodesc.emit.common.named_pose import named_pose
 from robodesc.emit.common.stance import CLEARANCE, Stance, choose_stance, complete
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
@@ -27,9 +29,17 @@ def given_positions(robot: Robot, init_joint_pos: Mapping[str, float] | None) ->
 
 def default_pose(robot: Robot, wanted: Mapping[str, float], floating: bool, findings: Findings, stage: str) -> Stance:
     """A floating robot's stance (the wanted joints, else a named pose, the legged heuristic or zeros),
-    reported; a fixed robot's wanted joints, else zeros."""
+    reported; a fixed robot's wanted joints, else the pose its source names (SRDF, ros2_control: an
+    arm's home, as for legs; Panda's zero pose is outside joint 4's range and was clamped), else zeros."""
     if not floating:
-        return Stance(complete(robot, wanted), "init_joint_pos" if wanted else "zeros")
+        if wanted:
+            return Stance(complete(robot, wanted), "init_joint_pos")
+        named = named_pose(robot)
+        if named is None:
+            return Stance(complete(robot, {}), "zeros")
+        stance = Stance(complete(robot, named.positions), named.source)
+        report_pose(robot, stance, findings, stage)
+        return stance
     stance = choose_stance(robot, wanted or None)
     report_pose(robot, stance, findings, stage)
     return stance

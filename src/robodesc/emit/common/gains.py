@@ -11,14 +11,25 @@ loop with natural frequency ``f`` and damping ratio ``zeta`` on the inertia it c
 (d: the link's centre of mass from the joint, at the default pose; the largest moment and the
 distance rather than the axis make it the most the joint can meet as the joints beyond it move)
     kp    = I_eff·(2 pi f)^2, then at most effort / E_SAT (an error of E_SAT rad saturates it)
-    kd    = 2·zeta·sqrt(kp·I_eff)
+    kd    = 2·zeta·sqrt(kp·I_eff), at least kp·range / (SPEED_MARGIN·velocity limit)
 
+(the second term: a PD loop's speed settles where kd·v = kp·error, so a step across the joint's whole
+range is driven at no more than SPEED_MARGIN = 2 times its velocity limit; without it, random control
+drove panda_joint7 at 19.7 times its limit in MuJoCo, issue 35)
 with ``f`` = 4 Hz, ``zeta`` = 1 (critically damped: the robot settles without rocking) and
 ``E_SAT`` = 0.2 rad. A revolute joint's kp is also at least ``g·sum(m·d) / HOLD_ERROR``: the most
-gravity torque the moved links can put on it, held within ``HOLD_ERROR`` = 0.05 rad (a finger's
+gravity torque the moved links can put on it, held within ``HOLD_ERROR`` = 0.005 rad (a finger's
 inertia is tiny next to the lever arm of a hand held out; without this floor fixed hands and small
-arms sagged ~0.2 rad in Newton). The effort cap still wins: a motor cannot give more. Prismatic joints use the moved mass and N/m. docs/isaac.md shows the numbers for
-Spirit and Go2.
+arms sagged ~0.2 rad in Newton; at 0.05 rad arms sagged 0.02-0.05 rad in MuJoCo, where
+mujoco_menagerie's sag 0.004-0.008, issue 35). The effort cap still wins: a motor cannot give more.
+Prismatic joints use the moved mass and N/m. docs/isaac.md shows the numbers for Spirit and Go2.
+
+No dead actuator: a joint whose links weigh grams (Allegro's URDF has no inertials: 1 g links) got
+kp near 0. kp is at least ``effort / FLOOR_ERROR`` (the motor's limit at an error of FLOOR_ERROR =
+1 rad) wherever the effort is known, but never above ``I_eff·(2 pi F_MAX)^2`` (F_MAX = 20 Hz), which
+keeps the loop stable at MuJoCo's 2 ms step on an almost weightless link. A joint whose actuator
+cannot lift its links (``min(kp·range, effort)`` below the gravity torque) is named in the warning
+``default-gains-dead``.
 """
 
 from __future__ import annotations
@@ -39,7 +50,10 @@ from robodesc.ir.rules import lookup
 NATURAL_FREQUENCY = 4.0  # Hz
 DAMPING_RATIO = 1.0
 E_SAT = 0.2  # rad (or m): the error at which the default stiffness reaches the effort limit
-HOLD_ERROR = 0.05  # rad: the most a revolute joint may sag under gravity at its default stiffness
+HOLD_ERROR = 0.005  # rad: the most a revolute joint may sag under gravity at its default stiffness
+FLOOR_ERROR = 1.0  # rad (or m): the error at which the floor stiffness reaches the effort limit
+SPEED_MARGIN = 2.0  # the most a joint is driven over its velocity limit by a full-range step
+F_MAX = 20.0  # Hz: the floor never makes a loop faster than this
 GRAVITY = 9.81  # m/s²
 
 
@@ -51,6 +65,7 @@ class JointGains:
     capped: bool  # the effort limit bounded the stiffness
     gravity_torque: float = 0.0  # g·Σm·d, N·m: the most gravity can load the joint with (revolute)
     weak: bool = False  # gravity_torque exceeds the effort limit: the joint cannot hold its links out
+    dead: bool = False  # the actuator cannot move the joint against gravity over its range (or kp is 0)
 
 
 def derived_gains(
@@ -100,9 +115,41 @@ def derived_gains(
                 kp = float(effort) / E_SAT  # type: ignore[arg-type]
             # The gravity floor, bounded by what the motor can give at the hold error.
             kp = max(kp, (min(torque, effort) if weak and effort else torque) / HOLD_ERROR)
+            # The floor against a dead actuator, bounded by what the loop's inertia takes stably.
+            if effort:
+                fastest = inertia * (2.0 * math.pi * F_MAX) ** 2
+                kp = max(kp, min(float(effort) / FLOOR_ERROR, fastest))
         kd = 2.0 * DAMPING_RATIO * math.sqrt(max(kp, 0.0) * inertia)
-        out[joint.name] = JointGains(kp, kd, inertia, capped, torque, weak)
+        if stiffness is None or joint.name not in stiffness:
+            kd = max(kd, _speed_damping(joint, kp))
+        out[joint.name] = JointGains(kp, kd, inertia, capped, torque, weak, not weak and _dead(joint, kp, torque))
     return out
+
+
+def _speed_damping(joint: Joint, kp: float) -> float:
+    """The damping at which a step across the joint's whole range is driven no faster than
+    SPEED_MARGIN times its velocity limit: a PD loop's speed settles where kd·v = kp·error."""
+    limit = joint.limit
+    if limit is None or not limit.velocity or limit.lower is None or limit.upper is None:
+        return 0.0
+    if joint.type.value == "continuous":
+        return 0.0
+    span = max(limit.upper - limit.lower, 0.0)
+    return kp * span / (SPEED_MARGIN * float(limit.velocity))
+
+
+def _dead(joint: Joint, kp: float, torque: float) -> bool:
+    """The stiffness cannot lift what the joint moves: kp times the joint's range is below the gravity
+    torque on it (or kp is zero). A motor too weak for the load (its effort below the torque) is
+    ``weak``, said apart."""
+    if kp <= 0.0:
+        return True
+    limit = joint.limit
+    if not joint.type.is_angular or torque <= 0.0:
+        return False
+    continuous = joint.type.value == "continuous" or limit is None or limit.lower is None or limit.upper is None
+    span = math.pi if continuous else max(limit.upper - limit.lower, 0.0)  # type: ignore[operator,union-attr]
+    return kp * span < torque
 
 
 def fill_default_gains(
@@ -134,7 +181,7 @@ def fill_default_gains(
     findings.info(
         "default-gains",
         f"drive gains derived per joint (kp = I_eff·(2π·{NATURAL_FREQUENCY:g} Hz)², at most effort/{E_SAT:g}; "
-        f"kd = 2·{DAMPING_RATIO:g}·√(kp·I_eff)); kp/kd SI: {rows}",
+        f"kd = 2·{DAMPING_RATIO:g}·√(kp·I_eff), at least kp·range/({SPEED_MARGIN:g}·velocity limit)); kp/kd SI: {rows}",
         element=f"robot {robot.name!r}",
         stage=stage,
     )
@@ -148,6 +195,17 @@ def fill_default_gains(
             "default-gains-weak",
             f"joints whose effort limit is below the gravity torque of the links they move, at their worst: "
             f"the default stiffness is capped at effort/{HOLD_ERROR:g} rad and they may sag: {listed}",
+            element=f"robot {robot.name!r}",
+            stage=stage,
+        )
+    dead = [n for n, g in gains.items() if g.dead]
+    if dead:
+        listed = ", ".join(
+            f"{n} (kp {sig4(gains[n].stiffness):g}, gravity up to {gains[n].gravity_torque:.3g} N·m)" for n in dead
+        )
+        findings.warn(
+            "default-gains-dead",
+            f"actuators that cannot move their joint against gravity (kp times the joint's range is below the gravity torque of the links it moves): {listed}; give --stiffness, or an effort limit",
             element=f"robot {robot.name!r}",
             stage=stage,
         )

@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 
 from robodesc.emit.common.named_pose import named_pose
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Mesh, Pose, Sphere, Vec3
-from robodesc.ir.model import Collision, Joint, JointType, Link, Robot
+from robodesc.ir.model import Joint, JointType, Link, Robot
 from robodesc.ir.rigid import Frame, apply, joint_motion, link_frames, pose_frame, resolve_mimic
 from robodesc.meshes.buffers import MeshReadError
 from robodesc.meshes.data import MeshCache
@@ -207,6 +207,28 @@ def _pitch_joints(chain: list[Joint], frames: Mapping[str, Frame], robot: Robot)
     return out
 
 
+def lowest_collider(link: Link, frame: Frame, meshes: MeshCache) -> int:
+    """The index of the link's lowest collider with the link at ``frame``: a foot's sole or toe."""
+
+    def low(i: int) -> float:
+        c = link.collisions[i]
+        z = _shape_lowest(c.geometry, frame @ pose_frame(c.origin), False, meshes)
+        return math.inf if z is None else z
+
+    return min(range(len(link.collisions)), key=low)
+
+
+def foot_colliders(robot: Robot, stance: Stance) -> dict[str, int]:
+    """Each leg's foot link and the index of its collider that touches the ground in the stance."""
+    frames = link_frames(robot, stance.positions)
+    meshes = MeshCache()
+    return {
+        leg.foot: lowest_collider(robot.link(leg.foot), frames[leg.foot], meshes)
+        for leg in stance.legs
+        if robot.link(leg.foot).collisions
+    }
+
+
 def _foot_point(link: Link, frame: Frame, meshes: MeshCache) -> Vec3:
     """Where the foot stands, in its link's frame: the centre of a sphere or box (a point foot
     rolls about its centre; a sole's middle), the lower end of a capsule's or cylinder's axis (a
@@ -215,12 +237,7 @@ def _foot_point(link: Link, frame: Frame, meshes: MeshCache) -> Vec3:
     shin's box)."""
     if not link.collisions:
         return (0.0, 0.0, 0.0)
-
-    def low(c: Collision) -> float:
-        z = _shape_lowest(c.geometry, frame @ pose_frame(c.origin), False, meshes)
-        return math.inf if z is None else z
-
-    collision = min(link.collisions, key=low)
+    collision = link.collisions[lowest_collider(link, frame, meshes)]
     local = pose_frame(collision.origin)
     geometry = collision.geometry
     if isinstance(geometry, Capsule | Cylinder):
@@ -277,6 +294,8 @@ def _solve_leg(
     ankle = pitch[2] if len(pitch) >= 3 else None
     frames0 = _chain_frames(path, q)
     sign = {j.name: math.copysign(1.0, apply(frames0[j.name].rotation, j.effective_axis)[1]) for j in pitch}
+    # The leg's own forward: its first joint's x (ANYmal's hind HAA frames are yawed half a turn).
+    facing = -1.0 if apply(frames0[chain[0].name].rotation, (1.0, 0.0, 0.0))[0] < -1e-6 else 1.0
     # One turn at most: a continuous knee or a +-2 pi range would offer the same bend twice.
     lo, hi = max(limits(knee)[0], -math.pi), min(limits(knee)[1], math.pi)
     candidates: list[tuple[float, float, dict[str, float]]] = []
@@ -298,8 +317,11 @@ def _solve_leg(
         frames = _chain_frames(path, trial)
         knee_x = frames[knee.name].translation[0]
         foot_x = frames[""].translation[0]
-        # Ties between the two knee directions go to the knee behind the foot (dog-like legs).
-        candidates.append((length, 0.0 if knee_x <= foot_x else 1.0, trial))
+        # Ties between the two knee directions go to the knee behind the foot (dog-like legs),
+        # "behind" as the leg is built: along its first joint's own x. ANYmal C's hind hips are its front ones
+        # turned half a turn, and its hind knees point forward (as its SRDF and Isaac Lab's config bend
+        # them); in the robot's frame all four knees bent backward.
+        candidates.append((length, 0.0 if (knee_x - foot_x) * facing <= 0.0 else 1.0, trial))
     if not candidates:
         return None
     target = reach * max(c[0] for c in candidates)

@@ -22,6 +22,27 @@ from robodesc.ir.model import Robot
 STAGE = "emit:isaac_defaults"
 
 
+def _raise_welded(robot: Robot, settings: IsaacSettings, q: dict[str, float], findings: Findings) -> None:
+    """A welded robot with colliders below z = 0 at its start pose is raised until none is: Isaac Lab's
+    scenes put a ground plane at z = 0, and a hand welded at the origin (Allegro's thumb, 4.6 cm
+    below) started inside it and pushed on it every step."""
+    from robodesc.emit.common.gains import sig4
+    from robodesc.emit.common.stance import CLEARANCE, lowest_point
+
+    x, y, z = settings.init_pos
+    lowest = lowest_point(robot, q)
+    if lowest is None or z + lowest >= 0.0:
+        return
+    settings.init_pos = (x, y, sig4(CLEARANCE - lowest))
+    findings.info(
+        "isaac-welded-raised",
+        f"welded robot with colliders {-(z + lowest):.3g} m below the ground plane at its start pose: raised to "
+        f"z = {settings.init_pos[2]:g} m, so none starts inside it; --init-pos places it otherwise",
+        element=f"robot {robot.name!r}",
+        stage=STAGE,
+    )
+
+
 def apply_defaults(
     robot: Robot, settings: IsaacSettings, given: Collection[str], findings: Findings
 ) -> dict[str, float]:
@@ -30,12 +51,14 @@ def apply_defaults(
     wanted = given_positions(robot, settings.init_joint_pos)
     floating = not settings.fix_base
     stance = default_pose(robot, wanted, floating, findings, STAGE)
-    if floating:
-        if "init_joint_pos" not in given and not wanted:
-            settings.init_joint_pos = pose_table(robot, stance)
-        if "init_pos" not in given and robot.placement is None and (height := spawn_height(stance)) is not None:
-            x, y, _ = settings.init_pos
-            settings.init_pos = (x, y, height)
+    if "init_joint_pos" not in given and not wanted and (floating or stance.source != "zeros"):
+        settings.init_joint_pos = pose_table(robot, stance)
+    placed = "init_pos" in given or robot.placement is not None
+    if floating and not placed and (height := spawn_height(stance)) is not None:
+        x, y, _ = settings.init_pos
+        settings.init_pos = (x, y, height)
+    if not floating and not placed:
+        _raise_welded(robot, settings, stance.positions, findings)
     if settings.target_type != "none" and not ("stiffness" in given and "damping" in given):
         fill_default_gains(robot, settings, given, stance, floating, findings, STAGE)
     if settings.target_type != "none":

@@ -210,10 +210,14 @@ class BodyWriter:
     def _geoms(self, body: ET.Element, link: Link) -> None:
         label = f"link {link.name!r}"
         for i, collision in enumerate(link.collisions):
+            given = link.collision_contact(collision)
+            # A foot gets menagerie's foot class only where the source says nothing of its contact:
+            # Talos's Gazebo soles (kd 1: damping ratio 0.03) with priority over the floor tipped it over.
+            foot = self.ctx.options.feet.get(link.name) == i and given is None
             for geom in self._collision_geoms(link, collision.geometry, f"{label} collision {i}"):
-                geom.set("class", "collision")
+                geom.set("class", "foot" if foot else "collision")
                 _place(geom, collision.origin)
-                apply_contact(self.ctx, geom, link, link.collision_contact(collision), f"{label} collision {i}")
+                apply_contact(self.ctx, geom, link, given, f"{label} collision {i}")
                 body.append(geom)
         for i, visual in enumerate(link.visuals):
             if isinstance(visual.geometry, Mesh):

@@ -12,6 +12,7 @@ from robodesc.emit.mjcf.context import MjcfContext
 # not write the attribute would otherwise get).
 _JOINT: dict[str, str | None] = {"damping": "0", "frictionloss": "0", "armature": "0"}
 _ACTUATOR: dict[str, str | None] = {"kp": None, "kv": None, "forcerange": None}
+FOOT_FRICTION = "0.8 0.02 0.01"  # slide, torsion (m), roll (m): menagerie's legged robots' feet
 
 
 def defaults(ctx: MjcfContext, worldbody: ET.Element, actuator: ET.Element | None) -> ET.Element:
@@ -38,6 +39,12 @@ def defaults(ctx: MjcfContext, worldbody: ET.Element, actuator: ET.Element | Non
         ET.SubElement(collision, "geom", group="3")
     else:
         ET.SubElement(collision, "geom", group="3", contype="0", conaffinity="1")
+    if ctx.options.feet:  # an unused class is harmless
+        # mujoco_menagerie's feet (Go1, A1, ANYmal C): torsional and rolling friction (condim 6), the
+        # foot's own friction and solver parameters against the floor's (priority 1), and its
+        # friction where the source gives none (a geom's own friction still wins).
+        foot = ET.SubElement(collision, "default", {"class": "foot"})
+        ET.SubElement(foot, "geom", condim="6", priority="1", friction=FOOT_FRICTION)
     return root
 
 

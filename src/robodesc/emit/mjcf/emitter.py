@@ -63,7 +63,11 @@ def build_mjcf(
     floating = _floating(robot, options)
     root = ET.Element("mujoco", model=robot.name)
     ET.SubElement(root, "compiler", angle="radian", autolimits="true", inertiafromgeom="false")
-    ET.SubElement(root, "option", integrator=options.integrator)
+    option = ET.SubElement(root, "option", integrator=options.integrator)
+    if options.cone is not None:
+        option.set("cone", options.cone)
+    if options.impratio is not None:
+        option.set("impratio", f"{options.impratio:g}")
     writer = BodyWriter(ctx)
     worldbody = writer.worldbody(_root_pose(robot, options, floating), floating)
     act = actuators(ctx)

@@ -1,9 +1,13 @@
-"""Mesh assets: STL and OBJ referenced where they are, every other format converted to OBJ.
+"""Mesh assets: every mesh under ``meshes/`` beside robot.xml, so the folder moves as one (as
+mujoco_menagerie's do); STL and OBJ copied, every other format converted to OBJ.
 
 MuJoCo reads STL, OBJ and MSH only. A COLLADA (or any trimesh-readable) file is read through
 robodesc's own readers (:func:`robodesc.meshes.data.build_mesh`, scale applied) and written as an
-OBJ under ``meshes/`` beside robot.xml. Converted files are named after their content (a hash):
-a later run that fails validation leaves the files an earlier robot.xml refers to untouched.
+OBJ under ``meshes/``. Copied and converted files are named after their content (a hash): two
+sources with the same bytes are one file, and a later run that fails validation leaves the files an
+earlier robot.xml refers to untouched. Only files from where the robot lives are copied (the input's
+folder and its packages, meshes/roots.py); any other file, and every file under ``--mesh-paths
+absolute``, is referenced where it is.
 """
 
 from __future__ import annotations
@@ -37,6 +41,7 @@ class MeshAssets:
         self._by_key: dict[tuple[str, tuple[float, float, float] | None, bool], str] = {}
         self._names: set[str] = set()
         self._parts: dict[tuple[str, tuple[float, float, float] | None], list[tuple[str, RGBA | None]] | None] = {}
+        self._roots: list[str] | None = None
 
     def asset(self, mesh: Mesh, element: str, collider: bool) -> str | None:
         """The asset name for ``mesh``; None (with a warning) when MuJoCo could not load it."""
@@ -69,7 +74,7 @@ class MeshAssets:
             )
             ext = ".obj-mixed"  # converted below
         if ext in READABLE:
-            file = _reference(ctx, mesh)
+            file = self._copy(mesh, element)
             scale = mesh.scale
         else:
             try:
@@ -158,6 +163,27 @@ class MeshAssets:
         self._parts[key] = out
         return out
 
+    def _copy(self, mesh: Mesh, element: str) -> str:
+        """``meshes/<stem>_<hash><ext>``, a copy of the file under the output folder; the file's own
+        reference where the user asked for absolute paths, the file is already in the output folder
+        (--copy-meshes put it there) or it lies outside where the robot lives."""
+        from robodesc.meshes.roots import allowed_roots, outside_roots
+
+        assert mesh.path is not None
+        ctx = self.ctx
+        if ctx.mesh_paths is PathMode.ABSOLUTE or _inside(mesh.path, ctx.out_dir):
+            return _reference(ctx, mesh)
+        if self._roots is None:
+            self._roots = allowed_roots(ctx.robot)
+        why = outside_roots(mesh.path, self._roots)
+        if why is not None:
+            ctx.warn("mjcf-mesh-not-copied", f"{why}: referenced where it is, not copied", element, mesh.src)
+            return _reference(ctx, mesh)
+        with open(mesh.path, "rb") as handle:
+            data = handle.read()
+        stem, ext = os.path.splitext(os.path.basename(mesh.path))
+        return self._write(stem, data, ext.lower())
+
     def _name(self, stem: str, capped: bool) -> str:
         base = stem + ("_hull" if capped else "")
         name, n = base, 1
@@ -170,10 +196,10 @@ class MeshAssets:
     def _convert(self, path: str, data: MeshData) -> str:
         return self._write(os.path.splitext(os.path.basename(path))[0], obj_text(data))
 
-    def _write(self, stem: str, text: bytes) -> str:
+    def _write(self, stem: str, text: bytes, ext: str = ".obj") -> str:
         digest = hashlib.sha256(text).hexdigest()[:12]
-        rel = f"{MESH_DIR}/{stem}_{digest}.obj"
-        target = os.path.join(self.ctx.out_dir, MESH_DIR, f"{stem}_{digest}.obj")
+        rel = f"{MESH_DIR}/{stem}_{digest}{ext}"
+        target = os.path.join(self.ctx.out_dir, MESH_DIR, f"{stem}_{digest}{ext}")
         if not os.path.isfile(target):
             os.makedirs(os.path.dirname(target), exist_ok=True)
             write_atomic(target, text)
@@ -220,6 +246,11 @@ def obj_layout_mixed(path: str) -> bool:
 def _safe(name: str) -> str:
     """A material name as part of a file name."""
     return "".join(c if c.isalnum() or c in "-_" else "_" for c in name) or "material"
+
+
+def _inside(path: str, folder: str) -> bool:
+    real, root = os.path.realpath(path), os.path.realpath(folder)
+    return real.startswith(root.rstrip(os.sep) + os.sep)
 
 
 def _reference(ctx: MjcfContext, mesh: Mesh) -> str:

@@ -15,6 +15,7 @@ from robodesc.emit.common.flags import flag
 from robodesc.ir.diagnostics import ConfigError
 
 ACTUATORS = ("position", "velocity", "motor", "none")
+CONES = ("pyramidal", "elliptic")
 INTEGRATORS = ("implicitfast", "implicit", "Euler", "RK4")
 
 # The friction combine rules an MJCF can say (docs/contact.md).
@@ -54,6 +55,17 @@ class MjcfOptions:
     )
     init_pos: tuple[float, float, float] | None = field(default=None, metadata=common.INIT_POS)
     init_joint_pos: Mapping[str, float] = field(default_factory=dict, metadata=common.INIT_JOINT_POS)
+    # MuJoCo's friction cone and impedance ratio (<option cone impratio>). None: MuJoCo's own
+    # (pyramidal, 1), except on a floating robot that stands on legs, which gets mujoco_menagerie's
+    # legged choice, elliptic and 100 (target._contact_defaults; docs/mjcf.md).
+    cone: str | None = field(default=None, metadata=flag("MuJoCo friction cone", name="--mjcf-cone", choices=CONES))
+    impratio: float | None = field(
+        default=None, metadata=flag("MuJoCo's frictional-to-normal impedance ratio", name="--mjcf-impratio", type=float)
+    )
+    # Not a flag: the colliders a floating robot stands on (its stance's feet: link -> the index of
+    # the collider that touches the ground), which get the "foot" class (condim 6, priority 1,
+    # menagerie's foot friction where the source gives none).
+    feet: Mapping[str, int] = field(default_factory=dict)
     # Not a flag: the root height of a floating robot's home keyframe, set by the target from the
     # stance it chose (the body stays at its zero-pose height); None keeps the body's position.
     home_height: float | None = None
@@ -80,5 +92,9 @@ class MjcfOptions:
         approximation.check(self.collision_approximation)
         decomp.check_settings(self)
         one_of("integrator", self.integrator, INTEGRATORS)
+        if self.cone is not None:
+            one_of("cone", self.cone, CONES)
+        if self.impratio is not None and not self.impratio >= 1.0:
+            raise ConfigError(f"impratio must be at least 1 (MuJoCo's minimum), got {self.impratio!r}")
         if self.maxhullvert is not None and (not isinstance(self.maxhullvert, int) or self.maxhullvert < 4):
             raise ConfigError(f"maxhullvert must be an integer >= 4 (MuJoCo's minimum), got {self.maxhullvert!r}")
