@@ -9,6 +9,7 @@ a later run that fails validation leaves the files an earlier robot.xml refers t
 from __future__ import annotations
 
 import hashlib
+import math
 import os
 import xml.etree.ElementTree as ET
 
@@ -54,6 +55,11 @@ class MeshAssets:
         key = (mesh.path, mesh.scale, capped)
         if key in self._by_key:
             return self._by_key[key]
+        data = _loadable(mesh)
+        if isinstance(data, str):
+            # The source's mesh, not robodesc's output: MuJoCo would refuse the whole model for it.
+            ctx.warn("mjcf-bad-mesh", f"mesh {mesh.uri!r} cannot be loaded ({data}): left out", element, mesh.src)
+            return None
         ext = os.path.splitext(mesh.path)[1].lower()
         el = ET.Element("mesh")
         if ext == ".stl" and not 0 < _stl_faces(mesh.path) <= STL_FACE_LIMIT:
@@ -72,11 +78,6 @@ class MeshAssets:
             file = _reference(ctx, mesh)
             scale = mesh.scale
         else:
-            try:
-                data = build_mesh(mesh.path, mesh.scale)
-            except MeshReadError as exc:
-                ctx.warn("mjcf-bad-mesh", f"mesh {mesh.uri!r} cannot be read ({exc}): left out", element, mesh.src)
-                return None
             file = self._convert(mesh.path, data)
             scale = None  # applied while converting
             ctx.info("mjcf-mesh-converted", f"{mesh.uri} converted to {file} (MuJoCo reads STL and OBJ)", element)
@@ -114,10 +115,9 @@ class MeshAssets:
         """(half sizes, centre) of a box standing in for a flat mesh; None for a solid one."""
         if mesh.path is None or not os.path.isfile(mesh.path):
             return None
-        try:
-            data = build_mesh(mesh.path, mesh.scale)
-        except MeshReadError:
-            return None
+        data = _loadable(mesh, min_vertices=3)
+        if isinstance(data, str):
+            return None  # asset() leaves it out and says why
         box = flat_box(data, 2 * FLAT_HALF)
         if box is None:
             return None
@@ -179,6 +179,21 @@ class MeshAssets:
             write_atomic(target, text)
         self.ctx.written[f"mesh:{rel}"] = target
         return rel
+
+
+def _loadable(mesh: Mesh, min_vertices: int = 4) -> MeshData | str:
+    """The mesh (scaled), or why MuJoCo would refuse its file: unreadable, a coordinate NaN or
+    infinite, fewer than ``min_vertices`` vertices (MuJoCo's minimum, 4; a flat stand-in box needs 3)."""
+    assert mesh.path is not None
+    try:
+        data = build_mesh(mesh.path, mesh.scale)
+    except MeshReadError as exc:
+        return str(exc)
+    if not all(math.isfinite(v) for corner in data.extent for v in corner):
+        return "a vertex coordinate is NaN or infinite"
+    if len(data.points) < 3 * min_vertices:
+        return f"{len(data.points) // 3} vertices; MuJoCo needs at least 4"
+    return data
 
 
 def _stl_faces(path: str) -> int:

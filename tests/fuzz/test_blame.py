@@ -1,0 +1,110 @@
+"""False blames the fuzzer found (issue 34): a defective source that validation called robodesc's
+fault (exit 1). Each case compiles a one-edit variant of the seed arm with validation on, for the
+target where it was blamed, and must exit 0 with a warning naming the defect and its file:line;
+what a consumer refused for it is listed as the source's ("a defect of the source")."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+
+import robodesc
+from robodesc.cli import main
+
+SEEDS = Path(__file__).parent / "seeds"
+FINGER_INERTIA = '<inertia ixx="0.0001" ixy="0" ixz="0" iyy="0.0001" iyz="0" izz="0.0001"/>'
+
+# name -> (text replaced in arm.urdf, its replacement, extra files under meshes/, target, output,
+#          a phrase the warning must hold, the source line the warning must name)
+CASES: dict[str, tuple[str, str, dict[str, bytes], str, str, str, int]] = {
+    "inertial-without-mass": ('<mass value="1.0"/>', "", {}, "urdf", "o.urdf", "<inertial> has no <mass>", 10),
+    "inertia-1e30": ('izz="0.001"', 'izz="1e30"', {}, "urdf", "o.urdf", "principal moments 0.008, 0.008, 1e+30", 10),
+    "damping-1e30-urdf": ('damping="0.1"', 'damping="-1e30"', {}, "urdf", "o.urdf", "damping is negative", 21),
+    "damping-1e30-mjcf": ('damping="0.1"', 'damping="-1e30"', {}, "mjcf", "o/robot.xml", "damping is negative", 21),
+    "damping-1e30-sdf": ('damping="0.1"', 'damping="-1e30"', {}, "sdf", "o.sdf", "damping is negative", 21),
+    "empty-obj": (
+        "meshes/finger.stl",
+        "meshes/e.obj",
+        {"e.obj": b""},
+        "mjcf",
+        "o/robot.xml",
+        "mesh has no triangles",
+        16,
+    ),
+    "nan-obj": (
+        "meshes/finger.stl",
+        "meshes/n.obj",
+        {"n.obj": b"v nan 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n"},
+        "mjcf",
+        "o/robot.xml",
+        "a vertex coordinate is NaN or infinite",
+        16,
+    ),
+    "corrupt-obj": (
+        "meshes/finger.stl",
+        "meshes/c.obj",
+        {"c.obj": b"v 1 2\nf 1 2 9\n\x00\xff"},
+        "mjcf",
+        "o/robot.xml",
+        "bad vertex line",
+        16,
+    ),
+    "unreadable-stl": (
+        "meshes/finger.stl",
+        "meshes/b.stl",
+        {"b.stl": b"solid x\nvertex 1 2\n"},
+        "mjcf",
+        "o/robot.xml",
+        "cannot be loaded",
+        16,
+    ),
+}
+
+
+def _source(tmp_path: Path, old: str, new: str, meshes: dict[str, bytes]) -> Path:
+    shutil.copytree(SEEDS / "meshes", tmp_path / "meshes")
+    for name, data in meshes.items():
+        (tmp_path / "meshes" / name).write_bytes(data)
+    text = (SEEDS / "arm.urdf").read_text(encoding="utf-8")
+    assert old in text
+    source = tmp_path / "arm.urdf"
+    source.write_text(text.replace(old, new, 1), encoding="utf-8")
+    return source
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_source_defect_is_not_blamed_on_robodesc(name: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    old, new, meshes, target, out, phrase, line = CASES[name]
+    source = _source(tmp_path, old, new, meshes)
+    code = main(["compile", str(source), "-t", target, "-o", str(tmp_path / out)])
+    err = capsys.readouterr().err
+    assert code == 0, err
+    assert "robodesc's fault" not in err and "Traceback" not in err
+    warning = next(w for w in err.splitlines() if phrase in w)
+    assert warning.startswith(f"warning: {source.name}:{line}:") or f"arm.urdf:{line}:" in warning, warning
+    assert (tmp_path / out).is_file()
+
+
+def test_zero_length_capsule_is_a_sphere_in_mjcf(tmp_path: Path) -> None:
+    """MuJoCo refuses a capsule of half length 0; the same shape is a sphere of its radius."""
+    source = _source(tmp_path, '<sphere radius="0.02"/>', '<capsule radius="0.02" length="0"/>', {})
+    result = robodesc.compile_to(str(source), "mjcf", str(tmp_path / "o" / "robot.xml"))
+    assert result.validation is not None and result.validation.ok
+    text = (tmp_path / "o" / "robot.xml").read_text()
+    assert '<geom type="sphere" size="0.02" class="collision"' in text
+
+
+@pytest.mark.parametrize("target", ["urdf", "sdf", "usd", "mjcf"])
+def test_fk_tolerance_scales_with_the_distance(target: str, tmp_path: Path) -> None:
+    """A prismatic joint whose limit is 1e30 m is sampled near 6e29 m, where doubles are 1e14 m
+    apart (float32 in USD: 4e22 m): the FK comparison allows that rounding, relative to the distance."""
+    source = _source(tmp_path, 'upper="0.05"', 'upper="1e30"', {})
+    text = source.read_text().replace('<mimic joint="shoulder" multiplier="0.01" offset="0"/>', "")
+    source.write_text(text)
+    out = tmp_path / ("o/robot.xml" if target == "mjcf" else f"o.{target}")
+    result = robodesc.compile_to(str(source), target, str(out))
+    assert result.validation is not None
+    fk = [c for c in result.validation.checks if c.name == "fk"]
+    assert fk and all(c.status.name == "PASS" for c in fk), [c.message for c in fk]
