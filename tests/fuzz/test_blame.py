@@ -108,3 +108,29 @@ def test_fk_tolerance_scales_with_the_distance(target: str, tmp_path: Path) -> N
     assert result.validation is not None
     fk = [c for c in result.validation.checks if c.name == "fk"]
     assert fk and all(c.status.name == "PASS" for c in fk), [c.message for c in fk]
+
+
+@pytest.mark.parametrize(
+    ("argv", "phrase"),
+    [
+        (["--isaac-sim", "--init-pos", "nan,inf,1"], "--init-pos nan: expected a finite number"),
+        (["-t", "mjcf", "--init-pos", "0,0,1e31"], "--init-pos 1e+31: expected a finite number within ±1e+30"),
+        (["-t", "usd", "--contact-offset", "nan"], "--contact-offset nan"),
+        (["-t", "usd", "--stiffness", "sh.*=inf"], "--stiffness 'sh.*=inf'"),
+    ],
+)
+def test_every_numeric_option_is_finite(
+    argv: list[str], phrase: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Written into a file, NaN broke every consumer (the Isaac Lab module did not import; USD read
+    ``contactOffset = nan``): refused where options are built, exit 2, nothing written."""
+    out = tmp_path / ("out.usda" if "usd" in argv else "out")
+    code = main(["compile", str(SEEDS / "arm.urdf"), *argv, "-o", str(out)])
+    err = capsys.readouterr().err
+    assert code == 2 and phrase in err, err
+    assert not out.exists()
+
+
+def test_dynamics_pose_must_be_finite(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["validate", str(SEEDS / "arm.urdf"), "--dynamics", "--pose", "sh.*=nan"]) == 2
+    assert "--pose 'sh.*=nan': expected a finite number" in capsys.readouterr().err
