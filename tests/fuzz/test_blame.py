@@ -134,3 +134,17 @@ def test_every_numeric_option_is_finite(
 def test_dynamics_pose_must_be_finite(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["validate", str(SEEDS / "arm.urdf"), "--dynamics", "--pose", "sh.*=nan"]) == 2
     assert "--pose 'sh.*=nan': expected a finite number" in capsys.readouterr().err
+
+
+def test_dynamics_does_not_fail_an_output_the_source_fails_the_same_way(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """An empty OBJ collider: MuJoCo refuses the URDF output and the source URDF alike (the output
+    was run first and failed before the source's refusal was known)."""
+    collider = '<collision><geometry><sphere radius="0.02"/></geometry></collision>'
+    empty = '<collision><geometry><mesh filename="meshes/e.obj"/></geometry></collision>'
+    source = _source(tmp_path, collider, empty, {"e.obj": b""})
+    code = main(["validate", str(source), "-t", "urdf", "--dynamics", "--engines", "mujoco"])
+    out = capsys.readouterr().out
+    assert code == 0, out
+    assert "WARN load mujoco/urdf" in out and "(the source fails in mujoco too)" in out
