@@ -90,3 +90,19 @@ def write_folder(out: str, files: Mapping[str, Content]) -> dict[str, str]:
     with staged_folder(out) as staging:
         write_files(staging, files)
     return {name: os.path.join(out, name) for name in sorted(files)}
+
+
+def escapes(folder: str, target: str) -> str | None:
+    """The real path ``target`` would be written to when a symlink already there (``meshes``
+    pointing elsewhere, or the file itself) carries the write outside ``folder``; None when it
+    stays inside (or does not exist yet). Outputs are written only inside the output path."""
+    path = target
+    while not os.path.lexists(path):
+        parent = os.path.dirname(path)
+        if parent == path or not parent.startswith(folder.rstrip(os.sep)):
+            return None
+        path = parent
+    real_out = os.path.realpath(folder)
+    real = os.path.realpath(path)
+    inside = real == real_out or real.startswith(real_out.rstrip(os.sep) + os.sep)
+    return None if inside and not (path == target and os.path.islink(target)) else real

@@ -179,6 +179,8 @@ def compile_robot(
     _physical(verify(robot).errors, options, None)
     stage = Staging(out, spec.folder)
     try:
+        # Converted and copied meshes beside a file output: a failed run takes back what it added.
+        stage.track("meshes")
         request = _request(spec, stage, options, findings)
         if spec.owned is not None and stage.final is not None:
             stage.protect(spec.owned(request.options, stage.final))

@@ -110,9 +110,15 @@ class Staging:
         self.path: str | None = None
         self._owned: list[tuple[str, str | None]] = []
         self._aside: list[str] = []
+        self._tracked: list[tuple[str, set[str] | None]] = []
+        self._made: str | None = None  # the topmost folder this run created for the output
         if out is None:
             return
         parent = os.path.dirname(os.path.abspath(out))
+        missing = parent
+        while not os.path.lexists(os.path.dirname(missing)) and os.path.dirname(missing) != missing:
+            missing = os.path.dirname(missing)
+        self._made = missing if not os.path.lexists(parent) else None
         os.makedirs(parent, exist_ok=True)
         base = os.path.basename(os.path.abspath(out))
         if folder:
@@ -137,6 +143,17 @@ class Staging:
                 os.rmdir(backup)
                 os.replace(owned, backup)
             self._owned.append((owned, backup))
+
+    def track(self, name: str) -> None:
+        """A folder beside a file output that the run adds files to without owning it (``meshes/``:
+        MJCF's converted meshes and --copy-meshes' copies, named so that outputs in one folder can
+        share it): what is in it now is recorded, and :meth:`discard` removes what the run added."""
+        if self.final is None or self.folder:
+            return
+        where = os.path.join(os.path.dirname(os.path.abspath(self.final)), name)
+        if os.path.islink(where):
+            return  # nothing is written through it (the writers refuse); nothing to take back
+        self._tracked.append((where, _files_under(where) if os.path.isdir(where) else None))
 
     def set_aside(self, name: str) -> str | None:
         """Keep a copy (hard links) of ``name`` of the staged folder while a target rewrites the
@@ -182,6 +199,8 @@ class Staging:
             if backup is not None:
                 _remove(backup)
         self._owned = []
+        self._tracked = []
+        self._made = None
         self.path = None
 
     def discard(self) -> None:
@@ -200,6 +219,38 @@ class Staging:
             if backup is not None:
                 os.replace(backup, owned)
         self._owned = []
+        for where, before in self._tracked:
+            if before is None:  # the run made the folder: all of it is the run's
+                if os.path.isdir(where) and not os.path.islink(where):
+                    shutil.rmtree(where, ignore_errors=True)
+            else:
+                for path in sorted(_files_under(where) - before, reverse=True):  # children first
+                    if os.path.isdir(path) and not os.path.islink(path):
+                        _rmdir_empty(path)
+                    else:
+                        os.unlink(path)
+        self._tracked = []
+        if self._made is not None:  # the folders made for the output, when the run left them empty
+            parent = os.path.dirname(os.path.abspath(self.final or ""))
+            while _rmdir_empty(parent) and parent != self._made:
+                parent = os.path.dirname(parent)
+            self._made = None
+
+
+def _files_under(folder: str) -> set[str]:
+    """Every file, link and folder below ``folder`` (links not followed)."""
+    found: set[str] = set()
+    for root, dirs, files in os.walk(folder):
+        found.update(os.path.join(root, name) for name in (*dirs, *files))
+    return found
+
+
+def _rmdir_empty(path: str) -> bool:
+    try:
+        os.rmdir(path)
+    except OSError:
+        return False
+    return True
 
 
 def _link_or_copy(src: str, dst: str) -> None:

@@ -13,14 +13,16 @@ import math
 import os
 import xml.etree.ElementTree as ET
 
-from robodesc._files import write_atomic
+from robodesc._files import escapes, write_atomic
 from robodesc.emit.common.numbers import fmt_vec
 from robodesc.emit.common.paths import PathMode, file_reference
 from robodesc.emit.mjcf.context import MjcfContext
 from robodesc.emit.mjcf.objsplit import split_by_material
+from robodesc.ir.diagnostics import ConfigError
 from robodesc.ir.geometry import RGBA, Mesh, Vec3
 from robodesc.meshes.buffers import MeshData, MeshReadError, flat_box, obj_bytes
 from robodesc.meshes.data import build_mesh
+from robodesc.meshes.roots import allowed_roots, outside_roots
 
 READABLE = (".stl", ".obj")
 MESH_DIR = "meshes"
@@ -38,6 +40,14 @@ class MeshAssets:
         self._by_key: dict[tuple[str, tuple[float, float, float] | None, bool], str] = {}
         self._names: set[str] = set()
         self._parts: dict[tuple[str, tuple[float, float, float] | None], list[tuple[str, RGBA | None]] | None] = {}
+        self._roots: list[str] | None = None
+
+    @property
+    def roots(self) -> list[str]:
+        """Where mesh files may be read from into the output (meshes/roots.py)."""
+        if self._roots is None:
+            self._roots = allowed_roots(self.ctx.robot)
+        return self._roots
 
     def asset(self, mesh: Mesh, element: str, collider: bool) -> str | None:
         """The asset name for ``mesh``; None (with a warning) when MuJoCo could not load it."""
@@ -55,6 +65,17 @@ class MeshAssets:
         key = (mesh.path, mesh.scale, capped)
         if key in self._by_key:
             return self._by_key[key]
+        outside = outside_roots(mesh.path, self.roots)
+        if outside is not None and not _referenced_as_is(mesh.path):
+            # The rule of --copy-meshes and USD: converting is copying the file's content.
+            ctx.warn(
+                "mjcf-mesh-not-read",
+                f"mesh {outside}; it is not converted to OBJ and this shape is left out "
+                "(--copy-meshes refuses the same file)",
+                element,
+                mesh.src,
+            )
+            return None
         data = _loadable(mesh)
         if isinstance(data, str):
             # The source's mesh, not robodesc's output: MuJoCo would refuse the whole model for it.
@@ -136,6 +157,8 @@ class MeshAssets:
         None when the file is not such an OBJ."""
         if mesh.path is None or not mesh.path.lower().endswith(".obj") or not os.path.isfile(mesh.path):
             return None
+        if outside_roots(mesh.path, self.roots) is not None:
+            return None  # its parts would copy its content: referenced whole, where it is
         key = (mesh.path, mesh.scale)
         if key in self._parts:
             return self._parts[key]
@@ -174,6 +197,13 @@ class MeshAssets:
         digest = hashlib.sha256(text).hexdigest()[:12]
         rel = f"{MESH_DIR}/{stem}_{digest}.obj"
         target = os.path.join(self.ctx.out_dir, MESH_DIR, f"{stem}_{digest}.obj")
+        real = escapes(self.ctx.out_dir, target)
+        if real is not None:  # as --copy-meshes refuses (passes/copy_meshes.check_inside)
+            raise ConfigError(
+                f"{os.path.join(self.ctx.out_dir, MESH_DIR)!r} leads to {real!r}, outside the output folder: "
+                "robodesc writes the converted meshes only inside the output path, never through a link that "
+                "leaves it. Remove the link or choose another output"
+            )
         if not os.path.isfile(target):
             os.makedirs(os.path.dirname(target), exist_ok=True)
             write_atomic(target, text)
@@ -194,6 +224,15 @@ def _loadable(mesh: Mesh, min_vertices: int = 4) -> MeshData | str:
     if len(data.points) < 3 * min_vertices:
         return f"{len(data.points) // 3} vertices; MuJoCo needs at least 4"
     return data
+
+
+def _referenced_as_is(path: str) -> bool:
+    """Whether MuJoCo reads the file where it is (a binary STL within its face limit, an OBJ whose
+    faces MuJoCo reads); any other is converted, its content written into the output."""
+    ext = os.path.splitext(path)[1].lower()
+    if ext == ".stl":
+        return 0 < _stl_faces(path) <= STL_FACE_LIMIT
+    return ext == ".obj" and not obj_layout_mixed(path)
 
 
 def _stl_faces(path: str) -> int:
