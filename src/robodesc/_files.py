@@ -27,7 +27,10 @@ def _write(handle: BinaryIO, data: Content) -> None:
 def write_atomic(path: str, data: Content) -> None:
     directory = os.path.dirname(os.path.abspath(path))
     os.makedirs(directory, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=".robodesc-", suffix=".tmp", dir=directory)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".robodesc-", suffix=".tmp", dir=directory)
+    except OSError as exc:  # /proc, a read-only mount: say so of the file asked for, not the temporary one
+        raise OSError(exc.errno, exc.strerror, path) from None
     try:
         with os.fdopen(fd, "wb") as handle:
             _write(handle, data)
@@ -46,7 +49,10 @@ def replace_dir_atomic(staging: str, target: str) -> None:
         os.rmdir(backup)
         os.replace(target, backup)
         os.replace(staging, target)
-        shutil.rmtree(backup, ignore_errors=True)
+        if os.path.islink(backup):  # a link to a folder is replaced, never written through
+            os.unlink(backup)
+        else:
+            shutil.rmtree(backup, ignore_errors=True)
     else:
         os.replace(staging, target)
 

@@ -167,7 +167,13 @@ def compile_robot(
     load_plugins(options.plugins)
     spec = target_spec(target)
     if out is not None:
-        check_output(out, folder=spec.folder, source=source, suffixes=spec.suffixes if spec.suffix_required else ())
+        check_output(
+            out,
+            folder=spec.folder,
+            source=source,
+            suffixes=spec.suffixes if spec.suffix_required else (),
+            example=spec.output_name("robot"),
+        )
     findings = Findings()
     resolved = pass_options(options, spec)
     progress("loading")

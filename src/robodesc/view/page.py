@@ -175,7 +175,7 @@ def write_view_html(
     """Write the viewer page for ``source`` (any input robodesc reads, an IR ``Robot``, or an
     already :class:`Loaded` robot) to ``out``; with ``target``, the robot as compiled for it."""
     start = time.perf_counter()
-    check_output(out, folder=False, source=None if isinstance(source, Loaded) else source)
+    check_output(out, folder=False, source=None if isinstance(source, Loaded) else source, example="robot.html")
     loaded = source if isinstance(source, Loaded) else load_for_view(source, options, target)
     data = scene_data(loaded)
     text = build_page(data)

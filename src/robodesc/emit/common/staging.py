@@ -19,10 +19,17 @@ class OutputPathError(ConfigError):
 
 
 def check_output(
-    out: str, *, folder: bool, source: Any = None, what: str = "-o", suffixes: tuple[str, ...] = ()
+    out: str,
+    *,
+    folder: bool,
+    source: Any = None,
+    what: str = "-o",
+    suffixes: tuple[str, ...] = (),
+    example: str = "robot.urdf",
 ) -> None:
     """Refuse an output path that cannot work, each problem with its own message. ``suffixes``: the
-    file suffixes the target writes (a folder target named like a file is refused too)."""
+    file suffixes the target writes (a folder target named like a file is refused too); ``example``:
+    the file name the messages suggest (``robot.xml`` for MJCF, ``robot.html`` for ``view``)."""
     if not out:
         raise OutputPathError(f"{what}: empty path")
     lower = out.lower()
@@ -35,7 +42,7 @@ def check_output(
     path = os.path.abspath(out)
     if not folder and out.endswith(("/", os.sep)):
         raise OutputPathError(
-            f"{what} {out}: ends with '/', so it names a folder; this output is one file (e.g. {out.rstrip('/' + os.sep) or '.'}/robot.urdf)"
+            f"{what} {out}: ends with '/', so it names a folder; this output is one file (e.g. {out.rstrip('/' + os.sep) or '.'}/{example})"
         )
     if isinstance(source, str | os.PathLike) and not os.fspath(source).lstrip().startswith("<"):
         src = os.path.abspath(os.fspath(source))
@@ -57,7 +64,7 @@ def check_output(
     if st is not None:
         if stat.S_ISDIR(st.st_mode) and not folder:
             raise OutputPathError(
-                f"{what} {out}: is an existing folder; give a file name inside it (e.g. {os.path.join(out, 'robot.urdf')})"
+                f"{what} {out}: is an existing folder; give a file name inside it (e.g. {os.path.join(out, example)})"
             )
         if not stat.S_ISDIR(st.st_mode) and folder:
             raise OutputPathError(f"{what} {out}: is an existing file; this target writes a folder")
@@ -121,13 +128,16 @@ class Staging:
         self._made = missing if not os.path.lexists(parent) else None
         os.makedirs(parent, exist_ok=True)
         base = os.path.basename(os.path.abspath(out))
-        if folder:
-            self.path = tempfile.mkdtemp(prefix=f".robodesc-{base}-", dir=parent)
-            os.rmdir(self.path)  # the target creates it (as a folder it stages and moves itself)
-        else:
-            fd, self.path = tempfile.mkstemp(prefix=".robodesc-", suffix=f"-{base}", dir=parent)
-            os.close(fd)
-            os.unlink(self.path)
+        try:
+            if folder:
+                self.path = tempfile.mkdtemp(prefix=f".robodesc-{base}-", dir=parent)
+                os.rmdir(self.path)  # the target creates it (as a folder it stages and moves itself)
+            else:
+                fd, self.path = tempfile.mkstemp(prefix=".robodesc-", suffix=f"-{base}", dir=parent)
+                os.close(fd)
+                os.unlink(self.path)
+        except OSError as exc:  # /proc, a read-only mount: the user's path, not the staging file's
+            raise OutputPathError(f"-o {out}: cannot be written ({exc.strerror})") from None
 
     def protect(self, names: tuple[str, ...]) -> None:
         """Files or folders beside a file output that the output owns (``Target.owned``): the
