@@ -51,6 +51,7 @@ class JointGains:
     capped: bool  # the effort limit bounded the stiffness
     gravity_torque: float = 0.0  # g·Σm·d, N·m: the most gravity can load the joint with (revolute)
     weak: bool = False  # gravity_torque exceeds the effort limit: the joint cannot hold its links out
+    floor: bool = False  # the gravity floor set the stiffness (above the inertia's, capped or not)
 
 
 def derived_gains(
@@ -92,16 +93,19 @@ def derived_gains(
         effort = joint.limit.effort if joint.limit is not None and joint.limit.effort else None
         weak = effort is not None and effort > 0 and torque > effort
         if stiffness is not None and joint.name in stiffness:
-            kp, capped = stiffness[joint.name], False
+            kp, capped, floored = stiffness[joint.name], False, False
         else:
             kp = inertia * omega * omega
             capped = effort is not None and effort > 0 and kp > effort / E_SAT
             if capped:
                 kp = float(effort) / E_SAT  # type: ignore[arg-type]
             # The gravity floor, bounded by what the motor can give at the hold error.
-            kp = max(kp, (min(torque, effort) if weak and effort else torque) / HOLD_ERROR)
+            floor_kp = (min(torque, effort) if weak and effort else torque) / HOLD_ERROR
+            floored = floor_kp > kp
+            if floored:
+                kp, capped = floor_kp, False  # the floor, not the effort cap, set it
         kd = 2.0 * DAMPING_RATIO * math.sqrt(max(kp, 0.0) * inertia)
-        out[joint.name] = JointGains(kp, kd, inertia, capped, torque, weak)
+        out[joint.name] = JointGains(kp, kd, inertia, capped, torque, weak, floored)
     return out
 
 
@@ -128,7 +132,7 @@ def fill_default_gains(
     if "damping" not in given:
         settings.damping = {**{re.escape(n): sig4(g.damping) for n, g in gains.items()}, ".*": 1.0}
     rows = ", ".join(
-        f"{n} {sig4(g.stiffness):g}/{sig4(g.damping):g} (I {g.inertia:.3g}{', effort-capped' if g.capped else ''})"
+        f"{n} {sig4(g.stiffness):g}/{sig4(g.damping):g} (I {g.inertia:.3g}{_why(g)})"
         for n, g in gains.items()
     )
     findings.info(
@@ -276,3 +280,10 @@ def _distance_sq(point: tuple[float, float, float], origin: tuple[float, float, 
 
 def _add(a: tuple[float, float, float], b: tuple[float, float, float]) -> tuple[float, float, float]:
     return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+def _why(g: JointGains) -> str:
+    """What set a derived stiffness beyond the inertia's: the effort cap or the gravity floor."""
+    if g.floor:
+        return ", gravity floor"
+    return ", effort-capped" if g.capped else ""
