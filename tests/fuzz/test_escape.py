@@ -13,18 +13,10 @@ from pathlib import Path
 import pytest
 
 from robodesc.cli import main
+from tests.fuzz.fuzzer import ASCII_STL
 
 SEEDS = Path(__file__).parent / "seeds"
-# MuJoCo reads binary STL only: an ASCII one is converted to OBJ under meshes/.
-ASCII_STL = "solid t\n" + "".join(
-    f"facet normal 0 0 1\nouter loop\nvertex {a}\nvertex {b}\nvertex {c}\nendloop\nendfacet\n"
-    for a, b, c in (
-        ("0 0 0", "0.02 0 0", "0 0.02 0"),
-        ("0 0 0", "0 0.02 0", "0 0 0.02"),
-        ("0 0 0", "0 0 0.02", "0.02 0 0"),
-        ("0.02 0 0", "0 0 0.02", "0 0.02 0"),
-    )
-) + "endsolid t\n"  # fmt: skip
+# ASCII_STL: MuJoCo reads binary STL only, so -t mjcf converts this one to OBJ under meshes/.
 
 
 def _robot(folder: Path, mesh_uri: str, *, bad_inertia: bool = False) -> Path:

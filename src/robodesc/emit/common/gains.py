@@ -132,8 +132,7 @@ def fill_default_gains(
     if "damping" not in given:
         settings.damping = {**{re.escape(n): sig4(g.damping) for n, g in gains.items()}, ".*": 1.0}
     rows = ", ".join(
-        f"{n} {sig4(g.stiffness):g}/{sig4(g.damping):g} (I {g.inertia:.3g}{_why(g)})"
-        for n, g in gains.items()
+        f"{n} {sig4(g.stiffness):g}/{sig4(g.damping):g} (I {g.inertia:.3g}{_why(g)})" for n, g in gains.items()
     )
     findings.info(
         "default-gains",
