@@ -299,10 +299,11 @@ def validate_emitted(
 # refusing to build the model (a massless moving link) or a mesh file it cannot read.
 SOURCE_CHECKS = frozenset({"mujoco-compile", "mesh-files"})
 # Checks about the model as a whole, and the source defects that make them fail whatever robodesc
-# writes: a consumer refusing the document (an <inertial> without <mass>), a simulation going
+# writes: a consumer refusing the document (an <inertial> without <mass>; a mass without a tensor
+# that no readable geometry can give, found by the geometric_inertia pass), a simulation going
 # unstable (an inertia passed through unphysical, a negative damping, which Drake refuses too). Named by the source's warning.
 DOCUMENT_CHECKS = frozenset({"mujoco-parse", "mjcf-load", "scene-load", "drake-parse"})
-DOCUMENT_DEFECTS = frozenset({"inertial-without-mass", "negative-dynamics"})
+DOCUMENT_DEFECTS = frozenset({"inertial-without-mass", "no-geometry", "negative-dynamics"})
 DYNAMICS_CHECKS = frozenset({"simulation", "menagerie"})
 DYNAMICS_DEFECTS = PHYSICAL_CODES | {"negative-dynamics"}
 
@@ -317,7 +318,11 @@ def source_defect_failures(findings: Findings | list[Finding], report: Validatio
     source = [
         f
         for f in findings
-        if f.code in PHYSICAL_CODES or (f.severity is Severity.WARNING and f.stage.startswith(("verify", "frontend")))
+        if f.code in PHYSICAL_CODES
+        or (
+            f.severity is Severity.WARNING
+            and (f.stage.startswith(("verify", "frontend")) or f.code in DOCUMENT_DEFECTS | DYNAMICS_DEFECTS)
+        )
     ]
     defective = {f.element for f in source if f.element}
     codes = {f.code for f in source}

@@ -148,3 +148,24 @@ def test_dynamics_does_not_fail_an_output_the_source_fails_the_same_way(
     out = capsys.readouterr().out
     assert code == 0, out
     assert "WARN load mujoco/urdf" in out and "(the source fails in mujoco too)" in out
+
+
+def test_mass_without_tensor_and_unreadable_mesh_is_the_sources(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """23 of issue 34's 33 false blames: a composition link with a mass whose only shape is a mesh
+    that cannot be read, so no tensor can be derived; the URDF carries the mass without a tensor,
+    MuJoCo refuses it, and that is the source's defect (geometric_inertia's no-geometry warning)."""
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "meshes" / "broken.stl").write_text("solid x\nvertex 1 2\n")
+    text = (SEEDS / "four_bar.yaml").read_text(encoding="utf-8")
+    old = "geometry: {cylinder: {radius: 0.02, length: 0.03}}"
+    assert old in text
+    source = tmp_path / "four_bar.yaml"
+    source.write_text(text.replace(old, "geometry: {mesh: meshes/broken.stl}"), encoding="utf-8")
+    assert main(["compile", str(source), "-t", "urdf", "-o", str(tmp_path / "o.urdf")]) == 0
+    err = capsys.readouterr().err
+    assert "four_bar.yaml:30:5: link 'crank_hub': has a mass but no inertia tensor" in err
+    assert main(["validate", str(source), "--dynamics", "--engines", "mujoco"]) == 0
+    out = capsys.readouterr().out
+    assert "WARN load mujoco/urdf" in out and "(the source's defect: " in out
