@@ -74,3 +74,18 @@ def test_batch_lists_what_it_skipped_and_why(tmp_path: Path, capsys: pytest.Capt
     }
     assert "skipped 5 file(s)" in err
     assert "| skipped | why |" in (out / "summary.md").read_text()
+
+
+def test_validation_leaves_nothing_in_the_working_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """MuJoCo appends its warnings to MUJOCO_LOG.TXT in the working folder unless they are taken:
+    an unstable source (damping -1e30, an inertia of 1e30) warns in every step."""
+    source = tmp_path / "arm.urdf"
+    shutil.copytree(SEEDS / "meshes", tmp_path / "meshes")
+    text = (SEEDS / "arm.urdf").read_text().replace('damping="0.1"', 'damping="-1e30"')
+    source.write_text(text.replace('izz="0.001"', 'izz="1e30"'))
+    work = tmp_path / "work"
+    work.mkdir()
+    monkeypatch.chdir(work)
+    assert main(["compile", str(source), "-t", "mjcf", "-o", str(tmp_path / "o" / "robot.xml"), "-q"]) == 0
+    assert main(["validate", str(source), "--dynamics", "--engines", "mujoco"]) == 0
+    assert os.listdir(work) == []

@@ -241,9 +241,9 @@ def _block_travel(mu: float, angle: float, setup: Setup) -> float:
     body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[_BOX, _BOX, _BOX_H], mass=1.0, friction=[mu, 0, 0], condim=3)
     model = s.compile()
     data = mujoco.MjData(model)
-    mujoco.mj_forward(model, data)
-    start = data.qpos[:3].copy()
     with captured_warnings([]):  # see _simulate
+        mujoco.mj_forward(model, data)
+        start = data.qpos[:3].copy()
         for _ in range(max(1, round(setup.duration / setup.timestep))):
             mujoco.mj_step(model, data)
     return float(np.linalg.norm(data.qpos[:3] - start))
