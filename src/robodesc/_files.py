@@ -27,7 +27,10 @@ def _write(handle: BinaryIO, data: Content) -> None:
 def write_atomic(path: str, data: Content) -> None:
     directory = os.path.dirname(os.path.abspath(path))
     os.makedirs(directory, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=".robodesc-", suffix=".tmp", dir=directory)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".robodesc-", suffix=".tmp", dir=directory)
+    except OSError as exc:  # /proc, a read-only mount: say so of the file asked for, not the temporary one
+        raise OSError(exc.errno, exc.strerror, path) from None
     try:
         with os.fdopen(fd, "wb") as handle:
             _write(handle, data)
@@ -46,7 +49,10 @@ def replace_dir_atomic(staging: str, target: str) -> None:
         os.rmdir(backup)
         os.replace(target, backup)
         os.replace(staging, target)
-        shutil.rmtree(backup, ignore_errors=True)
+        if os.path.islink(backup):  # a link to a folder is replaced, never written through
+            os.unlink(backup)
+        else:
+            shutil.rmtree(backup, ignore_errors=True)
     else:
         os.replace(staging, target)
 
@@ -90,3 +96,19 @@ def write_folder(out: str, files: Mapping[str, Content]) -> dict[str, str]:
     with staged_folder(out) as staging:
         write_files(staging, files)
     return {name: os.path.join(out, name) for name in sorted(files)}
+
+
+def escapes(folder: str, target: str) -> str | None:
+    """The real path ``target`` would be written to when a symlink already there (``meshes``
+    pointing elsewhere, or the file itself) carries the write outside ``folder``; None when it
+    stays inside (or does not exist yet). Outputs are written only inside the output path."""
+    path = target
+    while not os.path.lexists(path):
+        parent = os.path.dirname(path)
+        if parent == path or not parent.startswith(folder.rstrip(os.sep)):
+            return None
+        path = parent
+    real_out = os.path.realpath(folder)
+    real = os.path.realpath(path)
+    inside = real == real_out or real.startswith(real_out.rstrip(os.sep) + os.sep)
+    return None if inside and not (path == target and os.path.islink(target)) else real

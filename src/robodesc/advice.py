@@ -15,6 +15,9 @@ from dataclasses import dataclass
 class Advice:
     consumers: str  # what the consumers of the output will do with it
     repair: str = ""  # the option (or the edit) that repairs it
+    # The finding's own message says both already, in one line (the README's first command meets
+    # one): the CLI prints no "->" line for it; --json still carries both.
+    in_message: bool = False
 
 
 _INERTIA = Advice(
@@ -70,6 +73,7 @@ ADVICE: dict[str, Advice] = {
     "urdf-not-ros": Advice(
         "pybullet, MuJoCo and Isaac Sim read it; urdfdom (robot_state_publisher, MoveIt, check_urdf) refuses the file",
         "--ros2 (or a composition input) writes the URDF 1.0 equivalent",
+        in_message=True,
     ),
     "usd-mesh-not-read": Advice(
         "the USD shows the link without that shape; --copy-meshes refuses the same file",

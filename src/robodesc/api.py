@@ -219,10 +219,11 @@ def check(source: Source, target: str = DEFAULT_TARGET, *, dynamics: Any = False
         except ValidationFailedError as failed:  # nothing written; the report says why
             result = failed.result
         if dynamics is not False and dynamics is not None and os.path.exists(out):
-            from robodesc.check_dynamics import dynamics_options, run_for
+            from robodesc.check_dynamics import carry_source_refusals, dynamics_options, run_for
 
             opts = dynamics_options(dynamics, options)
             result.dynamics = run_for(source, result.robot, target, out, tmp, opts, options, compile_to)
+            carry_source_refusals(result.dynamics, result.findings)
         return result
 
 

@@ -20,16 +20,17 @@ import copy
 import dataclasses
 import os
 import re
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 from robodesc.emit.common.base import choose_base
-from robodesc.ir.diagnostics import Findings, RobodescError
+from robodesc.ir.diagnostics import Finding, Findings, RobodescError, Severity
 from robodesc.ir.model import Robot
 from robodesc.targets import TARGETS, target_spec
 from robodesc.validation.dynamics import READERS, DynamicsOptions, DynamicsReport, run_dynamics
 from robodesc.validation.dynamics.run import folder_files, joining
 from robodesc.validation.dynamics.source import write_source
+from robodesc.validation.report import Status
 
 # Engines run when none are named: cheap to import, and together they read two formats.
 DEFAULT_ENGINES = ("mujoco", "drake")
@@ -214,3 +215,20 @@ def _source_file(source: Any, robot: Robot, folder: str, options: Mapping[str, A
     except (RobodescError, OSError, UnicodeDecodeError):
         return None  # not XML: a composition, whose only description is the IR
     return write_source(robot, text, folder)
+
+
+def carry_source_refusals(report: DynamicsReport, findings: Sequence[Finding]) -> None:
+    """An engine refusing an output for a defect of the source the compile named (a mass without a
+    tensor that no readable geometry gives, an ``<inertial>`` without ``<mass>``): the same row the
+    structural validation made the source's, a WARN here too, naming the defect."""
+    from robodesc.pipeline import DOCUMENT_DEFECTS
+
+    named = [f for f in findings if f.severity is Severity.WARNING and f.code in DOCUMENT_DEFECTS]
+    if not named:
+        return
+    first = named[0]
+    where = f"{first.loc}: " if first.loc is not None else ""
+    for row in report.checks:
+        if row.name == "load" and row.status is Status.FAIL:
+            row.status = Status.WARN
+            row.message += f" (the source's defect: {where}{first.element}: {first.message})"

@@ -9,6 +9,7 @@ from __future__ import annotations
 import dataclasses
 import difflib
 import enum
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -81,6 +82,7 @@ def build_options(values: Mapping[str, Any], *, extra_names: Mapping[str, str] |
             if value is not None:
                 setattr(opts.world, WORLD_NAMES[name], _world_value(name, value))
             continue
+        check_numbers(value, name)
         if name == "contact_sensors":
             opts.contact_sensors = "" if value is True else None if value is False else value
             continue
@@ -98,6 +100,30 @@ def build_options(values: Mapping[str, Any], *, extra_names: Mapping[str, str] |
                 raise ConfigError(f"option {name}={value!r}: expected one of {allowed}") from None
         setattr(opts.load if name in loading else opts, name, value)
     return opts
+
+
+# The largest magnitude an option may have: the verifier's bound on every number of the IR
+# (docs/security.md); options become numbers of the output (gains, offsets, poses) the same way.
+OPTION_LIMIT = 1e30
+
+
+def check_numbers(value: Any, name: str, rule: str = "") -> None:
+    """Refuse (exit 2) a number that is NaN, infinite or beyond ±1e30 anywhere in an option's value
+    (a number, a vector, a REGEX=VALUE table): written into a file, ``nan`` breaks every consumer
+    (the Isaac Lab module's ``init_state`` did not import; USD read ``contactOffset = nan``)."""
+    if isinstance(value, bool | str | enum.Enum) or value is None:
+        return
+    if isinstance(value, int | float):
+        if not math.isfinite(value) or abs(value) > OPTION_LIMIT:
+            given = f"'{rule}={value!r}'" if rule else repr(value)
+            flag = "--" + name.replace("_", "-")
+            raise ConfigError(f"{flag} {given}: expected a finite number within ±{OPTION_LIMIT:g}")
+    elif isinstance(value, Mapping):
+        for key, item in value.items():
+            check_numbers(item, name, str(key) if key != ".*" else "")
+    elif isinstance(value, tuple | list):
+        for item in value:
+            check_numbers(item, name, rule)
 
 
 # Fields of CompileOptions that are not options themselves but hold them.

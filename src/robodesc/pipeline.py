@@ -189,7 +189,13 @@ def compile_robot(
             element="--world" if options.world.file is not None else "--terrain",
         )
     if out is not None:
-        check_output(out, folder=spec.folder, source=source, suffixes=spec.suffixes if spec.suffix_required else ())
+        check_output(
+            out,
+            folder=spec.folder,
+            source=source,
+            suffixes=spec.suffixes if spec.suffix_required else (),
+            example=spec.output_name("robot"),
+        )
     findings = Findings()
     resolved = pass_options(options, spec)
     progress("loading")
@@ -206,6 +212,8 @@ def compile_robot(
     world = _world(robot, options, findings, progress)
     stage = Staging(out, spec.folder)
     try:
+        # Converted and copied meshes beside a file output: a failed run takes back what it added.
+        stage.track("meshes")
         request, base = _request(robot, spec, stage, options, findings)
         request = dataclasses.replace(request, world=world)
         if spec.owned is not None and stage.final is not None:
@@ -338,6 +346,14 @@ def validate_emitted(
 # Validation checks that fail when the source is at fault whatever robodesc writes: the consumer
 # refusing to build the model (a massless moving link) or a mesh file it cannot read.
 SOURCE_CHECKS = frozenset({"mujoco-compile", "mesh-files"})
+# Checks about the model as a whole, and the source defects that make them fail whatever robodesc
+# writes: a consumer refusing the document (an <inertial> without <mass>; a mass without a tensor
+# that no readable geometry can give, found by the geometric_inertia pass), a simulation going
+# unstable (an inertia passed through unphysical, a negative damping, which Drake refuses too). Named by the source's warning.
+DOCUMENT_CHECKS = frozenset({"mujoco-parse", "mjcf-load", "scene-load", "drake-parse"})
+DOCUMENT_DEFECTS = frozenset({"inertial-without-mass", "no-geometry", "negative-dynamics"})
+DYNAMICS_CHECKS = frozenset({"simulation", "menagerie"})
+DYNAMICS_DEFECTS = PHYSICAL_CODES | {"negative-dynamics"}
 
 
 def source_defect_failures(findings: Findings | list[Finding], report: ValidationReport) -> list[Check]:
@@ -347,17 +363,28 @@ def source_defect_failures(findings: Findings | list[Finding], report: Validatio
     (a warning of the frontend or the verifier: invalid inertia, a massless link, a dropped shape),
     or when the consumer refuses the model as a whole (SOURCE_CHECKS), as the corpus report
     classifies them. What remains failed is robodesc's fault: exit 1."""
-    defective = {
-        f.element
+    source = [
+        f
         for f in findings
-        if f.element
-        and (
-            f.code in PHYSICAL_CODES or (f.severity is Severity.WARNING and f.stage.startswith(("verify", "frontend")))
+        if f.code in PHYSICAL_CODES
+        or (
+            f.severity is Severity.WARNING
+            and (f.stage.startswith(("verify", "frontend")) or f.code in DOCUMENT_DEFECTS | DYNAMICS_DEFECTS)
         )
+    ]
+    defective = {f.element for f in source if f.element}
+    codes = {f.code for f in source}
+    whole = {
+        name
+        for checks, defects in ((DOCUMENT_CHECKS, DOCUMENT_DEFECTS), (DYNAMICS_CHECKS, DYNAMICS_DEFECTS))
+        if codes & defects
+        for name in checks
     }
     out = []
     for check in report.checks:
-        if check.status is Status.FAIL and (check.name in SOURCE_CHECKS or check.element in defective):
+        if check.status is Status.FAIL and (
+            check.name in SOURCE_CHECKS or check.name in whole or check.element in defective
+        ):
             check.status = Status.WARN
             check.message += CARRIED
             out.append(check)

@@ -51,6 +51,14 @@ TARGETS: dict[str, tuple[list[str], str]] = {
     "mjcf": (["-t", "mjcf"], "out_mjcf/robot.xml"),
     "ros2": (["--ros2"], "out_ros2"),
 }
+# Commands beside compile (issue 34), run from an empty working folder with the input named as a
+# relative path, as a user types it: (command line before the input's place, after it, output name).
+COMMANDS: dict[str, tuple[list[str], list[str], str | None]] = {
+    "view": (["view"], ["-o", "out.html"], "out.html"),
+    "render": (["render"], ["-o", "out.png"], "out.png"),
+    "dynamics": (["validate"], ["-t", "urdf", "--dynamics", "--engines", "mujoco"], None),
+}
+FILE_TARGETS = ("urdf", "sdf", "usda", "usdc", "mjcf")
 TIME_LIMIT = 30  # seconds per case: far above any honest case (the slowest take ~2 s)
 SENTINEL = b"earlier output: a failed run must leave these bytes alone\n"
 
@@ -88,7 +96,22 @@ HOSTILE_MESH = (
     "meshes/broken.stl",
     "meshes/finger.dae",
     "",
+    # Issue 34: meshes MJCF converts (ASCII STL) or MuJoCo refuses (empty, NaN), and one outside the
+    # input's folder that a converter, the USD writer or a view page might read into its output.
+    "meshes/ascii.stl",
+    "meshes/empty.obj",
+    "meshes/nan.obj",
+    "../elsewhere/ascii.stl",
 )
+ASCII_STL = "solid t\n" + "".join(
+    f"facet normal 0 0 1\nouter loop\nvertex {a}\nvertex {b}\nvertex {c}\nendloop\nendfacet\n"
+    for a, b, c in (
+        ("0 0 0", "0.02 0 0", "0 0.02 0"),
+        ("0 0 0", "0 0.02 0", "0 0 0.02"),
+        ("0 0 0", "0 0 0.02", "0.02 0 0"),
+        ("0.02 0 0", "0 0 0.02", "0 0.02 0"),
+    )
+) + "endsolid t\n"  # fmt: skip
 
 
 @dataclasses.dataclass(slots=True)
@@ -97,7 +120,10 @@ class Outcome:
     seed_file: str
     target: str
     mutations: list[str]
-    status: str  # ok | refused | crash | hang | blame | bad-output | partial-output | ran-python | escaped
+    # ok | refused | crash | hang | blame | bad-output | partial-output | ran-python | escaped |
+    # abs-path (a view page names a file by this machine's absolute path) | stray-file (a file left
+    # in the working folder)
+    status: str
     exit_code: int | None
     detail: str = ""
     case_dir: str = ""
@@ -244,6 +270,29 @@ def m_mesh_bytes(rng: random.Random, text: str, d: Path) -> str:
     return text
 
 
+# Defects a source may carry faithfully into its output, which validation must name as the source's
+# (issue 34 found each blamed on robodesc, exit 1): (pattern, replacement) in URDF and xacro text.
+SOURCE_DEFECTS = (
+    (r'<mass value="[^"]*"/>', ""),  # an <inertial> without <mass>
+    (r'<inertia ([^/]*)izz="[^"]*"', r'<inertia \1izz="1e30"'),  # a tensor no body has
+    (r'damping="[^"]*"', 'damping="-1e30"'),  # energy in, not out
+    (r'<sphere radius="([^"]*)"/>', r'<capsule radius="\1" length="0"/>'),  # a zero-length capsule
+    (r'upper="[^"]*"', 'upper="1e30"'),  # FK sampled near 6e29 m on a prismatic joint
+    (r"<mimic [^>]*/>", ""),  # the prismatic joint sampled on its own
+)
+
+
+def m_source_defect(rng: random.Random, text: str, _d: Path) -> str:
+    applicable = [(p, r) for p, r in SOURCE_DEFECTS if re.search(p, text)]
+    if not applicable:
+        return text
+    for pattern, replacement in rng.sample(applicable, min(len(applicable), rng.choice((1, 2, 3)))):
+        found = list(re.finditer(pattern, text))
+        m = rng.choice(found)
+        text = text[: m.start()] + m.expand(replacement) + text[m.end() :]
+    return text
+
+
 MUTATIONS: dict[str, Callable[[random.Random, str, Path], str]] = {
     "number": m_number,
     "numbers": m_numbers_all,
@@ -259,15 +308,18 @@ MUTATIONS: dict[str, Callable[[random.Random, str, Path], str]] = {
     "hostile-xacro": m_hostile_xacro,
     "hostile-mesh": m_hostile_mesh,
     "mesh-bytes": m_mesh_bytes,
+    "source-defect": m_source_defect,
 }
 # Mutations more likely to find something are drawn more often.
-WEIGHTS = {"number": 5, "numbers": 2, "hostile-xacro": 2, "hostile-mesh": 2, "mesh-bytes": 2}
+WEIGHTS = {"number": 5, "numbers": 2, "hostile-xacro": 2, "hostile-mesh": 2, "mesh-bytes": 2, "source-defect": 3}
 
 
 # ---- one case ---------------------------------------------------------------------------------
 
 
 BATCH_SHARE = 0.1  # one case in ten is a batch folder
+COMMAND_SHARE = 0.25  # of the others, one in four is view, render or validate --dynamics
+ESCAPE_SHARE = 0.3  # of the compiles to a file, the share with a meshes link out of the output folder
 
 
 @dataclasses.dataclass(slots=True)
@@ -282,7 +334,10 @@ class Case:
     batch: bool = False
     run_python: bool = False
     marker: Path | None = None  # a Python file in a batch folder writes this when it runs
-    outside: Path | None = None  # a folder no batch may write into
+    outside: Path | None = None  # a folder no run may write into
+    cwd: Path | None = None  # the working folder the run starts in (it must stay as it was)
+    out_name: str | None = None  # what the run may write into ``cwd``
+    outside_before: dict[str, bytes] = dataclasses.field(default_factory=dict)
 
 
 def _mutate(rng: random.Random, seed_file: str, path: Path) -> list[str]:
@@ -305,6 +360,11 @@ def _case_folder(case_dir: Path) -> None:
     (case_dir / "meshes" / "broken.stl").write_bytes(b"solid x\nfacet normal 0 0 1\nouter loop\nvertex 1 2\n")
     (case_dir / "meshes" / "finger.dae").write_bytes(b"<COLLADA><library_geometries/></COLLADA>")
     (case_dir / "package.xml").write_text("<package><name>fuzzpkg</name></package>\n")
+    (case_dir / "meshes" / "ascii.stl").write_text(ASCII_STL)
+    (case_dir / "meshes" / "empty.obj").write_bytes(b"")
+    (case_dir / "meshes" / "nan.obj").write_bytes(b"v nan 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n")
+    (case_dir.parent / "elsewhere").mkdir(exist_ok=True)
+    (case_dir.parent / "elsewhere" / "ascii.stl").write_text(ASCII_STL)
     with contextlib.suppress(OSError):
         os.mkfifo(case_dir / "meshes" / "pipe.stl")
     with contextlib.suppress(OSError):
@@ -324,13 +384,29 @@ def prepare(case: int, seed: int, root: Path) -> Case:
     _case_folder(case_dir)
     path = case_dir / seed_file
     applied = _mutate(rng, seed_file, path)
+    work = case_dir / "work"  # the run's working folder: empty, and it must stay so
+    work.mkdir()
+    if rng.random() < COMMAND_SHARE:
+        command = rng.choice(sorted(COMMANDS))
+        before, after, out_name = COMMANDS[command]
+        argv = [*before, os.path.join("..", seed_file), *after]
+        out = work / out_name if out_name else work
+        return Case(argv, path, command, applied, out, cwd=work, out_name=out_name)
     options, out_name = TARGETS[target]
     extra = ["--no-validate"] if rng.random() < 0.85 else []  # validation is the slow part: one case in 7
     if rng.random() < 0.2:
         extra.append("--copy-meshes")
-    out = case_dir / out_name
+    out = case_dir / "o" / out_name
+    outside = None
+    if target in FILE_TARGETS and rng.random() < ESCAPE_SHARE:
+        # A meshes/ beside the output that leads out of it: converted or copied meshes may not go there.
+        outside = case_dir / "outside"
+        outside.mkdir()
+        (outside / "victim.txt").write_text("outside the output folder\n")
+        out.parent.mkdir(parents=True, exist_ok=True)
+        os.symlink(outside, out.parent / "meshes")
     argv = ["compile", str(path), *options, *extra, "-o", str(out), "-q"]
-    return Case(argv, path, target, applied, out)
+    return Case(argv, path, target, applied, out, outside=outside, cwd=work)
 
 
 # A Python composition in a batch folder: it says that it ran (the marker), then its build() does
@@ -443,6 +519,12 @@ def check_output(target: str, out: Path, source: Path | None = None) -> str | No
     from lxml import etree
 
     try:
+        if target == "dynamics":
+            return None  # nothing written
+        if target == "render":
+            return None if out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" else "not a PNG"
+        if target == "view":
+            return _page_problem(out)
         if target in ("urdf", "sdf"):
             root = etree.parse(str(out)).getroot()
             if root.tag != ("robot" if target == "urdf" else "sdf"):
@@ -478,10 +560,50 @@ def check_output(target: str, out: Path, source: Path | None = None) -> str | No
         return f"{type(exc).__name__}: {exc}"
 
 
+def _page_problem(page: Path) -> str | None:
+    """Why a view page is not one: no scene data, or data that is not JSON."""
+    import json
+
+    text = page.read_text(encoding="utf-8")
+    found = re.search(r'<script id="robodesc-data" type="application/json">(.*?)</script>', text, re.S)
+    if found is None:
+        return "no scene data in the page"
+    json.loads(found.group(1).replace("<\\/", "</"))
+    return None
+
+
+def _absolute_path(case: Case) -> str | None:
+    """A view page made from an input named relatively must not name the case's folder by its
+    absolute path (a page is made to be shared)."""
+    if case.target != "view" or not case.out.is_file():
+        return None
+    text = case.out.read_text(encoding="utf-8", errors="replace")
+    root = str(case.input.parent)
+    for folder in {root, os.path.realpath(root)}:
+        at = text.find(folder + os.sep)
+        if at >= 0:
+            return f"the page names {text[at : at + 120]!r}"
+    return None
+
+
+def _stray(case: Case) -> str | None:
+    """A file the run left in its working folder, other than the output it was told to write there."""
+    if case.cwd is None or not case.cwd.is_dir():
+        return None
+    left = sorted(set(os.listdir(case.cwd)) - {case.out_name})
+    return f"left {left} in the working folder" if left else None
+
+
 def _classify(case: Case, code: int, err: str, before: dict[str, bytes], outcome: Outcome) -> None:
     outcome.exit_code = code
     if "Traceback (most recent call last)" in err:
         outcome.status, outcome.detail = "crash", err[-3000:]
+    elif (stray := _stray(case)) is not None:
+        outcome.status, outcome.detail = "stray-file", stray
+    elif case.outside is not None and _snapshot(case.outside) != case.outside_before:
+        outcome.status, outcome.detail = "escaped", "the run wrote through a meshes link out of its output folder"
+    elif code == 0 and (absolute := _absolute_path(case)) is not None:
+        outcome.status, outcome.detail = "abs-path", absolute
     elif code == 0:
         problem = check_output(case.target, case.out, case.input)
         if problem is not None:
@@ -492,7 +614,7 @@ def _classify(case: Case, code: int, err: str, before: dict[str, bytes], outcome
     elif code == 2:
         outcome.status = "refused"
         outcome.detail = err.strip().splitlines()[0] if err.strip() else ""
-        if _snapshot(case.out) != before:
+        if case.target != "dynamics" and _snapshot(case.out) != before:
             outcome.status = "partial-output"
             outcome.detail = f"exit {code} changed the earlier output: {outcome.detail}"
     else:
@@ -542,19 +664,25 @@ def run_case(case: int, seed: int, root: Path, time_limit: int = TIME_LIMIT) -> 
     prepared = prepare(case, seed, root)
     out = prepared.out
     outcome = Outcome(
-        case, prepared.input.name, prepared.target, prepared.mutations, "ok", None, case_dir=str(out.parent)
+        case, prepared.input.name, prepared.target, prepared.mutations, "ok", None, case_dir=str(prepared.input.parent)
     )
     if prepared.batch:
         outcome.case_dir = str(prepared.input.parent.parent)
         outcome.target = f"batch-{prepared.target}"
         before = _snapshot(prepared.outside) if prepared.outside else {}
     else:
-        out.parent.mkdir(parents=True, exist_ok=True)
-        _plant_sentinel(out)
-        before = _snapshot(out)
+        if prepared.outside is not None:
+            prepared.outside_before = _snapshot(prepared.outside)
+        if prepared.target != "dynamics":
+            out.parent.mkdir(parents=True, exist_ok=True)
+            _plant_sentinel(out)
+        before = _snapshot(out) if prepared.target != "dynamics" else {}
     stdout, stderr = io.StringIO(), io.StringIO()
     argv = prepared.argv
+    here = os.getcwd()
     try:
+        if prepared.cwd is not None:
+            os.chdir(prepared.cwd)
         with _alarm(time_limit), contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
             code = main(argv)
     except _Timeout:
@@ -564,6 +692,8 @@ def run_case(case: int, seed: int, root: Path, time_limit: int = TIME_LIMIT) -> 
         outcome.status = "crash"
         outcome.detail = "".join(traceback.format_exception(exc))[-3000:]
         return outcome
+    finally:
+        os.chdir(here)
     err = stderr.getvalue()
     if prepared.batch:
         _classify_batch(prepared, code, err, before, outcome)

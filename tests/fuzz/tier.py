@@ -142,6 +142,14 @@ def counts(outcomes: list[Outcome]) -> dict[str, int]:
     return {**named, **dict(sorted(by.items()))}
 
 
+def by_target(outcomes: list[Outcome]) -> dict[str, dict[str, int]]:
+    """Counts per class, per target or command."""
+    table: dict[str, Counter[str]] = {}
+    for o in outcomes:
+        table.setdefault(o.target, Counter())[o.status] += 1
+    return {t: dict(sorted(c.items())) for t, c in sorted(table.items())}
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("cases", type=int, nargs="?", default=2000)
@@ -167,6 +175,9 @@ def main(argv: list[str] | None = None) -> int:
         + ", ".join(f"{n} {k}" for k, n in tally.items())
     )
     print(f"by target: {dict(sorted(Counter(o.target for o in outcomes).items()))}")
+    by_class = by_target(outcomes)
+    for target, row in by_class.items():
+        print(f"  {target:<12} " + ", ".join(f"{n} {status}" for status, n in row.items()))
     if args.json:
         args.json.write_text(
             json.dumps(
@@ -175,6 +186,7 @@ def main(argv: list[str] | None = None) -> int:
                     "cases": args.cases,
                     "seconds": round(seconds, 1),
                     "counts": tally,
+                    "by_target": by_target(outcomes),
                     "outcomes": [dataclasses.asdict(o) for o in outcomes],
                 },
                 indent=1,

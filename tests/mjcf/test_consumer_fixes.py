@@ -104,7 +104,9 @@ def test_obj_mixing_face_layouts_is_converted(tmp_path: Path) -> None:
     urdf = f"""<robot name="t"><link name="top"><inertial><mass value="1"/>{INERTIA}</inertial>
       <visual><geometry><mesh filename="{mesh}" scale="0.6 0.6 0.08"/></geometry></visual>
       <collision><geometry><mesh filename="{mesh}" scale="0.6 0.6 0.08"/></geometry></collision></link></robot>"""
-    result = compile_to_mjcf(urdf, str(tmp_path / "out/robot.xml"))
+    # A file beside the mesh: converting reads the mesh into the output, only from the input's folder.
+    (tmp_path / "src" / "t.urdf").write_text(urdf)
+    result = compile_to_mjcf(str(tmp_path / "src" / "t.urdf"), str(tmp_path / "out/robot.xml"))
     assert result.validation is not None and result.validation.ok
     assert "mjcf-obj-layout" in {f.code for f in result.warnings}
     model = load_clean(tmp_path / "out/robot.xml")

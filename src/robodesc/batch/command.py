@@ -137,6 +137,7 @@ def run_command(args: argparse.Namespace, options: CompileOptions, target: str) 
 
         start_worker_server()  # if the console script has not: its imports overlap the planning below
     spec = sweep.from_cli(args.sweep, args.samples, args.seed)
+    skipped: list[tuple[str, str]] = []
     jobs = plan(
         args.inputs,
         target=target,
@@ -145,6 +146,7 @@ def run_command(args: argparse.Namespace, options: CompileOptions, target: str) 
         sweep=spec,
         suffix=args.suffix or (f".{args.usd_format}" if args.usd_format else None),
         run_python=args.run_python,
+        skipped=skipped,
     )
     console = Console(stderr=True)
     run = run_batch(
@@ -158,6 +160,7 @@ def run_command(args: argparse.Namespace, options: CompileOptions, target: str) 
         progress=not args.quiet and console.is_terminal,
         progress_lines=not args.quiet and not args.json,
         console=console,
+        skipped=skipped,
     )
     from robodesc.view.thumbs import summary_rows, write_summary_html
 

@@ -56,20 +56,52 @@ def _classify(path: str, known: list[Frontend]) -> tuple[bool, list[str]]:
         return False, []
 
 
-def discover(folder: str, *, run_python: bool = False) -> list[tuple[str, str]]:
+def why_skipped(path: str, every: list[Frontend], run_python: bool) -> str | None:
+    """Why a file with a robot suffix is not a job (None when the suffix is no robot's): the
+    summary says so, so that nothing is passed over in silence."""
+    frontend = _frontend(path.lower(), every)
+    if frontend is None:
+        return None
+    if frontend.runs_code and not run_python:
+        return "a Python composition: it runs when read, so only with --run-python"
+    try:
+        st = os.stat(path)
+    except OSError:
+        return "a dangling link" if os.path.islink(path) else "cannot be read"
+    if stat.S_ISFIFO(st.st_mode):
+        return "a named pipe, not a regular file: never opened"
+    if not stat.S_ISREG(st.st_mode):
+        return "not a regular file (a device or socket): never opened"
+    return f"not a {frontend.name} robot (no robot found in it)"
+
+
+def discover(
+    folder: str, *, run_python: bool = False, skipped: list[tuple[str, str]] | None = None
+) -> list[tuple[str, str]]:
     """``(path, job id)`` for every robot under ``folder``, in sorted path order; the id is the path
-    relative to ``folder`` without its robot suffix (``models/spirit/urdf/spirit``)."""
-    known = [f for f in frontends() if run_python or not f.runs_code]
+    relative to ``folder`` without its robot suffix (``models/spirit/urdf/spirit``). ``skipped``
+    collects ``(path, why)`` for each file with a robot suffix that is not a job, and each link to
+    a folder (not followed)."""
+    every = frontends()
+    known = [f for f in every if run_python or not f.runs_code]
     found: list[str] = []
     included: set[str] = set()
     for here, dirs, names in os.walk(folder):
         dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in _SKIP_DIRS)
+        if skipped is not None:
+            skipped.extend(
+                (os.path.join(here, d), "a link to a folder: not followed")
+                for d in dirs
+                if os.path.islink(os.path.join(here, d))
+            )
         for name in sorted(names):
             path = os.path.join(here, name)
             robot, includes = _classify(path, known)
             included.update(os.path.basename(inc.replace("\\", "/")) for inc in includes)
             if robot:
                 found.append(path)
+            elif skipped is not None and (why := why_skipped(path, every, run_python)) is not None:
+                skipped.append((path, why))
     out = []
     for path in sorted(found):
         if os.path.basename(path) in included:

@@ -47,9 +47,11 @@ def plan(
     sweep: Mapping[str, Any] | None = None,
     suffix: str | None = None,
     run_python: bool = False,
+    skipped: list[tuple[str, str]] | None = None,
 ) -> list[Job]:
     """Every job the inputs stand for. A CLI ``sweep`` applies to every input that is not a
-    manifest (a manifest row carries its own)."""
+    manifest (a manifest row carries its own). ``skipped`` collects the files of a folder that are
+    not jobs, and why (:func:`robodesc.batch.discover.discover`)."""
     check_target(target, "--target")
     jobs: list[Job] = []
 
@@ -67,7 +69,7 @@ def plan(
 
     for given in inputs:
         if os.path.isdir(given):
-            found = discover(given, run_python=run_python)
+            found = discover(given, run_python=run_python, skipped=skipped)
             if not found:
                 hint = "" if run_python else " (Python compositions run when read: --run-python includes them)"
                 raise ConfigError(f"{given}: no robot files found ({describe_inputs()}){hint}")

@@ -96,6 +96,7 @@ def run_batch(
     progress: bool = False,
     progress_lines: bool = False,
     console: Any = None,
+    skipped: Sequence[tuple[str, str]] = (),
 ) -> BatchRun:
     """Run ``jobs`` (from :func:`robodesc.batch.plan.plan`), writing ``root/summary.json`` and
     ``root/summary.md``. Raises nothing for a job's failure; ``KeyboardInterrupt`` is caught, the
@@ -144,7 +145,9 @@ def run_batch(
         bar.stop()
         if previous_term is not None:
             signal.signal(signal.SIGTERM, previous_term)
-    summary = build_summary(jobs, results, root, wall_seconds=time.perf_counter() - started, interrupted=interrupted)
+    summary = build_summary(
+        jobs, results, root, wall_seconds=time.perf_counter() - started, interrupted=interrupted, skipped=skipped
+    )
     write_summary(root, summary)
     return BatchRun(summary, results, interrupted)
 

@@ -58,7 +58,13 @@ def job_entry(job: Job, result: JobResult | None, root: str) -> dict[str, Any]:
 
 
 def build_summary(
-    jobs: Sequence[Job], results: Mapping[str, JobResult], root: str, *, wall_seconds: float, interrupted: bool
+    jobs: Sequence[Job],
+    results: Mapping[str, JobResult],
+    root: str,
+    *,
+    wall_seconds: float,
+    interrupted: bool,
+    skipped: Sequence[tuple[str, str]] = (),
 ) -> dict[str, Any]:
     from robodesc._version import __version__
 
@@ -83,6 +89,9 @@ def build_summary(
             "wall_seconds": round(wall_seconds, 3),
         },
         "jobs": entries,
+        # Files of the input folders that are not jobs, and why (named pipes, Python without
+        # --run-python, links to folders, files that hold no robot).
+        "skipped": [{"path": path, "why": why} for path, why in skipped],
     }
 
 
@@ -106,6 +115,9 @@ def to_markdown(summary: Mapping[str, Any]) -> str:
     lines += [f"| {name} | {count} |" for name, count in totals["by_outcome"].items() if count]
     lines += ["", "| finding kind | count |", "|---|---|"]
     lines += [f"| {_cell(kind)} | {count} |" for kind, count in totals["by_finding_kind"].items()] or ["| – | 0 |"]
+    if summary.get("skipped"):
+        lines += ["", "| skipped | why |", "|---|---|"]
+        lines += [f"| {_cell(s['path'])} | {_cell(s['why'])} |" for s in summary["skipped"]]
     lines += [
         "",
         "| job | input | target | status | errors | warnings | infos | validation | s | outputs | message |",
@@ -134,6 +146,13 @@ def print_table(summary: Mapping[str, Any], console: Any, limit: int = 20) -> No
     rows = [(e["id"], e["status"], _message(e)) for e in bad[:limit]]
     heading = "jobs that did not succeed" + (f" (first {limit} of {len(bad)})" if len(bad) > limit else "")
     closing = f"robodesc batch: {totals['jobs']} jobs in {totals['wall_seconds']:.1f} s"
+    skipped = summary.get("skipped") or []
+    if skipped:
+        closing += (
+            f"; skipped {len(skipped)} file(s): "
+            + "; ".join(f"{s['path']} ({s['why']})" for s in skipped[:limit])
+            + (" ..." if len(skipped) > limit else "")
+        )
     if console.is_terminal:
         _tables(console, counts, heading, rows)
     else:

@@ -14,7 +14,7 @@ from robodesc import api
 from robodesc.cli.flags import target_options
 from robodesc.emit.common.staging import check_output
 from robodesc.ir.diagnostics import ConfigError
-from robodesc.options import CompileOptions, build_options
+from robodesc.options import CompileOptions, build_options, check_numbers
 from robodesc.pipeline import CompileResult, ValidationFailedError
 from robodesc.targets import target_spec
 
@@ -235,6 +235,7 @@ def _dynamics_options(args: argparse.Namespace) -> dict[str, Any] | bool:
             raise ConfigError(f"--pose {rule!r}: expected REGEX=VALUE with a number") from None
         if not sep:
             raise ConfigError(f"--pose {rule!r}: expected REGEX=VALUE")
+    check_numbers(pose, "pose")
     return {"engines": args.engines, **({"pose": pose} if pose else {})}
 
 

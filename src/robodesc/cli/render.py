@@ -78,7 +78,7 @@ def print_findings(findings: Sequence[Finding], quiet: bool, verbose: bool = Fal
         more = f" (and {len(items) - 1} more {code}; -v lists them)" if len(items) > 1 else ""
         print(render_finding(items[0]) + more, file=sys.stderr)
         advice = advice_for(code)
-        if advice is not None:
+        if advice is not None and not advice.in_message:
             repair = f" Repair: {advice.repair}." if advice.repair else ""
             print(f"  -> {advice.consumers}.{repair}", file=sys.stderr)
 

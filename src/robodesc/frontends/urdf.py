@@ -380,6 +380,16 @@ class UrdfReader:
         mass_el = self._one(el, "mass", label)
         if mass_el is not None:
             inertial.mass = self._float(mass_el, "value", label, required=True)
+        else:
+            # Carried as written (the mass is unknown); validation blames the source, not robodesc,
+            # when a consumer refuses the file for it.
+            self.findings.warn(
+                "inertial-without-mass",
+                "<inertial> has no <mass>: urdfdom and MuJoCo refuse the file; USD leaves the mass to the simulator",
+                element=label,
+                loc=inertial.src,
+                stage=STAGE,
+            )
         inertia_el = self._one(el, "inertia", label)
         if inertia_el is not None:
             diag = [self._float(inertia_el, a, label, required=True) for a in ("ixx", "iyy", "izz")]

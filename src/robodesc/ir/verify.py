@@ -375,6 +375,20 @@ def _joint(joint: Joint, out: Findings) -> None:
                 label,
                 limit.src or joint.src,
             )
+    dynamics = joint.dynamics
+    if dynamics is not None:
+        for field_name in ("damping", "friction", "spring_stiffness"):
+            value = getattr(dynamics, field_name)
+            if value is not None and value < 0:
+                # Legal to carry, but it feeds energy in: a simulator's state grows without bound.
+                _warn(
+                    out,
+                    "negative-dynamics",
+                    f"{field_name.replace('_', ' ')} is negative ({value:g}): simulators gain energy from it and "
+                    "become unstable",
+                    label,
+                    dynamics.src or joint.src,
+                )
     if limit is not None:
         for field_name in ("effort", "velocity"):
             value = getattr(limit, field_name)

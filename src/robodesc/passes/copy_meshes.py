@@ -27,6 +27,7 @@ import stat
 import tempfile
 from typing import Any
 
+from robodesc._files import escapes
 from robodesc.ir.diagnostics import ConfigError
 from robodesc.ir.geometry import Material, Mesh
 from robodesc.ir.model import Robot
@@ -146,9 +147,8 @@ def check_inside(out_dir: str, target: str) -> None:
     elsewhere) would carry the write outside it. Outputs are written only inside the output path."""
     if not os.path.lexists(target):
         return
-    real_out = os.path.realpath(out_dir)
-    real = os.path.realpath(target)
-    if os.path.islink(target) or not (real == real_out or real.startswith(real_out.rstrip(os.sep) + os.sep)):
+    real = escapes(out_dir, target)
+    if real is not None:
         raise ConfigError(
             f"--copy-meshes: {target!r} is a symlink to {real!r}, outside the output folder; robodesc writes "
             "only inside the output path, never through a link that leaves it. Remove the link or choose "

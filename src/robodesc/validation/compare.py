@@ -408,9 +408,13 @@ def rotation_angle(r: Mat) -> float:
     return math.atan2(s, c)
 
 
-def pose_error(got: Mat, want: Mat) -> tuple[float, float]:
-    """Position (m) and rotation (rad) distance between two 4x4 poses."""
-    return float(np.linalg.norm(got[:3, 3] - want[:3, 3])), rotation_angle(want[:3, :3].T @ got[:3, :3])
+def pose_error(got: Mat, want: Mat, rel_tol: float = 0.0) -> tuple[float, float]:
+    """Position (m) and rotation (rad) distance between two 4x4 poses; the position distance beyond
+    ``rel_tol`` times ``want``'s distance from the origin (the rounding of the magnitudes compared)."""
+    ep = float(np.linalg.norm(got[:3, 3] - want[:3, 3]))
+    if rel_tol:
+        ep = max(0.0, ep - rel_tol * float(np.linalg.norm(want[:3, 3])))
+    return ep, rotation_angle(want[:3, :3].T @ got[:3, :3])
 
 
 def keep_worst(
@@ -423,7 +427,7 @@ def keep_worst(
 ) -> None:
     """Record ``link``'s pose error at ``q`` when it is its largest so far, measured against the
     position and rotation tolerances (what :func:`report_fk` reports)."""
-    ep, er = pose_error(got, want)
+    ep, er = pose_error(got, want, options.position_rel_tol)
     prev = worst.get(link)
     if prev is None or max(ep / options.position_tol, er / options.rotation_tol) > max(
         prev[0] / options.position_tol, prev[1] / options.rotation_tol

@@ -22,7 +22,7 @@ from robodesc.validation.compare import (
     expected_inertial,
     joint_label,
     link_label,
-    rotation_angle,
+    pose_error,
     sample_configurations,
 )
 from robodesc.validation.options import ValidateOptions
@@ -304,9 +304,7 @@ def _compare_fk(
             if name not in expected:
                 continue
             got = inv_root @ plant.EvalBodyPoseInWorld(context, body).GetAsMatrix4()
-            want = expected[name]
-            ep = float(np.linalg.norm(got[:3, 3] - want[:3, 3]))
-            er = rotation_angle(want[:3, :3].T @ got[:3, :3])
+            ep, er = pose_error(got, expected[name], options.position_rel_tol)
             prev = worst.get(name, (0.0, 0.0))
             worst[name] = (max(prev[0], ep), max(prev[1], er))
     max_p = max((w[0] for w in worst.values()), default=0.0)

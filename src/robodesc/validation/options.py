@@ -24,6 +24,10 @@ class ValidateOptions:
     mass_rel_tol: float = 1e-6
     inertia_rel_tol: float = 1e-6  # relative to the largest principal moment of the link
     position_tol: float = 1e-6  # m: centre of mass and FK positions
+    # FK positions may also differ by this much relative to the link's distance from the root: the
+    # rounding of the numbers compared (a prismatic joint at q = 6.2e29 m puts a link where doubles
+    # are 1e14 m apart). Float32 consumers (USD) use FLOAT32_REL_TOL.
+    position_rel_tol: float = 1e-12
     rotation_tol: float = 1e-6  # rad: FK orientations
     axis_tol: float = 1e-9  # unit-vector difference
     limit_tol: float = 1e-9  # rad or m

@@ -74,12 +74,13 @@ def simulate(robot: Robot, spec: Any, options: ValidateOptions, report: Validati
         name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, k)
         if name in q0 and int(model.jnt_type[k]) in (HINGE, SLIDE):
             data.qpos[model.jnt_qposadr[k]] = q0[name]
-    mujoco.mj_forward(model, data)
-    _penetration(model, data, options, report)
-    model.opt.disableflags |= contact_off
-    mujoco.mj_forward(model, data)
-
+    # Captured from the first step on: MuJoCo would append its warnings (a singular inertia matrix
+    # is found by mj_forward already) to MUJOCO_LOG.TXT in the user's working folder.
     with captured_warnings(sink):
+        mujoco.mj_forward(model, data)
+        _penetration(model, data, options, report)
+        model.opt.disableflags |= contact_off
+        mujoco.mj_forward(model, data)
         _run(robot, model, data, options, report)
 
 

@@ -559,7 +559,9 @@ def _compare_fk(robot: Robot, parsed: Parsed, options: ValidateOptions, report: 
         return
     root = roots[0].name
     opts = ValidateOptions(
-        position_tol=max(options.position_tol, FLOAT32_FK_TOL), rotation_tol=max(options.rotation_tol, FLOAT32_FK_TOL)
+        position_tol=max(options.position_tol, FLOAT32_FK_TOL),
+        rotation_tol=max(options.rotation_tol, FLOAT32_FK_TOL),
+        position_rel_tol=max(options.position_rel_tol, FLOAT32_REL_TOL),
     )
     worst: dict[str, tuple[float, float, dict[str, float]]] = {}
     unreached: set[str] = set()

@@ -146,7 +146,7 @@ def render_png(
     width, height = size
     if width < 16 or height < 16 or width > 8192 or height > 8192:
         raise RobodescError(f"--size {width}x{height}: each side between 16 and 8192 pixels")
-    check_output(out, folder=False, source=None if isinstance(source, Loaded) else source)
+    check_output(out, folder=False, source=None if isinstance(source, Loaded) else source, example="robot.png")
     loaded = source if isinstance(source, Loaded) else load_for_view(source, options, target)
     tile = (width // 2, height // 2) if grid_views else (width, height)
     views = list(GRID_VIEWS) if grid_views else [view]

@@ -36,13 +36,15 @@ class MeshTable:
     """Mesh files the scene refers to, each (path, scale) once, in first-use order."""
 
     keys: list[tuple[str, tuple[float, float, float] | None]] = field(default_factory=list)
+    uris: list[str] = field(default_factory=list)  # each key's file as the source names it
     _index: dict[tuple[str, tuple[float, float, float] | None], int] = field(default_factory=dict)
 
-    def add(self, path: str, scale: tuple[float, float, float] | None) -> int:
+    def add(self, path: str, scale: tuple[float, float, float] | None, uri: str = "") -> int:
         key = (path, scale)
         if key not in self._index:
             self._index[key] = len(self.keys)
             self.keys.append(key)
+            self.uris.append(uri or path)
         return self._index[key]
 
 
@@ -74,7 +76,7 @@ def shape(geometry: Geometry, meshes: MeshTable) -> Json:
     assert isinstance(geometry, Mesh)
     if geometry.path is None:
         return {"kind": "missing", "uri": geometry.uri}
-    return {"kind": "mesh", "mesh": meshes.add(geometry.path, geometry.scale), "uri": geometry.uri}
+    return {"kind": "mesh", "mesh": meshes.add(geometry.path, geometry.scale, geometry.uri), "uri": geometry.uri}
 
 
 def inertia_box(inertial: Inertial | None) -> Json | None:

@@ -66,6 +66,7 @@ class JointGains:
     gravity_torque: float = 0.0  # g·Σm·d, N·m: the most gravity can load the joint with (revolute)
     weak: bool = False  # gravity_torque exceeds the effort limit: the joint cannot hold its links out
     dead: bool = False  # the actuator cannot move the joint against gravity over its range (or kp is 0)
+    floor: bool = False  # the gravity floor set the stiffness (above the inertia's, capped or not)
 
 
 def derived_gains(
@@ -107,14 +108,17 @@ def derived_gains(
         effort = joint.limit.effort if joint.limit is not None and joint.limit.effort else None
         weak = effort is not None and effort > 0 and torque > effort
         if stiffness is not None and joint.name in stiffness:
-            kp, capped = stiffness[joint.name], False
+            kp, capped, floored = stiffness[joint.name], False, False
         else:
             kp = inertia * omega * omega
             capped = effort is not None and effort > 0 and kp > effort / E_SAT
             if capped:
                 kp = float(effort) / E_SAT  # type: ignore[arg-type]
             # The gravity floor, bounded by what the motor can give at the hold error.
-            kp = max(kp, (min(torque, effort) if weak and effort else torque) / HOLD_ERROR)
+            floor_kp = (min(torque, effort) if weak and effort else torque) / HOLD_ERROR
+            floored = floor_kp > kp
+            if floored:
+                kp, capped = floor_kp, False  # the floor, not the effort cap, set it
             # The floor against a dead actuator, bounded by what the loop's inertia takes stably.
             if effort:
                 fastest = inertia * (2.0 * math.pi * F_MAX) ** 2
@@ -122,7 +126,8 @@ def derived_gains(
         kd = 2.0 * DAMPING_RATIO * math.sqrt(max(kp, 0.0) * inertia)
         if stiffness is None or joint.name not in stiffness:
             kd = max(kd, _speed_damping(joint, kp))
-        out[joint.name] = JointGains(kp, kd, inertia, capped, torque, weak, not weak and _dead(joint, kp, torque))
+        dead = not weak and _dead(joint, kp, torque)
+        out[joint.name] = JointGains(kp, kd, inertia, capped, torque, weak, dead, floored)
     return out
 
 
@@ -175,8 +180,7 @@ def fill_default_gains(
     if "damping" not in given:
         settings.damping = {**{re.escape(n): sig4(g.damping) for n, g in gains.items()}, ".*": 1.0}
     rows = ", ".join(
-        f"{n} {sig4(g.stiffness):g}/{sig4(g.damping):g} (I {g.inertia:.3g}{', effort-capped' if g.capped else ''})"
-        for n, g in gains.items()
+        f"{n} {sig4(g.stiffness):g}/{sig4(g.damping):g} (I {g.inertia:.3g}{_why(g)})" for n, g in gains.items()
     )
     findings.info(
         "default-gains",
@@ -334,3 +338,10 @@ def _distance_sq(point: tuple[float, float, float], origin: tuple[float, float, 
 
 def _add(a: tuple[float, float, float], b: tuple[float, float, float]) -> tuple[float, float, float]:
     return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+def _why(g: JointGains) -> str:
+    """What set a derived stiffness beyond the inertia's: the effort cap or the gravity floor."""
+    if g.floor:
+        return ", gravity floor"
+    return ", effort-capped" if g.capped else ""

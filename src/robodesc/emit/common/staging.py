@@ -19,10 +19,17 @@ class OutputPathError(ConfigError):
 
 
 def check_output(
-    out: str, *, folder: bool, source: Any = None, what: str = "-o", suffixes: tuple[str, ...] = ()
+    out: str,
+    *,
+    folder: bool,
+    source: Any = None,
+    what: str = "-o",
+    suffixes: tuple[str, ...] = (),
+    example: str = "robot.urdf",
 ) -> None:
     """Refuse an output path that cannot work, each problem with its own message. ``suffixes``: the
-    file suffixes the target writes (a folder target named like a file is refused too)."""
+    file suffixes the target writes (a folder target named like a file is refused too); ``example``:
+    the file name the messages suggest (``robot.xml`` for MJCF, ``robot.html`` for ``view``)."""
     if not out:
         raise OutputPathError(f"{what}: empty path")
     lower = out.lower()
@@ -35,7 +42,7 @@ def check_output(
     path = os.path.abspath(out)
     if not folder and out.endswith(("/", os.sep)):
         raise OutputPathError(
-            f"{what} {out}: ends with '/', so it names a folder; this output is one file (e.g. {out.rstrip('/' + os.sep) or '.'}/robot.urdf)"
+            f"{what} {out}: ends with '/', so it names a folder; this output is one file (e.g. {out.rstrip('/' + os.sep) or '.'}/{example})"
         )
     if isinstance(source, str | os.PathLike) and not os.fspath(source).lstrip().startswith("<"):
         src = os.path.abspath(os.fspath(source))
@@ -57,7 +64,7 @@ def check_output(
     if st is not None:
         if stat.S_ISDIR(st.st_mode) and not folder:
             raise OutputPathError(
-                f"{what} {out}: is an existing folder; give a file name inside it (e.g. {os.path.join(out, 'robot.urdf')})"
+                f"{what} {out}: is an existing folder; give a file name inside it (e.g. {os.path.join(out, example)})"
             )
         if not stat.S_ISDIR(st.st_mode) and folder:
             raise OutputPathError(f"{what} {out}: is an existing file; this target writes a folder")
@@ -110,18 +117,27 @@ class Staging:
         self.path: str | None = None
         self._owned: list[tuple[str, str | None]] = []
         self._aside: list[str] = []
+        self._tracked: list[tuple[str, set[str] | None]] = []
+        self._made: str | None = None  # the topmost folder this run created for the output
         if out is None:
             return
         parent = os.path.dirname(os.path.abspath(out))
+        missing = parent
+        while not os.path.lexists(os.path.dirname(missing)) and os.path.dirname(missing) != missing:
+            missing = os.path.dirname(missing)
+        self._made = missing if not os.path.lexists(parent) else None
         os.makedirs(parent, exist_ok=True)
         base = os.path.basename(os.path.abspath(out))
-        if folder:
-            self.path = tempfile.mkdtemp(prefix=f".robodesc-{base}-", dir=parent)
-            os.rmdir(self.path)  # the target creates it (as a folder it stages and moves itself)
-        else:
-            fd, self.path = tempfile.mkstemp(prefix=".robodesc-", suffix=f"-{base}", dir=parent)
-            os.close(fd)
-            os.unlink(self.path)
+        try:
+            if folder:
+                self.path = tempfile.mkdtemp(prefix=f".robodesc-{base}-", dir=parent)
+                os.rmdir(self.path)  # the target creates it (as a folder it stages and moves itself)
+            else:
+                fd, self.path = tempfile.mkstemp(prefix=".robodesc-", suffix=f"-{base}", dir=parent)
+                os.close(fd)
+                os.unlink(self.path)
+        except OSError as exc:  # /proc, a read-only mount: the user's path, not the staging file's
+            raise OutputPathError(f"-o {out}: cannot be written ({exc.strerror})") from None
 
     def protect(self, names: tuple[str, ...]) -> None:
         """Files or folders beside a file output that the output owns (``Target.owned``): the
@@ -137,6 +153,17 @@ class Staging:
                 os.rmdir(backup)
                 os.replace(owned, backup)
             self._owned.append((owned, backup))
+
+    def track(self, name: str) -> None:
+        """A folder beside a file output that the run adds files to without owning it (``meshes/``:
+        MJCF's converted meshes and --copy-meshes' copies, named so that outputs in one folder can
+        share it): what is in it now is recorded, and :meth:`discard` removes what the run added."""
+        if self.final is None or self.folder:
+            return
+        where = os.path.join(os.path.dirname(os.path.abspath(self.final)), name)
+        if os.path.islink(where):
+            return  # nothing is written through it (the writers refuse); nothing to take back
+        self._tracked.append((where, _files_under(where) if os.path.isdir(where) else None))
 
     def set_aside(self, name: str) -> str | None:
         """Keep a copy (hard links) of ``name`` of the staged folder while a target rewrites the
@@ -182,6 +209,8 @@ class Staging:
             if backup is not None:
                 _remove(backup)
         self._owned = []
+        self._tracked = []
+        self._made = None
         self.path = None
 
     def discard(self) -> None:
@@ -200,6 +229,38 @@ class Staging:
             if backup is not None:
                 os.replace(backup, owned)
         self._owned = []
+        for where, before in self._tracked:
+            if before is None:  # the run made the folder: all of it is the run's
+                if os.path.isdir(where) and not os.path.islink(where):
+                    shutil.rmtree(where, ignore_errors=True)
+            else:
+                for path in sorted(_files_under(where) - before, reverse=True):  # children first
+                    if os.path.isdir(path) and not os.path.islink(path):
+                        _rmdir_empty(path)
+                    else:
+                        os.unlink(path)
+        self._tracked = []
+        if self._made is not None:  # the folders made for the output, when the run left them empty
+            parent = os.path.dirname(os.path.abspath(self.final or ""))
+            while _rmdir_empty(parent) and parent != self._made:
+                parent = os.path.dirname(parent)
+            self._made = None
+
+
+def _files_under(folder: str) -> set[str]:
+    """Every file, link and folder below ``folder`` (links not followed)."""
+    found: set[str] = set()
+    for root, dirs, files in os.walk(folder):
+        found.update(os.path.join(root, name) for name in (*dirs, *files))
+    return found
+
+
+def _rmdir_empty(path: str) -> bool:
+    try:
+        os.rmdir(path)
+    except OSError:
+        return False
+    return True
 
 
 def _link_or_copy(src: str, dst: str) -> None:

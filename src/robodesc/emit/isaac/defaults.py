@@ -10,13 +10,14 @@ importer settings and the Isaac Lab module all carry the same numbers.
 
 from __future__ import annotations
 
-from collections.abc import Collection
+import dataclasses
+from collections.abc import Collection, Mapping
 
 from robodesc.emit.common.default_pose import default_pose, given_positions, pose_table, spawn_height
 from robodesc.emit.common.gains import fill_default_gains
 from robodesc.emit.common.source_drives import apply_source_gains
 from robodesc.emit.isaac.settings import IsaacSettings
-from robodesc.ir.diagnostics import Findings
+from robodesc.ir.diagnostics import Findings, Severity
 from robodesc.ir.model import Robot
 
 STAGE = "emit:isaac_defaults"
@@ -63,4 +64,22 @@ def apply_defaults(
         fill_default_gains(robot, settings, given, stance, floating, findings, STAGE)
     if settings.target_type != "none":
         apply_source_gains(robot, settings, given)  # the source's own servos (an MJCF's) over derived gains
+    spawned_inside(robot, stance.positions, findings)
     return stance.positions
+
+
+def spawned_inside(robot: Robot, positions: Mapping[str, float], findings: Findings) -> None:
+    """``zero-outside-limits`` asks for a spawn pose inside the limits. The folder has one (the USD's
+    joint state, the Isaac Lab module's ``init_state``): for each joint it starts inside them, the
+    warning becomes a note saying where it starts."""
+    joints = {f"joint {j.name!r}": j for j in robot.joints}
+    for i, f in enumerate(findings.items):
+        joint = joints.get(f.element)
+        if f.code != "zero-outside-limits" or f.severity is not Severity.WARNING or joint is None:
+            continue
+        q, lim = positions.get(joint.name), joint.limit
+        if q is None or lim is None or lim.lower is None or lim.upper is None or not lim.lower <= q <= lim.upper:
+            continue
+        said = f.message.split(": spawn with")[0]
+        message = f"{said}; the Isaac folder spawns it at {q:g}, inside them"
+        findings.items[i] = dataclasses.replace(f, severity=Severity.INFO, message=message)

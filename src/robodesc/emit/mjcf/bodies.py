@@ -283,6 +283,10 @@ class BodyWriter:
         elif isinstance(geometry, Cylinder):
             el.set("type", "cylinder")
             el.set("size", f"{num(geometry.radius)} {num(geometry.length / 2)}")
+        elif isinstance(geometry, Capsule) and geometry.length == 0:
+            # The same shape exactly; MuJoCo refuses a capsule whose half length is 0.
+            el.set("type", "sphere")
+            el.set("size", num(geometry.radius))
         elif isinstance(geometry, Capsule):
             el.set("type", "capsule")
             el.set("size", f"{num(geometry.radius)} {num(geometry.length / 2)}")

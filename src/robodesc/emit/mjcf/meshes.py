@@ -13,17 +13,20 @@ absolute``, is referenced where it is.
 from __future__ import annotations
 
 import hashlib
+import math
 import os
 import xml.etree.ElementTree as ET
 
-from robodesc._files import write_atomic
+from robodesc._files import escapes, write_atomic
 from robodesc.emit.common.numbers import fmt_vec
 from robodesc.emit.common.paths import PathMode, file_reference
 from robodesc.emit.mjcf.context import MjcfContext
 from robodesc.emit.mjcf.objsplit import split_by_material
+from robodesc.ir.diagnostics import ConfigError
 from robodesc.ir.geometry import RGBA, Mesh, Vec3
 from robodesc.meshes.buffers import MeshData, MeshReadError, flat_box, obj_bytes
 from robodesc.meshes.data import build_mesh
+from robodesc.meshes.roots import allowed_roots, outside_roots
 
 READABLE = (".stl", ".obj")
 MESH_DIR = "meshes"
@@ -43,6 +46,13 @@ class MeshAssets:
         self._parts: dict[tuple[str, tuple[float, float, float] | None], list[tuple[str, RGBA | None]] | None] = {}
         self._roots: list[str] | None = None
 
+    @property
+    def roots(self) -> list[str]:
+        """Where mesh files may be read from into the output (meshes/roots.py)."""
+        if self._roots is None:
+            self._roots = allowed_roots(self.ctx.robot)
+        return self._roots
+
     def asset(self, mesh: Mesh, element: str, collider: bool) -> str | None:
         """The asset name for ``mesh``; None (with a warning) when MuJoCo could not load it."""
         ctx = self.ctx
@@ -59,6 +69,22 @@ class MeshAssets:
         key = (mesh.path, mesh.scale, capped)
         if key in self._by_key:
             return self._by_key[key]
+        outside = outside_roots(mesh.path, self.roots)
+        if outside is not None and not _referenced_as_is(mesh.path):
+            # The rule of --copy-meshes and USD: converting is copying the file's content.
+            ctx.warn(
+                "mjcf-mesh-not-read",
+                f"mesh {outside}; it is not converted to OBJ and this shape is left out "
+                "(--copy-meshes refuses the same file)",
+                element,
+                mesh.src,
+            )
+            return None
+        data = _loadable(mesh)
+        if isinstance(data, str):
+            # The source's mesh, not robodesc's output: MuJoCo would refuse the whole model for it.
+            ctx.warn("mjcf-bad-mesh", f"mesh {mesh.uri!r} cannot be loaded ({data}): left out", element, mesh.src)
+            return None
         ext = os.path.splitext(mesh.path)[1].lower()
         el = ET.Element("mesh")
         if ext == ".stl" and not 0 < _stl_faces(mesh.path) <= STL_FACE_LIMIT:
@@ -77,11 +103,6 @@ class MeshAssets:
             file = self._copy(mesh, element)
             scale = mesh.scale
         else:
-            try:
-                data = build_mesh(mesh.path, mesh.scale)
-            except MeshReadError as exc:
-                ctx.warn("mjcf-bad-mesh", f"mesh {mesh.uri!r} cannot be read ({exc}): left out", element, mesh.src)
-                return None
             file = self._convert(mesh.path, data)
             scale = None  # applied while converting
             ctx.info("mjcf-mesh-converted", f"{mesh.uri} converted to {file} (MuJoCo reads STL and OBJ)", element)
@@ -119,10 +140,9 @@ class MeshAssets:
         """(half sizes, centre) of a box standing in for a flat mesh; None for a solid one."""
         if mesh.path is None or not os.path.isfile(mesh.path):
             return None
-        try:
-            data = build_mesh(mesh.path, mesh.scale)
-        except MeshReadError:
-            return None
+        data = _loadable(mesh, min_vertices=3)
+        if isinstance(data, str):
+            return None  # asset() leaves it out and says why
         box = flat_box(data, 2 * FLAT_HALF)
         if box is None:
             return None
@@ -141,6 +161,8 @@ class MeshAssets:
         None when the file is not such an OBJ."""
         if mesh.path is None or not mesh.path.lower().endswith(".obj") or not os.path.isfile(mesh.path):
             return None
+        if outside_roots(mesh.path, self.roots) is not None:
+            return None  # its parts would copy its content: referenced whole, where it is
         key = (mesh.path, mesh.scale)
         if key in self._parts:
             return self._parts[key]
@@ -167,15 +189,13 @@ class MeshAssets:
         """``meshes/<stem>_<hash><ext>``, a copy of the file under the output folder; the file's own
         reference where the user asked for absolute paths, the file is already in the output folder
         (--copy-meshes put it there) or it lies outside where the robot lives."""
-        from robodesc.meshes.roots import allowed_roots, outside_roots
+        from robodesc.meshes.roots import outside_roots
 
         assert mesh.path is not None
         ctx = self.ctx
         if ctx.mesh_paths is PathMode.ABSOLUTE or _inside(mesh.path, ctx.out_dir):
             return _reference(ctx, mesh)
-        if self._roots is None:
-            self._roots = allowed_roots(ctx.robot)
-        why = outside_roots(mesh.path, self._roots)
+        why = outside_roots(mesh.path, self.roots)
         if why is not None:
             ctx.warn("mjcf-mesh-not-copied", f"{why}: referenced where it is, not copied", element, mesh.src)
             return _reference(ctx, mesh)
@@ -200,11 +220,42 @@ class MeshAssets:
         digest = hashlib.sha256(text).hexdigest()[:12]
         rel = f"{MESH_DIR}/{stem}_{digest}{ext}"
         target = os.path.join(self.ctx.out_dir, MESH_DIR, f"{stem}_{digest}{ext}")
+        real = escapes(self.ctx.out_dir, target)
+        if real is not None:  # as --copy-meshes refuses (passes/copy_meshes.check_inside)
+            raise ConfigError(
+                f"{os.path.join(self.ctx.out_dir, MESH_DIR)!r} leads to {real!r}, outside the output folder: "
+                "robodesc writes the converted meshes only inside the output path, never through a link that "
+                "leaves it. Remove the link or choose another output"
+            )
         if not os.path.isfile(target):
             os.makedirs(os.path.dirname(target), exist_ok=True)
             write_atomic(target, text)
         self.ctx.written[f"mesh:{rel}"] = target
         return rel
+
+
+def _loadable(mesh: Mesh, min_vertices: int = 4) -> MeshData | str:
+    """The mesh (scaled), or why MuJoCo would refuse its file: unreadable, a coordinate NaN or
+    infinite, fewer than ``min_vertices`` vertices (MuJoCo's minimum, 4; a flat stand-in box needs 3)."""
+    assert mesh.path is not None
+    try:
+        data = build_mesh(mesh.path, mesh.scale)
+    except MeshReadError as exc:
+        return str(exc)
+    if not all(math.isfinite(v) for corner in data.extent for v in corner):
+        return "a vertex coordinate is NaN or infinite"
+    if len(data.points) < 3 * min_vertices:
+        return f"{len(data.points) // 3} vertices; MuJoCo needs at least 4"
+    return data
+
+
+def _referenced_as_is(path: str) -> bool:
+    """Whether MuJoCo reads the file where it is (a binary STL within its face limit, an OBJ whose
+    faces MuJoCo reads); any other is converted, its content written into the output."""
+    ext = os.path.splitext(path)[1].lower()
+    if ext == ".stl":
+        return 0 < _stl_faces(path) <= STL_FACE_LIMIT
+    return ext == ".obj" and not obj_layout_mixed(path)
 
 
 def _stl_faces(path: str) -> int:

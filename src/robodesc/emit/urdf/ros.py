@@ -77,9 +77,8 @@ def warn_round_trip(robot: Robot, findings: Findings) -> None:
     if what:
         findings.warn(
             "urdf-not-ros",
-            f"the URDF keeps the source's {' and '.join(what)}, which pybullet, MuJoCo and Isaac Sim read but "
-            "urdfdom (ROS: robot_state_publisher, MoveIt, check_urdf) refuses; --ros2 writes a URDF that ROS loads "
-            "(capsules as a cylinder and two spheres, a spherical joint as three revolute joints)",
+            f"kept the source's {' and '.join(what)}: pybullet, MuJoCo and Isaac Sim read them, ROS's urdfdom "
+            "refuses them (--ros2 writes a URDF that ROS loads)",
             element=f"robot {robot.name!r}",
             stage=STAGE,
         )

@@ -105,18 +105,30 @@ def check_identifier(name: str, element: str, loc: SourceLoc | None) -> str:
     return name
 
 
+class UsedNames(set[str]):
+    """Prim names taken under one parent, and per fallback stem the smallest index that may still be
+    free: names are only ever added, so it never goes down, and the n-th unnamed visual costs one
+    look-up instead of n (5,000 unnamed visuals of one link took 3.3 s of 7 in naming alone)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.next_index: dict[str, int] = {}
+
+
 def unique_name(base: str, used: set[str], fallback: str) -> str:
     """A valid identifier for an optional IR name (visual, collision, material): ``base`` when it is
-    one and still free, else ``fallback`` with a counter."""
+    one and still free, else ``fallback`` with the smallest free counter."""
     if base and is_identifier(base) and base not in used:
         used.add(base)
         return base
     stem = fallback
-    index = 0
+    index = used.next_index.get(stem, 0) if isinstance(used, UsedNames) else 0
     while f"{stem}_{index}" in used:
         index += 1
     name = f"{stem}_{index}"
     used.add(name)
+    if isinstance(used, UsedNames):
+        used.next_index[stem] = index + 1
     return name
 
 

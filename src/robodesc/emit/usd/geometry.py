@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 
 from robodesc.emit.common.approximation import TRIANGLE_MODES, mode_for, static_links
 from robodesc.emit.usd.contact import PhysicsMaterials
-from robodesc.emit.usd.context import GEOMETRY, MATERIALS, PHYSICS, UsdContext, set_pose, unique_name
+from robodesc.emit.usd.context import GEOMETRY, MATERIALS, PHYSICS, UsdContext, UsedNames, set_pose, unique_name
 from robodesc.emit.usd.materials import MaterialLibrary
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Geometry, Mesh, Sphere
 from robodesc.ir.model import Collision, Link, Visual
@@ -30,7 +30,7 @@ def emit_link_geometry(ctx: UsdContext, link: Link, looks: MaterialLibrary, cont
     link_path = ctx.link_paths[link.name]
     label = f"link {link.name!r}"
     if link.visuals:
-        used: set[str] = set()
+        used: set[str] = UsedNames()
         scope = f"{link_path}/visuals"
         ctx.define(GEOMETRY, scope, "Xform")
         for index, visual in enumerate(link.visuals):
@@ -42,7 +42,7 @@ def emit_link_geometry(ctx: UsdContext, link: Link, looks: MaterialLibrary, cont
                     prim.apply("MaterialBindingAPI")
                     prim.rel("material:binding", [look])
     if link.collisions:
-        used = set()
+        used = UsedNames()
         scope = f"{link_path}/collisions"
         ctx.define(GEOMETRY, scope, "Xform")
         for index, collision in enumerate(link.collisions):

@@ -19,7 +19,7 @@ import numpy as np
 from robodesc.ir.model import Robot
 from robodesc.validation.dynamics.result import Run, settle_time
 from robodesc.validation.dynamics.scenarios import Setup, slide_angles
-from robodesc.validation.mujoco_load import add_floating_base, load_urdf_in_mujoco
+from robodesc.validation.mujoco_load import add_floating_base, captured_warnings, load_urdf_in_mujoco
 from robodesc.validation.options import ValidateOptions
 from robodesc.validation.report import ValidationReport
 
@@ -114,16 +114,20 @@ def _simulate(model: Any, data: Any, setup: Setup, run: Run, addr: dict[str, int
     drives = _drive_joints(model)
     dofs = np.array(list(drives), dtype=int)
     peak = np.zeros(len(dofs))
-    for step in range(steps):
-        mujoco.mj_step(model, data)
-        if not np.all(np.isfinite(data.qpos)):
-            run.ok, run.error = False, f"state not finite after {(step + 1) * setup.timestep:.3g} s"
-            return False
-        np.maximum(peak, np.abs(data.qfrc_actuator[dofs]), out=peak)
-        if (step + 1) % every == 0:
-            run.trajectory.append(((step + 1) * setup.timestep, {n: float(data.qpos[a]) for n, a in addr.items()}))
-            if root is not None:
-                heights.append(((step + 1) * setup.timestep, float(data.xpos[root][2])))
+    # MuJoCo's warnings (a bad acceleration) are collected, not appended to MUJOCO_LOG.TXT in the
+    # user's working folder; the run's numbers say what went wrong.
+    with captured_warnings([]):
+        for step in range(steps):
+            mujoco.mj_step(model, data)
+            if not np.all(np.isfinite(data.qpos)):
+                run.ok, run.error = False, f"state not finite after {(step + 1) * setup.timestep:.3g} s"
+                return False
+            np.maximum(peak, np.abs(data.qfrc_actuator[dofs]), out=peak)
+            if (step + 1) % every == 0:
+                q = {n: float(data.qpos[a]) for n, a in addr.items()}
+                run.trajectory.append(((step + 1) * setup.timestep, q))
+                if root is not None:
+                    heights.append(((step + 1) * setup.timestep, float(data.xpos[root][2])))
     run.settle = settle_time(heights) if root is not None else None
     run.final_q = {n: float(data.qpos[a]) for n, a in addr.items()}
     worst = max(((abs(q - setup.pose[n]), n) for n, q in run.final_q.items()), default=(0.0, ""))
@@ -257,10 +261,11 @@ def _block_travel(mu: float, angle: float, setup: Setup) -> float:
     body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[_BOX, _BOX, _BOX_H], mass=1.0, friction=[mu, 0, 0], condim=3)
     model = s.compile()
     data = mujoco.MjData(model)
-    mujoco.mj_forward(model, data)
-    start = data.qpos[:3].copy()
-    for _ in range(max(1, round(setup.duration / setup.timestep))):
-        mujoco.mj_step(model, data)
+    with captured_warnings([]):  # see _simulate
+        mujoco.mj_forward(model, data)
+        start = data.qpos[:3].copy()
+        for _ in range(max(1, round(setup.duration / setup.timestep))):
+            mujoco.mj_step(model, data)
     return float(np.linalg.norm(data.qpos[:3] - start))
 
 

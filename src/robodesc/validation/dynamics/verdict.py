@@ -30,6 +30,13 @@ def judge(report: DynamicsReport, setup: Setup, th: Thresholds) -> None:
     # An engine that refuses the source too (a non-physical inertia Drake will not factor): the
     # output carries the source's defect, as the structural checks report it, a warning.
     refused = {r.engine for r in report.runs if r.file == SOURCE and not r.ok}
+    refused |= {c.element.split("/")[0] for c in report.checks if c.name == "load" and c.element.endswith("/" + SOURCE)}
+    for c in report.checks:
+        # An output the engine refuses as it refuses the source (an empty OBJ): the source's defect.
+        # The output is run before the source, so its row is judged here, with both known.
+        if c.name == "load" and c.status is Status.FAIL and c.element.split("/")[0] in refused:
+            c.status = Status.WARN
+            c.message += f" (the source fails in {c.element.split('/')[0]} too)"
     for r in report.runs:
         if not r.ok:
             # An engine reading what the source says its own way (READS_DIFFERENTLY) is not robodesc's fault.
