@@ -70,7 +70,7 @@ def _volume(prim: Any, to_body: Any) -> tuple[float, Any]:
             at += n
         body = points @ m[:3, :3].T + centre
         s = solid(body, np.array(tris, dtype=np.int64))
-        return abs(s.volume), np.asarray(s.center_mass, dtype=float)
+        return abs(s.volume), np.asarray(s.com, dtype=float)
     del Gf
     return 0.0, centre
 
