@@ -42,6 +42,14 @@ def _mass_ok(mass: float | None) -> bool:
     return mass is not None and math.isfinite(mass) and mass > 0
 
 
+def _carried(link: Link) -> bool:
+    """Massless as URDF means it (no mass, no tensor): a zero mass with a tensor is a defect to repair."""
+    from robodesc.passes.massless import massless_link
+
+    i = link.inertial.inertia if link.inertial is not None else None
+    return massless_link(link) and (i is None or not any((i.ixx, i.iyy, i.izz, i.ixy, i.ixz, i.iyz)))
+
+
 def _tensor_problem(inertial: Inertial) -> str | None:
     if inertial.inertia is None:
         return "no inertia tensor"
@@ -64,7 +72,7 @@ def repair_inertia(robot: Robot, ctx: PassContext) -> Robot:
         for name in group.frames
     }
     for link in robot.links:
-        if policy is RepairPolicy.GEOMETRY and massless_link(link) and link.name not in dead:
+        if policy is RepairPolicy.GEOMETRY and _carried(link) and link.name not in dead:
             continue
         if link.inertial is None:
             if ctx.options.repair_missing:
