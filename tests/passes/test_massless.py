@@ -27,9 +27,7 @@ def anymal_like() -> Robot:
         Link("base", collisions=[Collision(box)]),
         Link(
             "base_inertia",
-            inertial=Inertial(
-                mass=10.0, origin=Pose(xyz=(0.02, 0.0, 0.01)), inertia=Inertia(0.1, 0.3, 0.35, ixy=0.01)
-            ),
+            inertial=Inertial(mass=10.0, origin=Pose(xyz=(0.02, 0.0, 0.01)), inertia=Inertia(0.1, 0.3, 0.35, ixy=0.01)),
         ),
         Link("imu"),
         Link("camera_parent"),
