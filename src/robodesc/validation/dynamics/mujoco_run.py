@@ -154,6 +154,7 @@ def _hold(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
         s.option.integrator = _INTEGRATOR
     s.option.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
     model = s.compile()
+    run.mass = float(model.body_mass.sum())
     data = mujoco.MjData(model)
     addr = _start(model, data, setup)
     _simulate(model, data, setup, run, addr)
@@ -194,6 +195,7 @@ def _drop(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
     if kind != "mjcf":
         s.option.integrator = _INTEGRATOR
     model = s.compile()
+    run.mass = float(model.body_mass.sum())
     data = mujoco.MjData(model)
     addr = _start(model, data, setup)
     root = _free_root(model)

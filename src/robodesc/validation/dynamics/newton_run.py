@@ -70,7 +70,7 @@ def _warp_cache() -> str:
 
 def _run(kind: str, raw: dict[str, Any]) -> Run:
     run = Run(ENGINE, kind, str(raw["scenario"]), ok=bool(raw.get("ok")), error=str(raw.get("error", "")))
-    for key in ("drift", "height", "tilt", "mu", "stick", "slide"):
+    for key in ("drift", "height", "tilt", "mu", "stick", "slide", "mass"):
         value = raw.get(key)
         setattr(run, key, None if value is None else float(value))
     run.worst_joint = str(raw.get("worst_joint", ""))

@@ -109,7 +109,8 @@ def _run_robot(req, scenario):
     dt = setup["timestep"]
     steps = max(1, round(setup["duration"] / dt))
     every = max(1, round(_SAMPLE / dt))
-    run = {"scenario": scenario, "ok": True, "error": "", "mu": mu, "trajectory": []}
+    mass = float(np.sum(model.body_mass.numpy()))
+    run = {"scenario": scenario, "ok": True, "error": "", "mu": mu, "mass": mass, "trajectory": []}
     contacts = None
     for step in range(steps):
         state0.clear_forces()

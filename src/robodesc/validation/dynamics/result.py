@@ -47,6 +47,7 @@ class Run:
     mu: float | None = None  # friction the engine gave the robot's colliders
     stick: float | None = None  # slide: distance moved on the "sticks" plane, m
     slide: float | None = None  # slide: distance moved on the "slides" plane, m
+    mass: float | None = None  # the robot's total mass as the engine read it, kg (the floor excluded)
     seconds: float = 0.0
     final_q: dict[str, float] = field(default_factory=dict)
     # (time, {joint: q}) samples, for comparing an output with its source in one engine.
@@ -55,7 +56,9 @@ class Run:
     def as_dict(self) -> dict[str, Any]:
         keys = ("engine", "file", "scenario", "ok", "error", "drift", "worst_joint", "height", "tilt", "mu")
         out: dict[str, Any] = {k: getattr(self, k) for k in keys}
-        out.update(stick=self.stick, slide=self.slide, settle=self.settle, seconds=round(self.seconds, 3))
+        out.update(
+            stick=self.stick, slide=self.slide, settle=self.settle, mass=self.mass, seconds=round(self.seconds, 3)
+        )
         return out
 
 

@@ -48,6 +48,8 @@ class Thresholds:
     friction_rel: float = 1e-3
     # output against its source in the same engine (joint trajectories during hold; rad or m).
     source_traj: float = 1e-3
+    # the total mass an engine reads against the source's (relative; a 1 g placeholder is far below).
+    mass_rel: float = 0.01
 
 
 @dataclass(slots=True)
@@ -85,6 +87,8 @@ class Setup:
     # Mimic joints: follower -> leader. An output that cannot carry a mimic (SDF before 1.11) has
     # already warned at compile time; a trajectory that differs there is that warning, not a new fault.
     mimics: dict[str, str] = field(default_factory=dict)
+    # kg: the sum of the source's <inertial> masses (None: not known).
+    mass: float | None = None
     duration: float = 1.0
     timestep: float = 0.001
     drop_clearance: float = 0.05
@@ -96,6 +100,7 @@ class Setup:
             "stand_height": self.stand_height,
             "friction": self.friction,
             "feet": list(self.feet),
+            "mass": self.mass,
             "duration": self.duration,
             "timestep": self.timestep,
             "drop_clearance": self.drop_clearance,
@@ -243,6 +248,7 @@ def make_setup(robot: Robot, options: DynamicsOptions) -> Setup:
         friction=source_friction(robot, standing_on),
         feet=standing_on,
         mimics={j.name: j.mimic.joint for j in robot.joints if j.mimic is not None},
+        mass=sum(link.inertial.mass or 0.0 for link in robot.links if link.inertial is not None),
         duration=options.duration,
         timestep=options.timestep,
         drop_clearance=options.drop_clearance,
