@@ -21,7 +21,6 @@ import json
 import math
 import os
 import subprocess
-import sys
 import tempfile
 from typing import Any
 
@@ -64,7 +63,8 @@ def _volume(prim: Any, to_body: Any) -> tuple[float, Any]:
         points = np.array(mesh.GetPointsAttr().Get(), dtype=float)
         counts = list(mesh.GetFaceVertexCountsAttr().Get())
         indices = list(mesh.GetFaceVertexIndicesAttr().Get())
-        tris, at = [], 0
+        tris: list[tuple[int, int, int]] = []
+        at = 0
         for n in counts:
             tris.extend((indices[at], indices[at + k], indices[at + k + 1]) for k in range(1, n - 1))
             at += n
@@ -126,8 +126,8 @@ def _consumer(python: str | None, script: str, paths: list[str]) -> dict[str, An
 
 def _total(masses: Any) -> float | str:
     if isinstance(masses, str):
-        return masses
-    return sum(v for k, v in masses.items() if not k.startswith("#") and v > 0)
+        return str(masses)
+    return float(sum(v for k, v in masses.items() if not k.startswith("#") and v > 0))
 
 
 def main() -> None:
@@ -221,4 +221,4 @@ def table(rows: dict[str, dict[str, Any]]) -> str:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main()
