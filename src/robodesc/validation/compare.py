@@ -117,12 +117,14 @@ def compare_inertials(
     mass = Tally(report, "mass", options.mass_rel_tol, "relative")
     com = Tally(report, "com", options.position_tol, "m")
     inertia = Tally(report, "inertia", options.inertia_rel_tol, "relative")
+    tokens = 0.0  # what MuJoCo holds on patched links: a token of the loader's, not the robot's mass
     for link in robot.links:
         b = ids.body(link.name)
         label = link_label(link.name)
         if b < 0:
             continue
         if link.name in patched:
+            tokens += float(model.body_mass[b]) if b > 0 else 0.0
             for t in (mass, com, inertia):
                 t.skip(label, f"patched to load: {patched[link.name]}")
             continue
@@ -154,6 +156,17 @@ def compare_inertials(
     mass.finish("links", "mass")
     com.finish("links", "com")
     inertia.finish("links", "inertia")
+    # The robot's total as MuJoCo sums it (every body but the world), a row of its own: a mass on a
+    # body that is no link, or a link lost, shows here as a total the source does not have.
+    want = sum(expected_inertial(link)[0] for link in robot.links if link.name not in patched)
+    got = float(np.sum(model.body_mass[1:])) - tokens
+    total = Tally(report, "total mass", options.mass_rel_tol, "relative")
+    total.measure(
+        f"robot {robot.name!r}",
+        abs(got - want) / max(abs(want), 1e-12) if (got or want) else 0.0,
+        f"MuJoCo total {got:.9g} kg (loader tokens on patched links left out), source {want:.9g} kg",
+    )
+    total.finish("robot", "mass")
 
 
 def expected_inertial(link: Link) -> tuple[float, Mat, Mat | None]:
