@@ -3,6 +3,9 @@
 the file named by the first argument: ``{path: {body: kg}}`` or ``{path: "error: ..."}``. Used by
 ``usd_masses.py``."""
 
+# mypy: ignore-errors
+# (runs in its consumer's own interpreter, whose packages the project env does not have)
+
 from __future__ import annotations
 
 import json

@@ -3,6 +3,9 @@ body of each USD file named on standard input (one per line), as JSON into the f
 the first argument (PhysX prints to standard output):
 ``{path: {prim: kg}}`` or ``{path: "error: ..."}``. Used by ``usd_masses.py``."""
 
+# mypy: ignore-errors
+# (runs in its consumer's own interpreter, whose packages the project env does not have)
+
 from __future__ import annotations
 
 import json

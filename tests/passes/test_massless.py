@@ -82,7 +82,8 @@ def test_placeholders_keep_every_rigid_groups_mass_centre_and_inertia() -> None:
     # base, imu, camera_parent and camera_optical borrow from base_inertia; thigh_fixed from thigh; foot from shank.
     links = robot.link_map()
     for name in ("base", "imu", "camera_parent", "camera_optical", "thigh_fixed", "foot"):
-        assert links[name].inertial is not None and links[name].inertial.mass == PLACEHOLDER_MASS
+        inertial = links[name].inertial
+        assert inertial is not None and inertial.mass == PLACEHOLDER_MASS
     assert links["base_inertia"].inertial is not None
     assert links["base_inertia"].inertial.mass == pytest.approx(10.0 - 4 * PLACEHOLDER_MASS, rel=1e-12)
     assert _total(robot) == pytest.approx(SOURCE_TOTAL, rel=1e-12)
@@ -122,7 +123,8 @@ def test_a_group_with_nothing_to_borrow_from_gets_a_token_and_a_warning() -> Non
     c = ctx(placeholder_masses=True)
     massless(robot, c)
     for name in ("base", "base_inertia", "imu", "camera_parent", "camera_optical"):
-        assert links[name].inertial is not None and links[name].inertial.mass == PLACEHOLDER_MASS
+        inertial = links[name].inertial
+        assert inertial is not None and inertial.mass == PLACEHOLDER_MASS
     tokens = [f for f in c.findings if f.code == "mass-placeholder" and f.severity.name == "WARNING"]
     assert len(tokens) == 5
     # thigh_fixed and foot borrow theirs: only the five tokens add mass.
