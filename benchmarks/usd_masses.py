@@ -134,7 +134,11 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--robots", default="", help="comma-separated name substrings (default: all)")
     parser.add_argument("--out", default=os.path.join(HERE, "results", "usd_masses.json"))
+    parser.add_argument("--merge", nargs="*", help="only print the table of these result files, merged")
     args = parser.parse_args()
+    if args.merge:
+        print(table(merge(args.merge)))
+        return
     wanted = [w for w in args.robots.split(",") if w]
     robots = [r for r in example_robot_data_robots() if not wanted or any(w in r.name for w in wanted)]
     work = tempfile.mkdtemp(prefix="usd-masses-")
@@ -186,7 +190,17 @@ def main() -> None:
     print(table(rows))
 
 
+def merge(paths: list[str]) -> dict[str, dict[str, Any]]:
+    """Rows of several runs (``--robots`` chunks), later files winning."""
+    rows: dict[str, dict[str, Any]] = {}
+    for path in paths:
+        with open(path, encoding="utf-8") as f:
+            rows.update(json.load(f))
+    return rows
+
+
 def _off(got: Any, want: float) -> bool:
+    """More than 1% away, or an error instead of a number."""
     return not isinstance(got, float | int) or abs(got - want) > 0.01 * max(want, 1e-9)
 
 
@@ -195,6 +209,7 @@ def table(rows: dict[str, dict[str, Any]]) -> str:
     lines = ["| robot | URDF kg | " + " | ".join(f"{m} {r}" for m in ("usd", "isaac") for r in readers) + " |"]
     lines.append("|---" * (2 + 2 * len(readers)) + "|")
     counts = {(m, r): 0 for m in ("usd", "isaac") for r in readers}
+    measured = {(m, r): 0 for m in ("usd", "isaac") for r in readers}
     corrected = {"usd": 0, "isaac": 0}
     for name, row in sorted(rows.items()):
         if "urdf" not in row:
@@ -207,14 +222,15 @@ def table(rows: dict[str, dict[str, Any]]) -> str:
             corrected[m] += int(bool(cell.get("newton_corrected")))
             for r in readers:
                 got = cell.get(r, "-")
-                if _off(got, want):
-                    counts[(m, r)] += 1
+                if got != "-":
+                    measured[(m, r)] += 1
+                    counts[(m, r)] += int(_off(got, want))
                 cells.append(f"{got:.2f}" if isinstance(got, float | int) else str(got)[:30])
         lines.append(f"| {name} | {want:.2f} | " + " | ".join(cells) + " |")
     lines.append("")
-    lines.append(f"robots: {len(rows)}; more than 1% off the URDF's total:")
+    lines.append(f"robots: {len(rows)}; more than 1% off the URDF's total (of those the reader measured):")
     for (m, r), n in counts.items():
-        lines.append(f"- {m} / {r}: {n}")
+        lines.append(f"- {m} / {r}: {n} of {measured[(m, r)]}")
     for m, n in corrected.items():
         lines.append(f"- {m}: robots with a body whose inertia Newton corrected: {n}")
     return "\n".join(lines)
