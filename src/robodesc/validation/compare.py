@@ -156,15 +156,24 @@ def compare_inertials(
     mass.finish("links", "mass")
     com.finish("links", "com")
     inertia.finish("links", "inertia")
-    # The robot's total as MuJoCo sums it (every body but the world), a row of its own: a mass on a
-    # body that is no link, or a link lost, shows here as a total the source does not have.
+    # Every body but the world: a mass on a body that is no link, or a link lost, shows in the total.
     want = sum(expected_inertial(link)[0] for link in robot.links if link.name not in patched)
     got = float(np.sum(model.body_mass[1:])) - tokens
-    total = Tally(report, "total mass", options.mass_rel_tol, "relative")
+    compare_total_mass(
+        robot, got, want, options.mass_rel_tol, report, "MuJoCo (loader tokens on patched links left out)"
+    )
+
+
+def compare_total_mass(
+    robot: Robot, got: float, want: float, tolerance: float, report: ValidationReport, reader: str
+) -> None:
+    """The robot's total mass as ``reader`` sums it against the source's: a row of its own
+    (``total mass``), so that a lost or invented mass shows as what it is."""
+    total = Tally(report, "total mass", tolerance, "relative")
     total.measure(
         f"robot {robot.name!r}",
         abs(got - want) / max(abs(want), 1e-12) if (got or want) else 0.0,
-        f"MuJoCo total {got:.9g} kg (loader tokens on patched links left out), source {want:.9g} kg",
+        f"{reader}: total {got:.9g} kg, source {want:.9g} kg",
     )
     total.finish("robot", "mass")
 

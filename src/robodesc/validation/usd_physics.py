@@ -32,6 +32,7 @@ from robodesc.ir.transforms import (
     rpy_to_matrix,
 )
 from robodesc.validation.compare import (
+    compare_total_mass,
     expected_inertial,
     joint_label,
     keep_worst,
@@ -348,19 +349,17 @@ def _compare_total(
 ) -> None:
     """The robot's total mass as a UsdPhysics reader sums it, against the source's: a row of its own,
     so that a difference shows as what it is (a lost or invented mass) wherever it comes from."""
-    total = Tally(report, "total mass", max(options.mass_rel_tol, FLOAT32_REL_TOL), "relative")
-    label = f"robot {robot.name!r}"
-    if derived:
-        shown = ", ".join(repr(n) for n in derived[:5]) + (f" and {len(derived) - 5} more" if len(derived) > 5 else "")
-        total.fail(
-            label,
-            f"{len(derived)} bodies have no mass in the USD ({shown}): readers add a mass from their colliders "
-            f"(PhysX: 1 kg each without any) to the {usd_total:.6g} kg authored; the source weighs {ir_total:.6g} kg",
-        )
-    else:
-        total.measure(
-            label, _rel(usd_total, ir_total, 1e-12), f"USD total {usd_total:.9g} kg, source {ir_total:.9g} kg"
-        )
+    tolerance = max(options.mass_rel_tol, FLOAT32_REL_TOL)
+    if not derived:
+        compare_total_mass(robot, usd_total, ir_total, tolerance, report, "USD (authored physics:mass)")
+        return
+    shown = ", ".join(repr(n) for n in derived[:5]) + (f" and {len(derived) - 5} more" if len(derived) > 5 else "")
+    total = Tally(report, "total mass", tolerance, "relative")
+    total.fail(
+        f"robot {robot.name!r}",
+        f"{len(derived)} bodies have no mass in the USD ({shown}): readers add a mass from their colliders "
+        f"(PhysX: 1 kg each without any) to the {usd_total:.6g} kg authored; the source weighs {ir_total:.6g} kg",
+    )
     total.finish("robot", "mass")
 
 
