@@ -116,6 +116,32 @@ def test_a_friction_not_the_sources_fails() -> None:
     assert report.ok and _rows(report, "slide") == [Status.PASS]
 
 
+def _drop(engine: str, file: str, height: float, mass: float) -> Run:
+    return Run(engine, file, "drop", height=height, tilt=0.0, mass=mass)
+
+
+def test_a_mass_the_output_loses_is_a_mass_row_not_a_contact_model() -> None:
+    """ANYmal C from main: Newton read 81.5 kg from the USD for a 52.1 kg URDF and settled 12 cm
+    apart from MuJoCo; the verdict blamed contact models."""
+    setup = Setup(pose={"a": 0.0}, gains={"a": (100.0, 1.0)}, floating=True, stand_height=0.6, friction=None)
+    setup.mass = 52.13
+    runs = [_drop("mujoco", "urdf", 0.55, 52.13), _drop("newton", "usd", 0.43, 81.51)]
+    report = DynamicsReport("anymal", runs=runs)
+    judge(report, setup, Thresholds())
+    masses = {c.element: c for c in report.checks if c.name == "mass"}
+    assert masses["mujoco/urdf"].status is Status.PASS
+    assert masses["newton/usd"].status is Status.FAIL and not report.ok
+    assert masses["newton/usd"].error == pytest.approx((81.51 - 52.13) / 52.13, rel=1e-9)
+    drop = next(c for c in report.checks if c.name == "agree:drop")
+    assert "different masses" in drop.message and "contact models" not in drop.message
+    # The same drop with equal masses: what is left is the engines' contact.
+    runs = [_drop("mujoco", "urdf", 0.55, 52.13), _drop("newton", "usd", 0.43, 52.13)]
+    report = DynamicsReport("anymal", runs=runs)
+    judge(report, setup, Thresholds())
+    assert report.ok and _rows(report, "mass") == [Status.PASS, Status.PASS]
+    assert "contact models differ" in next(c for c in report.checks if c.name == "agree:drop").message
+
+
 def test_home_pose_takes_the_table_and_clamps_into_limits() -> None:
     robot = robodesc.load(ARM)
     pose = home_pose(robot, {"shoulder_pitch": 99.0, "elbow": -0.3})

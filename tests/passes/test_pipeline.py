@@ -23,6 +23,7 @@ def test_pipeline_reads_like_a_table_of_contents() -> None:
         "sanitize_names",
         "unique_materials",
         "geometric_inertia",
+        "massless",
         "repair_inertia",
         "merge_fixed",
         "strip_tags",

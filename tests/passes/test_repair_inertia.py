@@ -13,10 +13,10 @@ from tests.passes.pass_helpers import codes, ctx
 CUBE = Box((0.1, 0.1, 0.1))
 
 
-def _robot(*links: Link) -> Robot:
-    """The links under a common root, by fixed joints."""
+def _robot(*links: Link, kind: JointType = JointType.FIXED) -> Robot:
+    """The links under a common root, by joints of ``kind``."""
     root = Link("root", inertial=Inertial(mass=1.0, inertia=Inertia(1.0, 1.0, 1.0)))
-    joints = [Joint(f"j{i}", JointType.FIXED, "root", link.name) for i, link in enumerate(links)]
+    joints = [Joint(f"j{i}", kind, "root", link.name) for i, link in enumerate(links)]
     return Robot("r", links=[*links, root], joints=joints)
 
 
@@ -68,6 +68,18 @@ def test_quad_sdk_gap_positive_mass_zero_tensor_from_geometry() -> None:
     assert all("a gap Quad-SDK leaves open" in f.message for f in c.findings)
 
 
+def test_geometry_policy_leaves_a_carried_link_massless() -> None:
+    # Fixed to the 1 kg root: URDF's meaning (carried by it, as Gazebo lumps it), never its colliders' mass.
+    carried = Link("carried", collisions=[Collision(CUBE)])
+    zero = Link("zero", inertial=Inertial(mass=0.0), collisions=[Collision(CUBE)])
+    robot = _robot(carried, zero)
+    c = ctx(repair_inertia="geometry", density=1000.0)
+    repair_inertia(robot, c)
+    assert carried.inertial is None
+    assert zero.inertial is not None and zero.inertial.mass == 0.0
+    assert codes(c) == []
+
+
 def test_repair_missing_off_only_repairs_invalid() -> None:
     robot = _robot(Link("none"), Link("bad", inertial=Inertial(mass=0.0, inertia=Inertia(0.0, 0.0, 0.0))))
     repair_inertia(robot, ctx(repair_inertia="quad_sdk", repair_missing=False))
@@ -80,7 +92,8 @@ def test_geometry_policy_uses_density_and_shape() -> None:
     massless = Link("massless", inertial=Inertial(mass=0.0), collisions=[Collision(CUBE)])
     bare = Link("bare", inertial=Inertial(mass=-2.0, inertia=Inertia(0.0, 0.0, 0.0)))
     good = Link("good", inertial=Inertial(mass=2.0, inertia=Inertia(1.0, 1.0, 1.0)), collisions=[Collision(CUBE)])
-    robot = _robot(missing, massless, bare, good)
+    # Moving links: a massless one would be a dead body.
+    robot = _robot(missing, massless, bare, good, kind=JointType.CONTINUOUS)
     c = ctx(repair_inertia="geometry", density=1000.0)
     repair_inertia(robot, c)
     check(robot)

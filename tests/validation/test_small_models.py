@@ -211,8 +211,11 @@ def test_usd_without_mujoco_usd_is_a_clear_skip(tmp_path: Path) -> None:
     if mujoco_usd_available():
         pytest.skip("mujoco-usd is installed here")
     from robodesc.emit.usd import emit_usd
+    from robodesc.passes import PassOptions, run_passes
 
     robot, _ = emitted(ARM)
+    # What the USD target runs first: the massless 'frame' takes its mass from 'finger'.
+    run_passes(robot, options=PassOptions(mass_from_colliders=True, placeholder_masses=True))
     emit_usd(robot, str(tmp_path / "arm.usda"))
     report = validate_usd(robot, str(tmp_path / "arm.usda"))
     # usd-core's own parser still checks the file; only the mujoco-usd part is skipped.

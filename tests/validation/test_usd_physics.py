@@ -107,7 +107,9 @@ def test_mass_off_by_one_percent(gripper: tuple[Robot, str], tmp_path: Path) -> 
     )
     report = _check(robot, bad, tmp_path)
     assert "USD mass 1.212" in _failing(report, "mass", "link 'upper_arm'")
-    assert [c.element for c in report.failures] == ["link 'upper_arm'"]
+    # The robot's total is off by the same 12 g: a row of its own.
+    assert "USD (authored physics:mass): total" in _failing(report, "total mass", "robot 'gripper_arm'")
+    assert [c.element for c in report.failures] == ["link 'upper_arm'", "robot 'gripper_arm'"]
 
 
 def test_revolute_limit_in_radians(gripper: tuple[Robot, str], tmp_path: Path) -> None:

@@ -85,6 +85,11 @@ class PassOptions:
     repair_inertia: RepairPolicy | None = None
     # repair_inertia: also give links without any <inertial> one (else only invalid ones are repaired).
     repair_missing: bool = True
+    # massless: a moving fixed group without any mass gets its geometry's mass (a dead body otherwise).
+    mass_from_colliders: bool = False
+    # massless: every massless link gets a placeholder mass, taken from its fixed group's heaviest link
+    # (USD: a UsdPhysics reader cannot be told "no mass").
+    placeholder_masses: bool = False
     # kg/m³, used when a mass has to be derived from geometry.
     density: float = 1000.0
     # armature: ordered rules, first match wins. ``armature_by_robot`` maps a robot name to its table

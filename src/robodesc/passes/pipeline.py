@@ -40,6 +40,8 @@ PASSES: tuple[Pass, ...] = (
     Pass("sanitize_names", lambda o: o.sanitize_names),
     Pass("unique_materials", lambda o: o.unique_materials),
     Pass("geometric_inertia", lambda o: o.fill_inertia),
+    # Before repair_inertia: a link this gives a mass is not a missing inertial to repair.
+    Pass("massless", lambda o: o.mass_from_colliders or o.placeholder_masses),
     Pass("repair_inertia", lambda o: o.repair_inertia is not None),
     # Before strip_tags: merging must still see dont_collapse.
     Pass("merge_fixed", lambda o: bool(o.merge_fixed)),

@@ -37,6 +37,9 @@ PRESET_OPTIONS: dict[str, dict[str, object]] = {
         "unique_materials": True,
         "fill_inertia": True,
         "repair_inertia": RepairPolicy.GEOMETRY,
+        # A UsdPhysics reader cannot be told "no mass" (docs/passes.md, massless).
+        "mass_from_colliders": True,
+        "placeholder_masses": True,
         # dont_collapse is read by Isaac: kept.
         "strip": frozenset({"gazebo", "transmission", "ros2_control"}) | _LEFTOVERS,
         "isaac_limits": True,
@@ -52,20 +55,24 @@ PRESET_OPTIONS: dict[str, dict[str, object]] = {
         "unique_materials": True,
         "fill_inertia": True,
         "repair_inertia": RepairPolicy.GEOMETRY,
+        "mass_from_colliders": True,
         "strip": _LEFTOVERS | {"dont_collapse"},
     },
     "mujoco": {
         "unique_materials": True,
         "fill_inertia": True,
         "repair_inertia": RepairPolicy.GEOMETRY,
+        "mass_from_colliders": True,
         "strip": frozenset(STRIP_KINDS),
         "convert_meshes": {".dae": ".obj"},
     },
     # The MJCF target's implied preset: MuJoCo refuses an invalid inertia on a moving body, so invalid
-    # ones are repaired from geometry (as for Isaac); links without an inertial are left to the
+    # ones are repaired from geometry (as for Isaac); a moving link with no mass in its fixed group
+    # gets its geometry's (a dead body otherwise); other links without an inertial are left to the
     # emitter (a massless welded body is fine in MuJoCo), so no mass is invented for frame links.
     "mjcf": {
         "fill_inertia": True,
+        "mass_from_colliders": True,
         "repair_inertia": RepairPolicy.GEOMETRY,
         "repair_missing": False,
         "default_armature": True,
@@ -115,6 +122,7 @@ PRESETS: dict[str, tuple[str, ...]] = {
         "sanitize_names",
         "unique_materials",
         "geometric_inertia",
+        "massless",
         "repair_inertia",
         "strip_tags",
         "default_armature",
@@ -124,9 +132,9 @@ PRESETS: dict[str, tuple[str, ...]] = {
         "zero_pose",
     ),
     "ros2": ("unique_materials", "geometric_inertia", "strip_tags", "zero_pose"),
-    "gazebo": ("unique_materials", "geometric_inertia", "repair_inertia", "strip_tags", "zero_pose"),
-    "mujoco": ("unique_materials", "geometric_inertia", "repair_inertia", "strip_tags", "zero_pose"),
-    "mjcf": ("geometric_inertia", "repair_inertia", "merge_fixed", "default_armature", "zero_pose"),
+    "gazebo": ("unique_materials", "geometric_inertia", "massless", "repair_inertia", "strip_tags", "zero_pose"),
+    "mujoco": ("unique_materials", "geometric_inertia", "massless", "repair_inertia", "strip_tags", "zero_pose"),
+    "mjcf": ("geometric_inertia", "massless", "repair_inertia", "merge_fixed", "default_armature", "zero_pose"),
     "quad_sdk": ("rename", "unique_materials", "repair_inertia", "strip_tags", "armature", "zero_pose"),
     # An overlay: these on top of the target's own preset's passes.
     "gazebo_parity": ("explicit_damping", "zero_pose"),

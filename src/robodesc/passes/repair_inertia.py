@@ -11,6 +11,11 @@ geometry for its mass, or set to the 1e-6 diagonal when the link has no geometry
 ``geometry`` derives everything it repairs from the geometry (mass = density × volume when the mass
 is not positive), and uses the Quad-SDK constants only for links without geometry.
 
+``geometry`` gives a massless link (no ``<inertial>``, or no or a zero mass) a mass only where it
+would be a dead body: in a moving fixed group without any mass (``passes/massless.py``). A massless
+link fixed to one with mass keeps URDF's meaning, carried by it (Gazebo lumps it), and so does the
+root's group: neither is given a mass from its geometry.
+
 ``repair_missing=False`` leaves links without ``<inertial>`` alone. Every repair is a finding.
 """
 
@@ -37,6 +42,14 @@ def _mass_ok(mass: float | None) -> bool:
     return mass is not None and math.isfinite(mass) and mass > 0
 
 
+def _carried(link: Link) -> bool:
+    """Massless as URDF means it (no mass, no tensor): a zero mass with a tensor is a defect to repair."""
+    from robodesc.passes.massless import massless_link
+
+    i = link.inertial.inertia if link.inertial is not None else None
+    return massless_link(link) and (i is None or not any((i.ixx, i.iyy, i.izz, i.ixy, i.ixz, i.iyz)))
+
+
 def _tensor_problem(inertial: Inertial) -> str | None:
     if inertial.inertia is None:
         return "no inertia tensor"
@@ -48,7 +61,19 @@ def repair_inertia(robot: Robot, ctx: PassContext) -> Robot:
     policy = ctx.options.repair_inertia
     if policy is None:
         return robot
+    # Imported here: the group walk needs numpy, which a robot without repairs never loads.
+    from robodesc.passes.massless import fixed_groups, massless_link
+
+    links = robot.link_map()
+    dead = {
+        name
+        for group in fixed_groups(robot)
+        if group.moving and all(massless_link(links[n]) for n in group.frames)
+        for name in group.frames
+    }
     for link in robot.links:
+        if policy is RepairPolicy.GEOMETRY and _carried(link) and link.name not in dead:
+            continue
         if link.inertial is None:
             if ctx.options.repair_missing:
                 _missing(link, policy, ctx)

@@ -117,12 +117,14 @@ def compare_inertials(
     mass = Tally(report, "mass", options.mass_rel_tol, "relative")
     com = Tally(report, "com", options.position_tol, "m")
     inertia = Tally(report, "inertia", options.inertia_rel_tol, "relative")
+    tokens = 0.0  # what MuJoCo holds on patched links: a token of the loader's, not the robot's mass
     for link in robot.links:
         b = ids.body(link.name)
         label = link_label(link.name)
         if b < 0:
             continue
         if link.name in patched:
+            tokens += float(model.body_mass[b]) if b > 0 else 0.0
             for t in (mass, com, inertia):
                 t.skip(label, f"patched to load: {patched[link.name]}")
             continue
@@ -154,6 +156,26 @@ def compare_inertials(
     mass.finish("links", "mass")
     com.finish("links", "com")
     inertia.finish("links", "inertia")
+    # Every body but the world: a mass on a body that is no link, or a link lost, shows in the total.
+    want = sum(expected_inertial(link)[0] for link in robot.links if link.name not in patched)
+    got = float(np.sum(model.body_mass[1:])) - tokens
+    compare_total_mass(
+        robot, got, want, options.mass_rel_tol, report, "MuJoCo (loader tokens on patched links left out)"
+    )
+
+
+def compare_total_mass(
+    robot: Robot, got: float, want: float, tolerance: float, report: ValidationReport, reader: str
+) -> None:
+    """The robot's total mass as ``reader`` sums it against the source's: a row of its own
+    (``total mass``), so that a lost or invented mass shows as what it is."""
+    total = Tally(report, "total mass", tolerance, "relative")
+    total.measure(
+        f"robot {robot.name!r}",
+        abs(got - want) / max(abs(want), 1e-12) if (got or want) else 0.0,
+        f"{reader}: total {got:.9g} kg, source {want:.9g} kg",
+    )
+    total.finish("robot", "mass")
 
 
 def expected_inertial(link: Link) -> tuple[float, Mat, Mat | None]:

@@ -19,6 +19,7 @@ import numpy as np
 from robodesc.ir.model import JointType, Robot
 from robodesc.ir.transforms import forward_kinematics, resolve_mimic
 from robodesc.validation.compare import (
+    compare_total_mass,
     expected_inertial,
     joint_label,
     link_label,
@@ -223,6 +224,9 @@ def _compare_bodies(robot: Robot, bodies: dict[str, Any], options: ValidateOptio
     mass.finish("links", "mass")
     com.finish("links", "com")
     inertia.finish("links", "inertia")
+    want = sum(expected_inertial(link)[0] for link in robot.links)
+    got = sum(float(body.default_mass()) for body in bodies.values())
+    compare_total_mass(robot, got, want, options.mass_rel_tol, report, "Drake")
 
 
 def _compare_joints(

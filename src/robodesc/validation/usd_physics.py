@@ -32,6 +32,7 @@ from robodesc.ir.transforms import (
     rpy_to_matrix,
 )
 from robodesc.validation.compare import (
+    compare_total_mass,
     expected_inertial,
     joint_label,
     keep_worst,
@@ -282,6 +283,8 @@ def _compare_inertials(robot: Robot, parsed: Parsed, options: ValidateOptions, r
     mass = Tally(report, "mass", max(options.mass_rel_tol, FLOAT32_REL_TOL), "relative")
     com = Tally(report, "com", max(options.position_tol, FLOAT32_REL_TOL), "m (relative above 1 m)")
     inertia = Tally(report, "inertia", max(options.inertia_rel_tol, FLOAT32_REL_TOL), "relative")
+    usd_total = ir_total = 0.0
+    derived: list[str] = []  # bodies every reader gives a mass of its own choosing
     for link in robot.links:
         path = parsed.bodies.get(link.name)
         if path is None:
@@ -290,16 +293,26 @@ def _compare_inertials(robot: Robot, parsed: Parsed, options: ValidateOptions, r
         api = UsdPhysics.MassAPI(parsed.stage.GetPrimAtPath(path))
         m_attr = api.GetMassAttr() if api else None
         m_usd = m_attr.Get() if m_attr is not None and m_attr.HasAuthoredValue() else None
+        # physics:mass 0 is UsdPhysics' "not given": readers derive one, as for no attribute.
+        if m_usd is not None and float(m_usd) > 0:
+            usd_total += float(m_usd)
+        else:
+            derived.append(link.name)
         m_ir, com_ir, tensor_ir = expected_inertial(link)
+        ir_total += m_ir
         has_ir = link.inertial is not None and link.inertial.mass is not None
-        if not has_ir:
+        if not has_ir or not m_usd:
             if m_usd:
                 mass.fail(label, f"USD mass {m_usd:.9g} kg, the source gives none")
+            elif has_ir and m_ir > 0:
+                mass.fail(label, f"no physics:mass in the USD; source {m_ir:.9g} kg")
             else:
-                mass.ok()
-            continue
-        if m_usd is None:
-            mass.fail(label, f"no physics:mass in the USD; source {m_ir:.9g} kg")
+                mass.fail(
+                    label,
+                    "no mass in the USD: every UsdPhysics reader derives one from the colliders at 1000 kg/m³ "
+                    "(PhysX gives 1 kg to a body without any); the source gives none (the massless pass "
+                    "gives such a link a placeholder taken from what it is fixed to)",
+                )
             continue
         mass.measure(label, _rel(float(m_usd), m_ir, 1e-12), f"USD mass {float(m_usd):.9g} kg, source {m_ir:.9g} kg")
         c = api.GetCenterOfMassAttr().Get()
@@ -328,6 +341,31 @@ def _compare_inertials(robot: Robot, parsed: Parsed, options: ValidateOptions, r
     mass.finish("links", "mass")
     com.finish("links", "com")
     inertia.finish("links", "inertia")
+    _compare_total(robot, usd_total, ir_total, derived, options, report)
+
+
+def _compare_total(
+    robot: Robot,
+    usd_total: float,
+    ir_total: float,
+    derived: list[str],
+    options: ValidateOptions,
+    report: ValidationReport,
+) -> None:
+    """The robot's total mass as a UsdPhysics reader sums it, against the source's: a row of its own,
+    so that a difference shows as what it is (a lost or invented mass) wherever it comes from."""
+    tolerance = max(options.mass_rel_tol, FLOAT32_REL_TOL)
+    if not derived:
+        compare_total_mass(robot, usd_total, ir_total, tolerance, report, "USD (authored physics:mass)")
+        return
+    shown = ", ".join(repr(n) for n in derived[:5]) + (f" and {len(derived) - 5} more" if len(derived) > 5 else "")
+    total = Tally(report, "total mass", tolerance, "relative")
+    total.fail(
+        f"robot {robot.name!r}",
+        f"{len(derived)} bodies have no mass in the USD ({shown}): readers add a mass from their colliders "
+        f"(PhysX: 1 kg each without any) to the {usd_total:.6g} kg authored; the source weighs {ir_total:.6g} kg",
+    )
+    total.finish("robot", "mass")
 
 
 def tensor_text(t: Mat) -> str:

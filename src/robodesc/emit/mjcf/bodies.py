@@ -46,7 +46,7 @@ class BodyWriter:
             # The URDF convention for "welded (or jointed) to the ground": MuJoCo's own world body.
             self._geoms(world, root)
             for joint in self.children.get(root.name, []):
-                self._child(world, joint, moving_parent=False)
+                self._child(world, joint)
             return world
         body = ET.SubElement(world, "body", name=root.name)
         set_pose(body, root_pose)
@@ -71,15 +71,17 @@ class BodyWriter:
             self._inertial(body_el, link_, moving_)
             self._geoms(body_el, link_)
             for child in reversed(self.children.get(link_.name, [])):
-                moved = moving_ or child.type is not JointType.FIXED
+                # Only a body with a joint of its own must have mass in MuJoCo: a welded one without
+                # any is part of its parent's (a stub there would add to the robot's total).
+                moved = child.type is not JointType.FIXED
                 todo.append((body_el, child, body_el, self.ctx.robot.link(child.child), moved))
 
-    def _child(self, parent: ET.Element, joint: Joint, moving_parent: bool) -> None:
+    def _child(self, parent: ET.Element, joint: Joint) -> None:
         link = self.ctx.robot.link(joint.child)
         body = ET.SubElement(parent, "body", name=link.name)
         set_pose(body, joint.origin)
         self._joint(body, joint)
-        self._fill(body, link, moving=moving_parent or joint.type is not JointType.FIXED)
+        self._fill(body, link, moving=joint.type is not JointType.FIXED)
 
     # ---- joints -------------------------------------------------------------------------------
     def _joint(self, body: ET.Element, joint: Joint) -> None:

@@ -22,9 +22,11 @@ def emit_body(ctx: UsdContext, link: Link) -> None:
         prim.attr("physxRigidBody:maxDepenetrationVelocity", "float", link.contact.max_vel)
     inertial = link.inertial
     if inertial is None or inertial.mass is None:
+        # The target's massless pass gives every link a mass; only an IR emitted around it gets here.
         ctx.warn(
             "usd-no-mass",
-            "link has no mass: the simulator derives one from the colliders (PhysX: 1 kg without any)",
+            "link has no mass: every UsdPhysics reader derives one from the colliders (PhysX: 1 kg without "
+            "any); the massless pass (placeholder_masses) gives it one that keeps the robot's total",
             label,
             link.src,
         )

@@ -52,7 +52,7 @@ TARGET = Target(
     summary="a UsdPhysics articulation for Isaac Sim and Newton; checked by usd-core (and mujoco-usd)",
     suffixes=(".usda", ".usdc", ".usd"),
     suffix_required=True,
-    passes={"sanitize_names": True, "unique_materials": True},
+    passes={"sanitize_names": True, "unique_materials": True, "mass_from_colliders": True, "placeholder_masses": True},
     check=check_usd,
     # A layered asset owns its payload folder beside the file.
     owned=lambda options, out: (PAYLOAD_DIR,) if options.layered else (),

@@ -166,8 +166,7 @@ def _robot_run(robot: Robot, path: str, options: Any, setup: Setup, run: Run, *,
     diagram = builder.Build()
     simulator = Simulator(diagram)
     context = plant.GetMyMutableContextFromRoot(simulator.get_mutable_context())
-    if floor:
-        run.mass = float(plant.CalcTotalMass(context, models))
+    run.mass = float(plant.CalcTotalMass(context, models))
     for name in setup.pose:
         joint = table.get(name)
         if joint is not None and joint.num_positions() == 1:

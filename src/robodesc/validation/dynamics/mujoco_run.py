@@ -177,6 +177,7 @@ def _hold(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
         s.option.integrator = _INTEGRATOR
     s.option.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
     model = s.compile()
+    run.mass = float(model.body_mass.sum())
     data = mujoco.MjData(model)
     addr = _start(model, data, setup)
     _simulate(model, data, setup, run, addr)

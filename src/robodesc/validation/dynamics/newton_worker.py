@@ -106,8 +106,7 @@ def _run_robot(req, scenario):
     steps = max(1, round(setup["duration"] / dt))
     every = max(1, round(_SAMPLE / dt))
     run = {"scenario": scenario, "ok": True, "error": "", "mu": mu, "trajectory": []}
-    if floor:
-        run["mass"] = float(model.body_mass.numpy().sum())
+    run["mass"] = float(model.body_mass.numpy().sum())
     contacts = None
     drives = _drives(model, control, names, pose)
     peak = {n: 0.0 for n in drives}

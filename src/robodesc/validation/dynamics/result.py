@@ -46,9 +46,9 @@ class Run:
     tilt: float | None = None  # angle between the root's z and the world's, rad
     settle: float | None = None  # drop: time after which the root height stays within SETTLE_BAND of its end, s
     mu: float | None = None  # friction the engine gave the robot's colliders
-    mass: float | None = None  # drop: the robot's total mass as the engine read it, kg
     stick: float | None = None  # slide: distance moved on the "sticks" plane, m
     slide: float | None = None  # slide: distance moved on the "slides" plane, m
+    mass: float | None = None  # the robot's total mass as the engine read it, kg (the floor excluded)
     seconds: float = 0.0
     final_q: dict[str, float] = field(default_factory=dict)
     # Each driven joint's largest |drive effort| over the run's steps (N·m or N), and that peak as a

@@ -99,6 +99,8 @@ class Setup:
     # Each driven joint's effort limit (N·m or N) where the source gives one > 0: the saturation
     # columns divide the peak drive effort by it.
     effort: dict[str, float] = field(default_factory=dict)
+    # kg: the sum of the source's <inertial> masses (None: not known).
+    mass: float | None = None
     duration: float = 1.0
     timestep: float = 0.001
     drop_clearance: float = 0.05
@@ -110,6 +112,7 @@ class Setup:
             "stand_height": self.stand_height,
             "friction": self.friction,
             "feet": list(self.feet),
+            "mass": self.mass,
             "duration": self.duration,
             "timestep": self.timestep,
             "drop_clearance": self.drop_clearance,
@@ -269,6 +272,7 @@ def make_setup(robot: Robot, options: DynamicsOptions) -> Setup:
         feet=standing_on,
         mimics={j.name: j.mimic.joint for j in robot.joints if j.mimic is not None},
         effort=effort_limits(robot),
+        mass=sum(link.inertial.mass or 0.0 for link in robot.links if link.inertial is not None),
         duration=options.duration,
         timestep=options.timestep,
         drop_clearance=options.drop_clearance,

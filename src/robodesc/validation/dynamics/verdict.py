@@ -6,7 +6,9 @@ Exit 1 (a FAIL check) only where an output contradicts its source:
 - a friction an engine reads from an output is not the source's (when the source gives one), or
   a block with it does not stick and slide as tan(angle) against the source's mu says;
 - the drives of an output cannot hold the pose (fixed base) while the same gains hold it in another
-  engine.
+  engine;
+- an engine reads a total mass from an output that is not the source's (a row of its own, ``mass``:
+  a lost or invented mass is named as such, never taken for a difference of contact models).
 Everything else that differs between engines (drop height and tilt, a hold both engines fail) is a
 WARN: engines solve contact and stiff drives differently, and the table says how. A drive that reaches
 its effort limit in the hold or the drop is a WARN naming the engines where it does and does not: the
@@ -44,6 +46,7 @@ def judge(report: DynamicsReport, setup: Setup, th: Thresholds) -> None:
             why = "" if own else f" (the source fails in {r.engine} too)" if r.file != SOURCE else ""
             report.add("run", Status.FAIL if own else Status.WARN, _label(r), r.error + why)
     _against_source(report, setup, th)
+    _masses(report, setup, th)
     _hold(report, [r for r in outputs if r.scenario == "hold-fixed"], th)
     _drop(report, [r for r in outputs if r.scenario == "drop"], th)
     _slide(report, [r for r in outputs if r.scenario == "slide"], setup, th)
@@ -130,30 +133,55 @@ def _hold(report: DynamicsReport, runs: list[Run], th: Thresholds) -> None:
         )
 
 
+def _mass_off(mass: float | None, want: float | None, th: Thresholds) -> bool:
+    return mass is not None and want is not None and abs(mass - want) > th.mass_rel * max(abs(want), 1e-9)
+
+
+def _masses(report: DynamicsReport, setup: Setup, th: Thresholds) -> None:
+    """Each engine's total mass against the source's: FAIL for an output, unless the engine reads
+    the source itself just as far off (then it is the engine's reading, a warning)."""
+    if setup.mass is None:
+        return
+    seen: set[tuple[str, str]] = set()
+    source_off = {r.engine for r in report.runs if r.file == SOURCE and r.ok and _mass_off(r.mass, setup.mass, th)}
+    for r in report.runs:
+        if not r.ok or r.mass is None or (r.engine, r.file) in seen:
+            continue
+        seen.add((r.engine, r.file))
+        rel = abs(r.mass - setup.mass) / max(abs(setup.mass), 1e-9)
+        if not _mass_off(r.mass, setup.mass, th):
+            status = Status.PASS
+        else:
+            status = Status.WARN if r.file == SOURCE or r.engine in source_off else Status.FAIL
+        report.add(
+            "mass",
+            status,
+            f"{r.engine}/{r.file}",
+            f"reads {r.mass:.6g} kg; the source's links weigh {setup.mass:.6g} kg",
+            error=rel,
+            tolerance=th.mass_rel,
+        )
+
+
 def _drop(report: DynamicsReport, runs: list[Run], th: Thresholds) -> None:
     for a, b in combinations(runs, 2):
         dh = abs((a.height or 0.0) - (b.height or 0.0))
         dt = abs((a.tilt or 0.0) - (b.tilt or 0.0))
         ok = dh <= th.drop_height_agree and dt <= th.drop_tilt_agree
+        if ok:
+            why = ""
+        elif a.mass is not None and b.mass is not None and _mass_off(a.mass, b.mass, th):
+            why = f" (they read different masses, {a.mass:.4g} and {b.mass:.4g} kg: see the mass rows)"
+        else:
+            why = " (contact models differ; a fall from a pose the robot cannot keep is chaotic)"
         report.add(
             "agree:drop",
             Status.PASS if ok else Status.WARN,
             f"{a.engine}/{a.file} vs {b.engine}/{b.file}",
-            f"settled heights differ by {dh:.3g} m, tilts by {math.degrees(dt):.3g} deg"
-            + ("" if ok else _drop_why(a, b, th)),
+            f"settled heights differ by {dh:.3g} m, tilts by {math.degrees(dt):.3g} deg" + why,
             error=max(dh / th.drop_height_agree, dt / th.drop_tilt_agree),
             tolerance=1.0,
         )
-
-
-def _drop_why(a: Run, b: Run, th: Thresholds) -> str:
-    """Why two drops settle apart: the masses the engines read, when those differ, else contact."""
-    if a.mass is not None and b.mass is not None and abs(a.mass - b.mass) > th.mass_rel * max(a.mass, b.mass):
-        return (
-            f" (the engines read different masses: {a.engine}/{a.file} {a.mass:.4g} kg, "
-            f"{b.engine}/{b.file} {b.mass:.4g} kg)"
-        )
-    return " (contact models differ; a fall from a pose the robot cannot keep is chaotic)"
 
 
 def _saturation(report: DynamicsReport, runs: list[Run], th: Thresholds) -> None:
