@@ -53,12 +53,9 @@ _NOISE = ("GPU broadphase", "CUDA")
 # Mismatches robodesc's output has on main that fixes in flight remove (issue #38): while a check
 # is listed here its failures are warnings that name the fix. The lead empties an entry when the
 # fix lands, and the check then fails a compile as every other consumer check does.
-PENDING_FIXES: dict[str, str] = {
-    # A link without <inertial> is written without PhysicsMassAPI: PhysX gives it its colliders' mass
-    # at 1000 kg/m³, or 1 kg (ANYmal C's base: 29.4 kg; Panda's link8 and hand_tcp: 1 kg each).
-    "physx-massless": "h-masses (a mass every reader agrees on)",
-    "physx-total-mass": "h-masses (a mass every reader agrees on)",
-}
+# Empty since the massless pass landed (every body now carries an authored mass): a massless link
+# had been written without PhysicsMassAPI, and PhysX gave it its colliders' mass at 1000 kg/m³, or 1 kg.
+PENDING_FIXES: dict[str, str] = {}
 
 
 @dataclass
