@@ -108,3 +108,17 @@ def check_mass_and_fk(robot: Robot, model: Any, seed: int = 0) -> None:
 
 
 __all__ = ["ROOT", "check_mass_and_fk", "load_clean", "normalised", "pose_frame"]
+
+
+def stand_from_home(scene: str | Path, seconds: float) -> tuple[float, np.ndarray]:
+    """Step ``scene`` from its ``home`` keyframe: the lowest up·z of the root over the run, and the
+    root's final position."""
+    model = mujoco.MjModel.from_xml_path(str(scene))
+    data = mujoco.MjData(model)
+    mujoco.mj_resetDataKeyframe(model, data, mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home"))
+    worst = 1.0
+    for _ in range(int(seconds / model.opt.timestep)):
+        mujoco.mj_step(model, data)
+        worst = min(worst, float(data.xmat[1].reshape(3, 3)[2, 2]))
+    assert np.isfinite(data.qpos).all()
+    return worst, data.qpos[:3].copy()

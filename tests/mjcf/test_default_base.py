@@ -11,19 +11,13 @@ import pytest
 
 from robodesc.api import compile_to_mjcf
 from tests.conftest import EXAMPLES, GO2_XACRO, SPIRIT_XACRO
+from tests.mjcf.helpers import stand_from_home
 
 
 def _stand(scene: Path, seconds: float) -> tuple[float, float]:
-    """Step scene.xml from the home keyframe; the lowest up·z of the root and its final height."""
-    model = mujoco.MjModel.from_xml_path(str(scene))
-    data = mujoco.MjData(model)
-    mujoco.mj_resetDataKeyframe(model, data, mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home"))
-    worst = 1.0
-    for _ in range(int(seconds / model.opt.timestep)):
-        mujoco.mj_step(model, data)
-        worst = min(worst, float(data.xmat[1].reshape(3, 3)[2, 2]))
-    assert np.isfinite(data.qpos).all()
-    return worst, float(data.qpos[2])
+    """The lowest up·z of the root from ``home`` and its final height."""
+    worst, position = stand_from_home(scene, seconds)
+    return worst, float(position[2])
 
 
 @pytest.mark.parametrize("source", [SPIRIT_XACRO, GO2_XACRO], ids=["spirit", "go2"])

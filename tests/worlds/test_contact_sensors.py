@@ -16,40 +16,12 @@ from robodesc.api import compile_for_isaac_sim, compile_to_mjcf, compile_to_sdf,
 from robodesc.cli import main
 from robodesc.validation.physx_python import physx_python
 from tests.conftest import EXAMPLES, SPIRIT_XACRO
+from tests.worlds.physx_scripts import CONTACT
 
 QUADRUPED = EXAMPLES / "quadruped.yaml"
 FEET = ["FL_calf", "FR_calf", "RL_calf", "RR_calf"]  # the example quadruped's lowest link per leg
 G = 9.81
 
-_PHYSX = """
-import json, sys, numpy as np, ovphysx, ovstage
-from ovphysx import PhysX
-from ovphysx.samples.python_samples.schema_support import physx_schema_paths
-ovstage.population.register_usd_schemas([*[str(p) for p in physx_schema_paths()], str(ovphysx.newton_schema_root())])
-PhysX.set_cpu_mode(True)
-physx = PhysX()
-stage = ovstage.Stage("contact")
-ovstage.population.open_usd(stage, sys.argv[1], ordinal=1, domains=ovstage.PopulationDomain.ALL)
-stage.advance_write_floor(ordinal=1).wait()
-physx.wait_task(physx.attach_ovstage(stage, read_ordinal=1))
-physx.wait_all()
-binding = physx.create_contact_binding(sensor_patterns=json.loads(sys.argv[2]))
-out = np.zeros((binding.sensor_count, 3), dtype=np.float32)
-total = np.zeros((binding.sensor_count, 3))
-steps, window = 1500, 250  # the mean over the last 0.25 s: a robot standing on drives sways a little
-for i in range(steps):
-    physx.step(0.001)
-    if i >= steps - window:
-        physx.wait_all()
-        binding.read_net_normal_forces(out)
-        total += out
-physx.wait_all()
-print(json.dumps({"forces": (total / window).tolist()}))
-binding.destroy()
-physx.wait_task(physx.detach_ovstage())
-stage.destroy()
-physx.destroy()
-"""
 
 _PLANE = """<sdf version="1.6"><world name="plane"><model name="ground"><static>true</static>
 <pose>0 0 -0.05 0 0 0</pose><link name="l"><collision name="c"><geometry><box><size>10 10 0.1</size></box>
@@ -89,7 +61,7 @@ def test_physx_contact_reports_read_the_weight(tmp_path: Path) -> None:
     assert python is not None
     paths = [f"/World/{result.robot.name}/{foot}" for foot in FEET]
     done = subprocess.run(
-        [python, "-c", _PHYSX, str(tmp_path / "quadruped_world.usda"), json.dumps(paths)],
+        [python, "-c", CONTACT, str(tmp_path / "quadruped_world.usda"), json.dumps(paths)],
         capture_output=True, text=True, timeout=600, check=False, env={**os.environ},
     )  # fmt: skip
     assert done.returncode == 0, done.stderr[-2000:]

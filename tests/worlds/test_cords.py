@@ -18,6 +18,7 @@ from robodesc.api import compile_to_mjcf, compile_to_sdf, compile_to_usd
 from robodesc.cli import main
 from robodesc.validation.physx_python import physx_python
 from tests.conftest import EXAMPLES
+from tests.worlds.physx_scripts import positions
 
 QUADRUPED = EXAMPLES / "quadruped.yaml"
 N, LENGTH, K, RADIUS = 6, 0.6, 0.1, 0.008
@@ -30,30 +31,6 @@ CORDS = f"""cords:
 TILTED = f"""<sdf version="1.6"><world name="tilt"><gravity>{GX} 0 {GZ}</gravity>
 <model name="ground"><static>true</static><pose>0 0 -0.05 0 0 0</pose><link name="l"><collision name="c">
 <geometry><box><size>20 20 0.1</size></box></geometry></collision></link></model></world></sdf>"""
-
-_PHYSX = """
-import json, sys, ovphysx, ovstage
-from ovphysx import PhysX
-from ovphysx.samples.python_samples.schema_support import physx_schema_paths
-from ovphysx.types import ObjectScope, SimObjectType
-ovstage.population.register_usd_schemas([*[str(p) for p in physx_schema_paths()], str(ovphysx.newton_schema_root())])
-physx = PhysX()
-stage = ovstage.Stage("cords")
-ovstage.population.open_usd(stage, sys.argv[1], ordinal=1, domains=ovstage.PopulationDomain.ALL)
-stage.advance_write_floor(ordinal=1).wait()
-physx.wait_task(physx.attach_ovstage(stage, read_ordinal=1))
-for _ in range(int(float(sys.argv[2]) * 1000)):
-    physx.step_sync(0.001)
-def read():
-    with physx.read_sync(SimObjectType.ARTICULATION_LINK, ["position"], scope=ObjectScope.ALL) as result:
-        return [row for g in result.groups for t in g.tensors for row in t.numpy().tolist()]
-rows = read()
-physx.wait_all()
-physx.wait_task(physx.detach_ovstage())
-stage.destroy()
-physx.destroy()
-print(json.dumps(rows))
-"""
 
 
 def equilibrium() -> np.ndarray:
@@ -104,7 +81,7 @@ def test_physx_settles_where_the_statics_say(scene: tuple[Path, Path], tmp_path:
     python = physx_python()
     assert python is not None
     done = subprocess.run(
-        [python, "-c", _PHYSX, str(tmp_path / "q_world.usda"), "10"],
+        [python, "-c", positions("ARTICULATION_LINK", "position"), str(tmp_path / "q_world.usda"), "10"],
         capture_output=True, text=True, timeout=900, check=False, env={**os.environ},
     )  # fmt: skip
     assert done.returncode == 0, done.stderr[-2000:]

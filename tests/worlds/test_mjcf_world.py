@@ -16,21 +16,13 @@ from robodesc.frontends.world.options import WorldOptions
 from robodesc.ir.diagnostics import Findings
 from robodesc.meshes.data import build_mesh
 from tests.conftest import EXAMPLES, SPIRIT_XACRO, WORLDS
+from tests.mjcf.helpers import stand_from_home
 
 QUADRUPED = EXAMPLES / "quadruped.yaml"
 
 
 def _stand(scene: Path, seconds: float) -> tuple[float, np.ndarray]:
-    """Step from ``home``: the lowest up·z of the root over the run and the final root position."""
-    model = mujoco.MjModel.from_xml_path(str(scene))
-    data = mujoco.MjData(model)
-    mujoco.mj_resetDataKeyframe(model, data, mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home"))
-    worst = 1.0
-    for _ in range(int(seconds / model.opt.timestep)):
-        mujoco.mj_step(model, data)
-        worst = min(worst, float(data.xmat[1].reshape(3, 3)[2, 2]))
-    assert np.isfinite(data.qpos).all()
-    return worst, data.qpos[:3].copy()
+    return stand_from_home(scene, seconds)
 
 
 def _ground(model: mujoco.MjModel, data: mujoco.MjData, x: float, y: float) -> float:

@@ -15,32 +15,9 @@ from robodesc.api import compile_to_usd
 from robodesc.cli import main
 from robodesc.validation.physx_python import physx_python
 from tests.conftest import EXAMPLES, WORLDS
+from tests.worlds.physx_scripts import positions
 
 QUADRUPED = EXAMPLES / "quadruped.yaml"
-
-_DROP = """
-import json, sys, ovphysx, ovstage
-from ovphysx import PhysX
-from ovphysx.samples.python_samples.schema_support import physx_schema_paths
-from ovphysx.types import ObjectScope, SimObjectType
-ovstage.population.register_usd_schemas([*[str(p) for p in physx_schema_paths()], str(ovphysx.newton_schema_root())])
-physx = PhysX()
-stage = ovstage.Stage("world")
-ovstage.population.open_usd(stage, sys.argv[1], ordinal=1, domains=ovstage.PopulationDomain.ALL)
-stage.advance_write_floor(ordinal=1).wait()
-physx.wait_task(physx.attach_ovstage(stage, read_ordinal=1))
-for _ in range(int(float(sys.argv[2]) * 1000)):
-    physx.step_sync(0.001)
-def root():
-    with physx.read_sync(SimObjectType.ARTICULATION, ["rootPosition"], scope=ObjectScope.ALL) as result:
-        return [float(v) for g in result.groups for t in g.tensors for v in t.numpy().ravel()]
-position = root()
-physx.wait_all()
-physx.wait_task(physx.detach_ovstage())
-stage.destroy()
-physx.destroy()
-print(json.dumps({"root": position}))
-"""
 
 
 def test_world_stage(tmp_path: Path) -> None:
@@ -76,11 +53,11 @@ def test_physx_rests_the_robot_on_the_terrain(tmp_path: Path) -> None:
     python = physx_python()
     assert python is not None
     done = subprocess.run(
-        [python, "-c", _DROP, str(tmp_path / "quadruped_world.usda"), "1.0"],
+        [python, "-c", positions("ARTICULATION", "rootPosition"), str(tmp_path / "quadruped_world.usda"), "1.0"],
         capture_output=True, text=True, timeout=600, check=False, env={**os.environ},
     )  # fmt: skip
     assert done.returncode == 0, done.stderr[-2000:]
-    root = json.loads(done.stdout.strip().splitlines()[-1])["root"]
+    root = json.loads(done.stdout.strip().splitlines()[-1])[0]
     # It lands on the terrain's top (z = 0 at the origin: Quad-SDK's pose -0.1 and a 0.1 slab),
     # neither through it nor floating above it.
     assert 0.0 < root[2] < 0.6 and abs(root[0]) < 0.05, root

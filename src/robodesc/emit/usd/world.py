@@ -19,6 +19,7 @@ import math
 import os
 from typing import TYPE_CHECKING
 
+from robodesc.emit.usd.context import set_pose
 from robodesc.emit.usd.layers import encode, stage_metadata
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.geometry import Box, Cylinder, Mesh, Sphere, Vec3
@@ -66,14 +67,14 @@ def write_world(
         ground.apply("PhysicsCollisionAPI")
     for body in placed.world.bodies:
         body_prim = world.child(_name(body.name), "Xform")
-        _xform(body_prim, pose_frame(body.pose))
+        set_pose(body_prim, pose_frame(body.pose))
         for collider in body.colliders:
             _collider(body_prim, body, collider, material, findings)
     for cords, anchors in placed.cords:
         _cords(world, cords, anchors)
     robot = world.child(robot_prim, "Xform")
     robot.payloads.append(Payload(f"./{os.path.basename(robot_file)}", f"/{robot_prim}"))
-    _xform(robot, Frame(translation=root))
+    set_pose(robot, Frame(translation=root))
     write_atomic(path, encode(layer, os.path.splitext(path)[1].lower()))
 
 
@@ -148,7 +149,7 @@ def _collider(
         prim = body_prim.child(name, "Cube")
         prim.attr("size", "double", 1.0)
         prim.attr("extent", "float3[]", [(-0.5, -0.5, -0.5), (0.5, 0.5, 0.5)])
-        _xform(prim, pose_frame(collider.origin), scale=shape.size)
+        set_pose(prim, pose_frame(collider.origin), scale=shape.size)
     elif isinstance(shape, Sphere):
         prim = body_prim.child(name, "Sphere")
         prim.attr("radius", "double", shape.radius)
@@ -165,7 +166,7 @@ def _collider(
     else:  # pragma: no cover - the world IR has no other shape
         return
     if not isinstance(shape, Box):
-        _xform(prim, pose_frame(collider.origin))
+        set_pose(prim, pose_frame(collider.origin))
     prim.apply("PhysicsCollisionAPI")
     surface = collider.surface
     if surface is not None and surface.mu is not None:
@@ -185,7 +186,7 @@ def _cords(world: Prim, cords: CordField, anchors: list[Vec3]) -> None:
     side = mass * (3 * cords.radius**2 + step**2) / 12
     for i, anchor in enumerate(anchors):
         cord = world.child(f"{cords.name}_{i}", "Xform")
-        _xform(cord, Frame(translation=anchor))
+        set_pose(cord, Frame(translation=anchor))
         cord.apply("PhysicsArticulationRootAPI")
         cord.apply("PhysxArticulationAPI")
         cord.attr("physxArticulation:enabledSelfCollisions", "bool", False)
@@ -201,7 +202,7 @@ def _cords(world: Prim, cords: CordField, anchors: list[Vec3]) -> None:
         previous = f"/{WORLD}/{cords.name}_{i}/anchor"
         for k in range(cords.segments):
             link = cord.child(f"s{k}", "Xform")
-            _xform(link, Frame(translation=(0.0, 0.0, -k * step)))
+            set_pose(link, Frame(translation=(0.0, 0.0, -k * step)))
             link.apply("PhysicsRigidBodyAPI")
             link.apply("PhysicsMassAPI")
             link.attr("physics:mass", "float", mass)
@@ -211,7 +212,7 @@ def _cords(world: Prim, cords: CordField, anchors: list[Vec3]) -> None:
             shape.attr("radius", "double", cords.radius)
             shape.attr("height", "double", step)
             shape.attr("axis", "token", "Z", uniform=True)
-            _xform(shape, Frame(translation=(0.0, 0.0, -step / 2)))
+            set_pose(shape, Frame(translation=(0.0, 0.0, -step / 2)))
             shape.apply("PhysicsCollisionAPI")
             joint = cord.child(f"j{k}", "PhysicsJoint")
             joint.rel("physics:body0", [previous])
@@ -253,23 +254,6 @@ def _mesh(prim: Prim, shape: Mesh, collider: WorldCollider, body: StaticBody, fi
     prim.attr("subdivisionScheme", "token", "none", uniform=True)
     prim.attr("extent", "float3[]", data.extent)
     return True
-
-
-def _xform(prim: Prim, frame: Frame, scale: Vec3 | None = None) -> None:
-    order = []
-    t = frame.translation
-    if any(t):
-        prim.attr("xformOp:translate", "double3", (float(t[0]), float(t[1]), float(t[2])))
-        order.append("xformOp:translate")
-    q = frame.quat()
-    if abs(q[0] - 1.0) > 1e-15:
-        prim.attr("xformOp:orient", "quatd", q)
-        order.append("xformOp:orient")
-    if scale is not None:
-        prim.attr("xformOp:scale", "float3", scale)
-        order.append("xformOp:scale")
-    if order:
-        prim.attr("xformOpOrder", "token[]", order, uniform=True)
 
 
 def _name(text: str) -> str:
