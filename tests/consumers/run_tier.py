@@ -239,7 +239,23 @@ def run_robot_mjcf(robot: CorpusRobot, envs: str, work: str) -> dict[str, object
     flags = _compile_flags(robot) + (["--no-fix-base"] if floating else ["--fix-base"])
     xml = os.path.join(wdir, "mjcf", "robot.xml")
     proc = _run(
-        [*py, "compile", source, "-t", "mjcf", "-o", xml, "--no-validate", "--json", *flags, *MJCF_GAINS], 300, log
+        # --no-merge-fixed: compared body by body with add_urdf (-t mjcf fuses fixed links by default).
+        [
+            *py,
+            "compile",
+            source,
+            "-t",
+            "mjcf",
+            "-o",
+            xml,
+            "--no-validate",
+            "--json",
+            "--no-merge-fixed",
+            *flags,
+            *MJCF_GAINS,
+        ],
+        300,
+        log,
     )
     try:
         summary = json.loads(proc.stdout)

@@ -70,6 +70,9 @@ def test_newton_reads_the_usd_as_it_reads_the_urdf(source: Path, floating: bool,
     assert result["status"] == "pass", failed or result
 
 
+FAITHFUL = ("--no-merge-fixed", "--no-default-armature")
+
+
 @pytest.mark.parametrize("floating", [False, True], ids=["fixed", "floating"])
 def test_newton_reads_the_mjcf_as_it_reads_the_urdf(floating: bool, tmp_path: Path) -> None:
     """Newton's add_mjcf of robodesc's robot.xml against its add_urdf of the source: masses, inertias,
@@ -78,7 +81,9 @@ def test_newton_reads_the_mjcf_as_it_reads_the_urdf(floating: bool, tmp_path: Pa
     source = EXAMPLES / "urdf" / "gripper_arm.urdf"
     xml = tmp_path / "mjcf" / "robot.xml"
     base = "--no-fix-base" if floating else "--fix-base"
-    argv = ["compile", str(source), "-t", "mjcf", "-o", str(xml), "-q", "--no-validate", base]
+    # Number by number against add_urdf: the source's bodies and armature, not the MJCF preset's fused
+    # fixed links and estimated armature.
+    argv = ["compile", str(source), "-t", "mjcf", "-o", str(xml), "-q", "--no-validate", base, *FAITHFUL]
     assert main([*argv, "--stiffness", "100", "--damping", "1"]) == 0
     case = {"name": "mjcf", "urdf": str(source), "mjcf": str(xml), "floating": floating}
     result = _newton([case], tmp_path)["mjcf"]
