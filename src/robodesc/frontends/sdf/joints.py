@@ -200,8 +200,8 @@ def _two_axes(frames: Frames, node: Node, base: Joint, joint_pose: Mat, findings
     findings.warn(
         "sdf-universal-joint",
         f"a {el.get('type')} joint has no IR form: it becomes two revolute joints ({node.name}_1, {node.name}_2) "
-        f"through a massless link {node.name}_cross; every target keeps its motion, and MJCF and PhysX give that "
-        "link their smallest mass",
+        f"through a massless link {node.name}_cross; every target keeps its motion, but that link gets each "
+        "engine's mass for a massless body (MuJoCo 0.001 kg; PhysX 1 kg without colliders)",
         element=f"joint {node.name!r}",
         loc=loc(file, el),
         stage=STAGE,
