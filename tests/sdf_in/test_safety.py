@@ -17,7 +17,9 @@ LINK = '<link name="a"><inertial><mass>1</mass></inertial>{inner}</link>'
 def _model(folder: Path, inner: str, name: str = "model.sdf") -> Path:
     folder.mkdir(parents=True, exist_ok=True)
     path = folder / name
-    path.write_text(f'<?xml version="1.0"?>\n<sdf version="1.9">\n<model name="{folder.name}">\n{inner}\n</model>\n</sdf>\n')
+    path.write_text(
+        f'<?xml version="1.0"?>\n<sdf version="1.9">\n<model name="{folder.name}">\n{inner}\n</model>\n</sdf>\n'
+    )
     return path
 
 
@@ -47,9 +49,12 @@ def test_model_config_naming_a_file_outside_is_refused(tmp_path: Path) -> None:
 def test_included_model_mesh_cannot_leave_its_folder(tmp_path: Path) -> None:
     (tmp_path / "secret.stl").write_bytes(b"solid x\nendsolid x\n")
     part = tmp_path / "models" / "part"
-    _model(part, LINK.format(inner='<visual name="v"><geometry><mesh><uri>../../secret.stl</uri></mesh></geometry></visual>'))
+    _model(
+        part,
+        LINK.format(inner='<visual name="v"><geometry><mesh><uri>../../secret.stl</uri></mesh></geometry></visual>'),
+    )
     _config(part, "model.sdf")
-    top = _model(tmp_path / "robot", '<include><uri>model://part</uri></include>')
+    top = _model(tmp_path / "robot", "<include><uri>model://part</uri></include>")
     loaded = load_path(str(top), LoadOptions(model_path=(str(tmp_path / "models"),)))
     (visual,) = loaded.robot.link("part::a").visuals
     assert getattr(visual.geometry, "path", "x") is None
@@ -60,7 +65,9 @@ def test_included_model_mesh_cannot_leave_its_folder(tmp_path: Path) -> None:
 def test_model_uri_cannot_climb_out_of_the_roots(tmp_path: Path) -> None:
     _model(tmp_path / "elsewhere", LINK.format(inner=""))
     _config(tmp_path / "elsewhere", "model.sdf")
-    top = _model(tmp_path / "models" / "robot", LINK.format(inner="") + '<include><uri>model://../../elsewhere</uri></include>')
+    top = _model(
+        tmp_path / "models" / "robot", LINK.format(inner="") + "<include><uri>model://../../elsewhere</uri></include>"
+    )
     loaded = load_path(str(top), LoadOptions(model_path=(str(tmp_path / "models" / "robot"),)))
     assert [link.name for link in loaded.robot.links] == ["a"]
     assert any(f.code == "sdf-include-missing" for f in loaded.findings.items)
