@@ -59,3 +59,10 @@ def test_batch_discovers_models_not_worlds(tmp_path: Path) -> None:
     (tmp_path / "robot.sdf").write_text('<sdf version="1.9"><model name="r"><link name="a"/></model></sdf>')
     (tmp_path / "place.world").write_text('<sdf version="1.9"><world name="w"><model name="m"/></world></sdf>')
     assert [job for _, job in discover(str(tmp_path))] == ["robot"]
+
+
+def test_xml_suffix_is_chosen_by_content(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = tmp_path / "robot.xml"
+    path.write_text((DATA / "models" / "finger_part" / "model.sdf").read_text())
+    assert main(["inspect", str(path)]) == 0
+    assert "robot 'finger_part'" in capsys.readouterr().out

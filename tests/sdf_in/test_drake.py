@@ -41,3 +41,14 @@ def test_goldens_in_drake(name: str, tmp_path: Path) -> None:
     result = compare_in_drake(str(path), robot)
     assert result.problems == [] and result.bodies == len(robot.links)
     assert result.max_com_error < 1e-12
+
+
+def test_bundled_example_in_drake() -> None:
+    example = Path(__file__).resolve().parents[2] / "examples" / "sdf" / "pan_tilt"
+    robot = load_path(str(example)).robot
+    assert robot.fixed_base is True and {j.name: j.drive.stiffness for j in robot.joints if j.drive} == {
+        "pan": 4.0,
+        "tilt": 3.0,
+    }
+    result = compare_in_drake(str(example / "model.sdf"), robot)
+    assert result.problems == [] and result.bodies == 3 and result.max_com_error < 1e-12
