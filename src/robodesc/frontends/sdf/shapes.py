@@ -39,19 +39,9 @@ def read_shape(
     el = shapes[0]
     kind = tag(el)
     here = loc(path, el)
-    if kind == "box":
-        size = vec3(path, required(path, el, "size"))
-        return Box(size, src=here)
-    if kind == "sphere":
-        return Sphere(positive(path, required(path, el, "radius")), src=here)
-    if kind == "cylinder":
-        return Cylinder(
-            positive(path, required(path, el, "radius")), positive(path, required(path, el, "length")), src=here
-        )
-    if kind == "capsule":
-        return Capsule(
-            positive(path, required(path, el, "radius")), positive(path, required(path, el, "length")), src=here
-        )
+    solid = primitive(path, el)
+    if solid is not None:
+        return solid
     if kind == "ellipsoid":
         radii = vec3(path, required(path, el, "radii"))
         findings.warn(
@@ -73,6 +63,22 @@ def read_shape(
         loc=here,
         stage=STAGE,
     )
+    return None
+
+
+def primitive(path: str, el: etree._Element) -> Box | Sphere | Cylinder | Capsule | None:
+    """A box, sphere, cylinder or capsule element as its IR shape (None for any other element); the
+    world reader reads its static colliders' solids with it too."""
+    kind = tag(el)
+    here = loc(path, el)
+    if kind == "box":
+        return Box(vec3(path, required(path, el, "size")), src=here)
+    if kind == "sphere":
+        return Sphere(positive(path, required(path, el, "radius")), src=here)
+    if kind in ("cylinder", "capsule"):
+        radius = positive(path, required(path, el, "radius"))
+        length = positive(path, required(path, el, "length"))
+        return Cylinder(radius, length, src=here) if kind == "cylinder" else Capsule(radius, length, src=here)
     return None
 
 

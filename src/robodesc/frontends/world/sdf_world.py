@@ -16,11 +16,11 @@ import numpy as np
 from lxml import etree
 
 from robodesc.frontends.sdf.model_path import model_roots, resolve_uri
+from robodesc.frontends.sdf.shapes import primitive
 from robodesc.frontends.sdf.values import loc as _loc
 from robodesc.frontends.sdf.values import number as _number
 from robodesc.frontends.sdf.values import pose_value
 from robodesc.frontends.sdf.values import positive as _positive
-from robodesc.frontends.sdf.values import required as _required
 from robodesc.frontends.sdf.values import tag as _tag
 from robodesc.frontends.sdf.values import vec3 as _vec3
 from robodesc.frontends.xml_safety import parse_xml, read_file
@@ -158,16 +158,9 @@ def _collider(path: str, element: etree._Element, findings: Findings, roots: Seq
     shape_el = geometry[0]
     kind = _tag(shape_el)
     shape: Box | Cylinder | Sphere | Mesh | Plane
-    if kind == "box":
-        shape = Box(_vec3(path, _required(path, shape_el, "size")), src=loc)
-    elif kind == "sphere":
-        shape = Sphere(_positive(path, _required(path, shape_el, "radius")), src=loc)
-    elif kind == "cylinder":
-        shape = Cylinder(
-            _positive(path, _required(path, shape_el, "radius")),
-            _positive(path, _required(path, shape_el, "length")),
-            src=loc,
-        )
+    solid = primitive(path, shape_el) if kind in ("box", "sphere", "cylinder") else None
+    if isinstance(solid, Box | Cylinder | Sphere):
+        shape = solid
     elif kind == "plane":
         normal = shape_el.find("normal")
         shape = Plane(_vec3(path, normal) if normal is not None else (0.0, 0.0, 1.0), src=loc)
