@@ -240,3 +240,33 @@ def test_fixed_to_world_is_a_fixed_base(tmp_path: Path) -> None:
     )
     robot = load_path(str(_sdf(tmp_path, body))).robot
     assert robot.fixed_base is True and robot.joints == []
+
+
+def test_a_second_joint_into_a_link_is_a_loop_joint(tmp_path: Path) -> None:
+    body = (
+        LINK.format(name="a", pose="0 0 0 0 0 0")
+        + LINK.format(name="b", pose="0 0 1 0 0 0")
+        + LINK.format(name="c", pose="1 0 0 0 0 0")
+        + '<joint name="ab" type="revolute"><parent>a</parent><child>b</child><axis><xyz>0 1 0</xyz></axis></joint>'
+        + '<joint name="ac" type="revolute"><parent>a</parent><child>c</child><axis><xyz>0 1 0</xyz></axis></joint>'
+        + '<joint name="bc" type="revolute"><pose>0 0 0.5 0 0 0</pose><parent>b</parent><child>c</child>'
+        "<axis><xyz>0 1 0</xyz></axis></joint>"
+    )
+    loaded = load_path(str(_sdf(tmp_path, body)))
+    (loop,) = loaded.robot.loop_joints
+    assert (loop.name, loop.link1.link, loop.link2.link) == ("bc", "b", "c")
+    # At zero both sides of the loop are the same place: 0.5 above c, in the model frame.
+    fk = forward_kinematics(loaded.robot)
+    one = fk["b"] @ pose_matrix(loop.link1.origin)
+    two = fk["c"] @ pose_matrix(loop.link2.origin)
+    assert np.allclose(one, two) and np.allclose(two[:3, 3], (1.0, 0.0, 0.5))
+    assert any(f.code == "sdf-loop-joint" for f in loaded.findings.items)
+
+
+def test_old_pose_frame_and_unknown_version_are_warnings(tmp_path: Path) -> None:
+    body = '<link name="a"><pose frame="elsewhere">0 0 1 0 0 0</pose></link>'
+    loaded = load_path(str(_sdf(tmp_path, body, "1.6")))
+    frame = next(f for f in loaded.findings.items if f.code == "sdf-pose-frame")
+    assert frame.loc is not None and frame.loc.line == 4
+    loaded = load_path(str(_sdf(tmp_path, '<link name="a"/>', "2.0", "new.sdf")))
+    assert any(f.code == "sdf-version" for f in loaded.findings.items)
