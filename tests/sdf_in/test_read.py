@@ -126,7 +126,7 @@ def test_frames_surfaces_materials_sensors_and_placement() -> None:
     assert np.allclose(imu.origin.rpy, (0.0, 0.0, 1.5708))
     # The model's pose composed with its root link's (0.1 up): where the root stands in the world.
     assert robot.placement is not None and np.allclose(robot.placement.xyz, (1.0, 2.0, 0.6))
-    assert robot.fixed_base is False
+    assert robot.fixed_base is None  # no weld: the model does not say
 
 
 def test_sdf_1_6_and_1_9_of_one_model_are_the_same_robot() -> None:

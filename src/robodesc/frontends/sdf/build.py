@@ -97,10 +97,10 @@ def _joints(
         if len(made) == 2:
             robot.links.append(Link(made[0].child, src=made[0].src))
         robot.joints.extend(made)
+    # Without a weld the model does not say: Gazebo lets it fall, but the weld of an arm is usually in
+    # the world that includes it, so the targets' own base rule decides (emit/common/base.py).
     if world_fixed:
         robot.fixed_base = True
-    elif robot.fixed_base is None:
-        robot.fixed_base = False
 
 
 def _loop(
