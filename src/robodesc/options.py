@@ -81,6 +81,9 @@ def build_options(values: Mapping[str, Any], *, extra_names: Mapping[str, str] |
             # ``world=True`` is SDF's empty-world switch (a target option); a path is a world file.
             if value is not None:
                 setattr(opts.world, WORLD_NAMES[name], _world_value(name, value))
+                if name == "model_path":
+                    # An SDF model's includes resolve through the same folders as the world's.
+                    opts.load.model_path = opts.world.model_path
             continue
         check_numbers(value, name)
         if name == "contact_sensors":

@@ -35,6 +35,7 @@ SOURCES: dict[str, tuple[Any, dict[str, Any]]] = {
     "mobile_base.yaml": (str(EXAMPLES / "mobile_base.yaml"), {}),
     "isaac_arm.yaml": (str(EXAMPLES / "isaac_arm.yaml"), {"missing_mesh": "primitive"}),
     "isaac-sim-robot-arm.holo": (str(HOLO_ARM), {"missing_mesh": "primitive"}),
+    "pan_tilt (SDF model folder)": (str(EXAMPLES / "sdf" / "pan_tilt"), {}),
 }
 
 

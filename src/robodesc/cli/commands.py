@@ -29,6 +29,7 @@ def _input_options(args: argparse.Namespace) -> dict[str, Any]:
         "trust_xacro": args.trust_xacro,
         "allowed_env": tuple(args.env),
         "plugins": tuple(args.plugin),
+        **({"model_path": tuple(args.model_path)} if getattr(args, "model_path", None) else {}),
     }
 
 
@@ -53,8 +54,6 @@ def world_options(args: argparse.Namespace) -> dict[str, Any]:
         out["terrain_resolution"] = args.terrain_resolution
     if getattr(args, "spawn", None):
         out["spawn"] = _numbers(args.spawn, "--spawn", (2, 3))
-    if getattr(args, "model_path", None):
-        out["model_path"] = tuple(args.model_path)
     if getattr(args, "contact_sensors", None) is not None:
         out["contact_sensors"] = args.contact_sensors
     return out

@@ -68,6 +68,14 @@ def add_package_and_arg(g: argparse._ActionsContainer) -> None:
 def add_input_options(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("input")
     g.add_argument(
+        "--model-path",
+        action="append",
+        default=[],
+        metavar="DIR",
+        help="a folder searched for model:// URIs of an SDF model's includes and meshes and of a world "
+        "(repeatable; before GZ_SIM_RESOURCE_PATH and GAZEBO_MODEL_PATH)",
+    )
+    g.add_argument(
         "--plugin",
         metavar="MODULE",
         action="append",
@@ -248,14 +256,6 @@ def add_world_options(p: argparse.ArgumentParser) -> None:
         metavar="REGEX",
         help="a contact sensor on each foot robodesc finds, or on each link REGEX matches: MJCF touch, USD "
         "PhysxContactReportAPI, SDF contact sensor, Isaac Lab ContactSensorCfg",
-    )
-    g.add_argument(
-        "--model-path",
-        action="append",
-        default=[],
-        metavar="DIR",
-        help="a folder searched for the world's model:// URIs (repeatable; before GZ_SIM_RESOURCE_PATH and "
-        "GAZEBO_MODEL_PATH)",
     )
 
 

@@ -50,6 +50,14 @@ def read_gazebo_contact(robot: Robot, findings: Findings) -> None:
                     collision.contact = Contact(**values, src=ext.src).merged_over(collision.contact)
 
 
+def surface_contact(surface: Any, label: str, src: SourceLoc | None, findings: Findings) -> Contact | None:
+    """An SDF ``<surface>`` element's parameters (None when it gives none): the SDF model frontend's
+    collisions, read as a URDF's embedded ``<surface>`` is."""
+    values: dict[str, Any] = {}
+    _surface(surface, values, label, src, findings)
+    return Contact(**values, src=src) if values else None
+
+
 def _parse(xml: str) -> Any:
     return etree.fromstring(xml, etree.XMLParser(resolve_entities=False, no_network=True))
 

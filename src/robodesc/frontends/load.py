@@ -26,6 +26,7 @@ FRONTENDS: dict[str, str] = {
     "holo": "robodesc.frontends.holo",
     "python": "robodesc.frontends.compose.python",
     "mjcf": "robodesc.frontends.mjcf",
+    "sdf": "robodesc.frontends.sdf",
 }
 
 # How much of a file the content checks see.
@@ -65,6 +66,9 @@ def describe_inputs() -> str:
 def frontend_for(path: str, *, allow_code: bool = True) -> Frontend:
     """The frontend that reads the file ``path``: by suffix, then by content. ``allow_code`` False
     passes over frontends that run the file (a file found by searching a folder)."""
+    if os.path.isdir(path) and os.path.isfile(os.path.join(path, "model.config")):
+        # A Gazebo model folder: its model.config names the SDF file.
+        return frontend_for(os.path.join(path, "model.config"), allow_code=allow_code)
     if os.path.isdir(path):
         raise ParseError(
             "is a folder; robodesc compile reads one robot file (robodesc batch compiles every robot in a folder)",

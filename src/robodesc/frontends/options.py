@@ -30,3 +30,6 @@ class LoadOptions:
     trust_xacro: bool = False
     # Environment variables xacro's $(env NAME) / $(optenv NAME) may read; others are refused.
     allowed_env: tuple[str, ...] = ()
+    # Folders searched for an SDF model's model:// URIs (its includes and meshes) before Gazebo's
+    # environment variables; ``--model-path``, shared with the world.
+    model_path: tuple[str, ...] = ()

@@ -15,10 +15,17 @@ from collections.abc import Sequence
 import numpy as np
 from lxml import etree
 
-from robodesc.frontends.world.model_path import model_roots, resolve_uri
+from robodesc.frontends.sdf.model_path import model_roots, resolve_uri
+from robodesc.frontends.sdf.shapes import primitive
+from robodesc.frontends.sdf.values import loc as _loc
+from robodesc.frontends.sdf.values import number as _number
+from robodesc.frontends.sdf.values import pose_value
+from robodesc.frontends.sdf.values import positive as _positive
+from robodesc.frontends.sdf.values import tag as _tag
+from robodesc.frontends.sdf.values import vec3 as _vec3
 from robodesc.frontends.xml_safety import parse_xml, read_file
-from robodesc.ir.diagnostics import Findings, ParseError, SourceLoc, UnsupportedError
-from robodesc.ir.geometry import Box, Cylinder, Mesh, Pose, Sphere, Vec3
+from robodesc.ir.diagnostics import Findings, ParseError, UnsupportedError
+from robodesc.ir.geometry import Box, Cylinder, Mesh, Pose, Sphere
 from robodesc.ir.transforms import matrix_pose, pose_matrix
 from robodesc.ir.world import Include, Plane, StaticBody, Surface, World, WorldCollider, WorldPhysics
 
@@ -151,16 +158,9 @@ def _collider(path: str, element: etree._Element, findings: Findings, roots: Seq
     shape_el = geometry[0]
     kind = _tag(shape_el)
     shape: Box | Cylinder | Sphere | Mesh | Plane
-    if kind == "box":
-        shape = Box(_vec3(path, _required(path, shape_el, "size")), src=loc)
-    elif kind == "sphere":
-        shape = Sphere(_positive(path, _required(path, shape_el, "radius")), src=loc)
-    elif kind == "cylinder":
-        shape = Cylinder(
-            _positive(path, _required(path, shape_el, "radius")),
-            _positive(path, _required(path, shape_el, "length")),
-            src=loc,
-        )
+    solid = primitive(path, shape_el) if kind in ("box", "sphere", "cylinder") else None
+    if isinstance(solid, Box | Cylinder | Sphere):
+        shape = solid
     elif kind == "plane":
         normal = shape_el.find("normal")
         shape = Plane(_vec3(path, normal) if normal is not None else (0.0, 0.0, 1.0), src=loc)
@@ -223,57 +223,4 @@ def _pose(path: str, element: etree._Element | None) -> Pose:
             element="pose",
             loc=_loc(path, element),
         )
-    values = _numbers(path, element)
-    if len(values) != 6:
-        raise ParseError(f"<pose> needs 6 numbers (x y z roll pitch yaw), got {len(values)}", loc=_loc(path, element))
-    return Pose((values[0], values[1], values[2]), (values[3], values[4], values[5]), src=_loc(path, element))
-
-
-def _required(path: str, parent: etree._Element, tag: str) -> etree._Element:
-    found = parent.find(tag)
-    if found is None:
-        raise ParseError(f"<{_tag(parent)}> needs <{tag}>", loc=_loc(path, parent))
-    return found
-
-
-def _vec3(path: str, element: etree._Element) -> Vec3:
-    values = _numbers(path, element)
-    if len(values) != 3:
-        raise ParseError(f"<{_tag(element)}> needs 3 numbers, got {len(values)}", loc=_loc(path, element))
-    return (values[0], values[1], values[2])
-
-
-def _positive(path: str, element: etree._Element) -> float:
-    value = _number(path, element)
-    if not value > 0:
-        raise ParseError(f"<{_tag(element)}> must be positive, got {value:g}", loc=_loc(path, element))
-    return value
-
-
-def _number(path: str, element: etree._Element) -> float:
-    values = _numbers(path, element)
-    if len(values) != 1:
-        raise ParseError(f"<{_tag(element)}> needs one number", loc=_loc(path, element))
-    return values[0]
-
-
-def _numbers(path: str, element: etree._Element) -> list[float]:
-    try:
-        values = [float(t) for t in (element.text or "").split()]
-    except ValueError:
-        raise ParseError(
-            f"<{_tag(element)}>: {element.text!r} is not a list of numbers", loc=_loc(path, element)
-        ) from None
-    if any(v != v or v in (float("inf"), float("-inf")) for v in values):
-        raise ParseError(f"<{_tag(element)}>: numbers must be finite", loc=_loc(path, element))
-    return values
-
-
-def _tag(element: etree._Element) -> str:
-    tag = element.tag
-    return etree.QName(tag).localname if isinstance(tag, str) else ""
-
-
-def _loc(path: str, element: etree._Element) -> SourceLoc:
-    line = element.sourceline
-    return SourceLoc(path, line if isinstance(line, int) else None)
+    return pose_value(path, element)

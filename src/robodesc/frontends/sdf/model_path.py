@@ -1,4 +1,4 @@
-"""Where ``model://`` URIs of a world resolve: Gazebo's model path, as Gazebo Classic and Gazebo
+"""Where ``model://`` URIs of a world or a model resolve: Gazebo's model path, as Gazebo Classic and Gazebo
 Sim search it, plus the folders a world is usually shipped with.
 
 Order: ``--model-path`` folders, ``GZ_SIM_RESOURCE_PATH``, ``IGN_GAZEBO_RESOURCE_PATH``,
