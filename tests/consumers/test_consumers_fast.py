@@ -96,7 +96,7 @@ def test_newton_reads_the_isaac_folder(tmp_path: Path) -> None:
     source = EXAMPLES / "urdf" / "gripper_arm.urdf"
     # Uniform gains: the checker gives Newton's URDF import one stiffness and damping (the folder's own
     # default gains are derived per joint: tests/isaac/test_default_stance.py).
-    argv = ["compile", str(source), "--isaac-sim", "-o", str(out), "-q", "--no-validate", "--no-preview"]
+    argv = ["compile", str(source), "--isaac-sim", "-o", str(out), "-q", "--no-validate", "--no-preview", *FAITHFUL]
     assert main([*argv, "--stiffness", "100", "--damping", "1"]) == 0
     case = {"name": "isaac", "urdf": str(out / "gripper_arm.urdf"), "usd": str(out / "gripper_arm.usda")}
     result = _newton([case], tmp_path)["isaac"]
