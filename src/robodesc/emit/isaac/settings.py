@@ -57,6 +57,16 @@ class IsaacSettings:
     # The Isaac Sim release the USD's PhysX joint attributes are written for (docs/isaac.md).
     isaac_version: str = field(default="6", metadata=usd.ISAAC_VERSION)
     motor_envelope: bool = field(default=False, metadata=usd.MOTOR_ENVELOPE)
+    # The USD Isaac Sim 6's importer made of the folder's URDF: the physics layer's prim paths are
+    # read from it instead of computed by the importer's naming rules (docs/isaac.md).
+    importer_usd: str | None = field(
+        default=None,
+        metadata=flag(
+            "the USD Isaac Sim 6's URDF importer wrote from this folder's URDF: <robot>_physics.usda addresses "
+            "its prims as read from it (default: by the importer's naming rules)",
+            metavar="FILE",
+        ),
+    )
     # Spawn pose for Isaac Lab: base position (m) and the initial joint positions (rad) by regex.
     init_pos: tuple[float, float, float] = field(default=(0.0, 0.0, 0.0), metadata=common.INIT_POS)
     init_joint_pos: dict[str, float] = field(default_factory=dict, metadata=common.INIT_JOINT_POS)

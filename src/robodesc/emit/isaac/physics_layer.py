@@ -1,0 +1,135 @@
+"""``<robot>_physics.usda``: robodesc's physics as overs on the USD Isaac Sim 6's importer writes.
+
+Isaac Sim 6's URDF importer (urdf-usd-converter) authors no derived gains, armature, friction
+efforts or scene settings. This layer carries them: sublayered over the importer's USD, it sets
+drives and gains, effort and velocity limits, armature and joint friction, masses and inertias,
+colliders' approximations, offsets and contact materials, the articulation settings and the
+physics scene.
+
+It is not written twice: robodesc's own USD emitter authors its physics layer (the ``Physics``
+role of the layered layout, ``emit/usd/layers.py``) in memory, and each of its prims is moved onto
+the importer's path for the same link, joint or collider (``importer_layout.py``) as an ``over``.
+What is dropped, and why: ``physics:body0/1`` (the importer's joints already name its bodies) and
+robodesc's base weld (the importer writes its own ``root_joint``); Isaac's robot schema lists
+(robodesc's paths). The articulation root API stays where the importer put it (two roots would be
+two articulations); robodesc's articulation settings go onto that prim. A prim the layout does not
+have is left out and named in the result.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+from robodesc.emit.isaac.importer_layout import ImporterLayout
+from robodesc.emit.usd.context import CONTACT_SCOPE, JOINTS_SCOPE, PHYSICS, UsdContext
+from robodesc.emit.usd.emitter import build_layers
+from robodesc.emit.usd.layers import LayerSet, stage_metadata
+from robodesc.emit.usd.options import UsdOptions
+from robodesc.ir.diagnostics import Findings
+from robodesc.ir.model import Robot
+from robodesc.usdfile.spec import Layer, Prim, Relationship
+
+# Opinions the importer's prims already hold, or that name robodesc's own paths.
+_DROPPED_PROPERTIES = ("physics:body0", "physics:body1", "isaac:physics:robotLinks", "isaac:physics:robotJoints")
+_DROPPED_SCHEMAS = ("PhysicsArticulationRootAPI", "IsaacRobotAPI", "IsaacLinkAPI", "IsaacJointAPI")
+
+
+@dataclass
+class PhysicsLayer:
+    layer: Layer
+    materials: str  # the importer-side scope of robodesc's contact materials
+    articulation_root: str | None  # where the importer put the articulation root
+    missing: list[str] = field(default_factory=list)  # "link 'x'", "joint 'y'", ... the layout lacks
+    prims: int = 0  # prims of robodesc's physics that found their place
+
+
+def robodesc_physics(robot: Robot, options: UsdOptions, findings: Findings) -> tuple[Layer, Layer | None, str]:
+    """robodesc's own physics layer (and interface layer, for the scene) for ``robot``, in memory."""
+    layers = LayerSet.create("robot.usda", layered=True)
+    ctx = UsdContext(robot=robot, options=options, findings=findings, layer_dir=os.getcwd(), layers=layers.roles)
+    build_layers(ctx, layers)
+    return layers.roles[PHYSICS], layers.interface, ctx.robot_path
+
+
+def physics_layer(robot: Robot, options: UsdOptions, layout: ImporterLayout, findings: Findings) -> PhysicsLayer:
+    source, interface, robot_path = robodesc_physics(robot, options, Findings())
+    out = Layer()
+    stage_metadata(out, layout.robot.lstrip("/"))
+    result = PhysicsLayer(out, f"{layout.robot}/{CONTACT_SCOPE}", layout.articulation_root)
+    if layout.articulation_root is None:
+        result.missing.append("the articulation root")
+    mapping = _path_map(robot, robot_path, layout, result.missing)
+    mapping[f"{robot_path}/{CONTACT_SCOPE}"] = result.materials
+    top = source.find(robot_path)
+    if top is not None:
+        _move(top, robot_path, mapping, out, result)
+    if interface is not None and interface.find("/PhysicsScene") is not None:
+        scene = interface.find("/PhysicsScene")
+        assert scene is not None
+        out.root.children["PhysicsScene"] = scene
+    return result
+
+
+def _path_map(robot: Robot, robot_path: str, layout: ImporterLayout, missing: list[str]) -> dict[str, str]:
+    """robodesc's prim path -> the importer's, for every prim that carries physics."""
+    mapping: dict[str, str] = {}
+    for link in robot.links:
+        ours = f"{robot_path}/{link.name}"
+        theirs = layout.links.get(link.name)
+        if theirs is None:
+            missing.append(f"link {link.name!r}")
+            continue
+        mapping[ours] = theirs
+        colliders = layout.colliders.get(link.name, [])
+        for index in range(len(link.collisions)):
+            # robodesc names its collider prims in IR order; the importer's list is in the same order.
+            if index < len(colliders):
+                mapping[f"{ours}/collisions/#{index}"] = colliders[index]
+            else:
+                missing.append(f"collision {index} of link {link.name!r}")
+    for joint in robot.joints:
+        theirs = layout.joints.get(joint.name)
+        if theirs is None:
+            missing.append(f"joint {joint.name!r}")
+        else:
+            mapping[f"{robot_path}/{JOINTS_SCOPE}/{joint.name}"] = theirs
+    return mapping
+
+
+def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result: PhysicsLayer) -> None:
+    """Carry ``prim``'s opinions (and its children's) to their importer paths."""
+    if "PhysicsArticulationRootAPI" in prim.api_schemas:
+        if result.articulation_root is not None:
+            _over(prim, out.prim(result.articulation_root, specifier="over"), mapping, result)
+    elif (target := mapping.get(path)) is not None:
+        # Prims robodesc adds (its contact materials) are defined; everything else is an over.
+        new = prim.specifier == "def" and target.startswith(result.materials)
+        made = out.prim(target, prim.type_name if new else "", "def" if new else "over")
+        _over(prim, made, mapping, result)
+    for index, (name, child) in enumerate(prim.children.items()):
+        # Colliders by their place in the link (the importer's names are its own).
+        _move(child, f"{path}/#{index}" if path.endswith("/collisions") else f"{path}/{name}", mapping, out, result)
+
+
+def _over(source: Prim, target: Prim, mapping: Mapping[str, str], result: PhysicsLayer) -> None:
+    result.prims += 1
+    for schema in source.api_schemas:
+        if schema not in _DROPPED_SCHEMAS:
+            target.apply(schema)
+    for name, prop in source.properties.items():
+        if name in _DROPPED_PROPERTIES:
+            continue
+        if isinstance(prop, Relationship):
+            targets = [_remap(t, mapping) for t in prop.targets]
+            target.rel(name, [t for t in targets if t is not None], custom=prop.custom)
+        else:
+            target.properties[name] = prop
+
+
+def _remap(path: str, mapping: Mapping[str, str]) -> str | None:
+    for ours, theirs in mapping.items():
+        if path == ours or path.startswith(ours + "/"):
+            return theirs + path[len(ours) :]
+    return None
