@@ -159,6 +159,36 @@ def cmd_compile(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_layer(args: argparse.Namespace) -> int:
+    """The Isaac folder compiled into a temporary folder with ``importer_usd`` = ``--onto``; only its
+    physics layer is kept (the one code path the folder's own layer takes)."""
+    import shutil
+    import tempfile
+
+    if not args.output:
+        raise ConfigError("robodesc layer writes one file: give it with -o physics.usda")
+    if not os.path.isfile(args.onto):
+        raise ConfigError(f"--onto {args.onto}: no such file")
+    args.isaac_sim = True
+    options = {
+        **_input_options(args),
+        **_pass_options(args),
+        **{k: v for k, v in target_options(args).items() if k in _accepted("isaac")},
+        "importer_usd": os.path.abspath(args.onto),
+        "mesh_paths": args.mesh_paths,
+        "preset": args.preset,
+        "validate": args.validate,
+    }
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = os.path.join(tmp, "isaac")
+        result = api.compile_to(args.input, "isaac", folder, **options)
+        shutil.copyfile(result.files["physics_layer"], args.output)
+    render.print_findings(result.findings, args.quiet, args.verbose)
+    if not args.quiet:
+        print(f"robodesc: physics layer {args.output} over {args.onto}", file=sys.stderr)
+    return 0
+
+
 def _validation_failed(args: argparse.Namespace, target: str, result: CompileResult) -> int:
     """Exit 1: the output differs from the source because of robodesc. Nothing was written; the
     full table is printed (and written to --report)."""
@@ -332,6 +362,7 @@ def cmd_batch(args: argparse.Namespace) -> int:
 
 
 COMMANDS = {
+    "layer": cmd_layer,
     "compile": cmd_compile,
     "batch": cmd_batch,
     "expand": cmd_expand,
