@@ -181,7 +181,8 @@ def importer_settings(robot: Robot, settings: IsaacSettings) -> dict[str, object
             "rest_offset": settings.rest_offset,
         },
         "per_joint_si_gains": per_joint,
-        "robodesc_settings": asdict(settings),
+        # importer_usd is a path on this machine, read once to address the physics layer: not a setting.
+        "robodesc_settings": {k: v for k, v in asdict(settings).items() if k != "importer_usd"},
     }
     if uniform_k is None or uniform_d is None:
         sim5["note"] = "gains differ per joint: the USD asset carries each joint's drive; see per_joint_si_gains"
