@@ -30,6 +30,7 @@ import os
 import subprocess
 import sys
 import time
+from pathlib import Path
 from typing import Any
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -117,7 +118,7 @@ def run_robot(name: str, source: str, extra: dict[str, Any], envs: str, work: st
          files["importer_settings"], "--out-dir", os.path.join(here, "imported"), "--out", imported],
         check=True, capture_output=True, text=True,
     )  # fmt: skip
-    report = json.loads(open(imported, encoding="utf-8").read())
+    report = json.loads(Path(imported).read_text(encoding="utf-8"))
     out["import"] = report["status"]
     out["import_s"] = report["seconds"]
     if report["status"] != "pass":
@@ -156,7 +157,7 @@ def run_robot(name: str, source: str, extra: dict[str, Any], envs: str, work: st
     if done.returncode != 0:
         out["physx"] = f"fail: {done.stderr.strip().splitlines()[-1:]}"
         return out
-    own, settings_route, layer_route = json.loads(open(parsed, encoding="utf-8").read())["stages"]
+    own, settings_route, layer_route = json.loads(Path(parsed).read_text(encoding="utf-8"))["stages"]
     out["links"], out["joints"] = len(own["links"]), len(own["joints"])
     out["importer_settings_diffs"] = compare(own, settings_route)
     out["layer_diffs"] = compare(own, layer_route)
@@ -165,8 +166,9 @@ def run_robot(name: str, source: str, extra: dict[str, Any], envs: str, work: st
 
 
 def main(argv: list[str] | None = None) -> int:
-    from robodesc.validation.corpora import all_robots
     from run_tier import FLOATING
+
+    from robodesc.validation.corpora import all_robots
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--envs", default=os.path.expanduser("~/.cache/robodesc-consumers"))

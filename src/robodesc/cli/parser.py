@@ -123,7 +123,14 @@ def build_parser() -> argparse.ArgumentParser:
     from robodesc.batch.command import add_batch_parser
 
     add_batch_parser(sub, compile_parser)  # takes compile's own options
-    commands = [compile_parser, _layer_parser(sub), _inspect_parser(sub), _validate_parser(sub), _expand_parser(sub), *_view_parsers(sub)]
+    commands = [
+        compile_parser,
+        _layer_parser(sub),
+        _inspect_parser(sub),
+        _validate_parser(sub),
+        _expand_parser(sub),
+        *_view_parsers(sub),
+    ]
     for sp in commands:
         sp.add_argument(
             "--debug", action="store_true", default=argparse.SUPPRESS, help="show the traceback of an internal error"

@@ -118,11 +118,13 @@ def importer_physics_layer(
     result = physics_layer(robot, usd_options(settings, initial), layout, findings)
     if result.missing:
         where = imported or "the importer's naming rules"
+        # Links and joints first: a missing body or drive matters more than a collider's settings.
+        missing = sorted(result.missing, key=lambda m: not m.startswith(("link ", "joint ")))
         findings.warn(
             "isaac-layer-missing",
-            f"{len(result.missing)} prim(s) the physics layer cannot address in {where}, left out: "
-            + ", ".join(result.missing[:12])
-            + (" ..." if len(result.missing) > 12 else ""),
+            f"{len(missing)} prim(s) the physics layer cannot address in {where}, left out: "
+            + ", ".join(missing[:20])
+            + (" ..." if len(missing) > 20 else ""),
             element=f"robot {robot.name!r}",
             loc=robot.src,
             stage="emit:isaac",

@@ -5,7 +5,9 @@ quadruped and gripper arm (and read in its ``_impl/link.py``, ``utils.py``, ``co
 
     /<robot name>                           default prim (the URDF's <robot name>, made a valid name)
         /Geometry/<root link>/<child link>/...  links nested along the tree, in URDF order
-            <link>/<visual or collision>    the link's visuals, then its collisions, named by the
+            <link>/<visual or collision>    the link's visuals, then its collisions (a mesh file: an
+                                            instanced Xform, CollisionAPI and convexHull on the
+                                            meshes inside), named by the
                                             element's name, else the mesh file's stem, else the shape
                                             tag (box, sphere, cylinder, capsule), made unique among
                                             the link prim's children ("box", "box_1"); claimed
@@ -35,6 +37,9 @@ class ImporterLayout:
     joints: dict[str, str] = field(default_factory=dict)  # IR joint name -> prim path
     colliders: dict[str, list[str]] = field(default_factory=dict)  # link -> collider paths, IR order
     articulation_root: str | None = None
+    # Colliders whose shapes the importer puts inside an instance (mesh files): a layer cannot edit
+    # instance proxies, so only what the importer itself authors there (CollisionAPI, convexHull) holds.
+    instanced: set[str] = field(default_factory=set)
     source: str = "rules"  # "rules", or the imported USD read
 
 
@@ -78,6 +83,9 @@ def layout_from_rules(robot: Robot) -> ImporterLayout:
         for visual in link.visuals:
             _unique(_geometry_name(visual), own)
         layout.colliders[name] = [f"{path}/{_unique(_geometry_name(c), own)}" for c in link.collisions]
+        layout.instanced.update(
+            p for p, c in zip(layout.colliders[name], link.collisions, strict=True) if isinstance(c.geometry, Mesh)
+        )
         # Reversed onto the stack so the children are named in URDF order.
         stack.extend((child, path, own) for child in reversed(children.get(name, [])))
     layout.articulation_root = layout.links[robot.root.name]
@@ -91,7 +99,7 @@ def layout_from_usd(path: str, robot: Robot) -> ImporterLayout:
     """Read the layout from an imported USD (its ``physx`` variant selected when it has the
     importer's ``Physics`` variant set): links are its rigid bodies, joints its joint prims, both
     matched to the IR by prim name or displayName; colliders the children of each link prim with
-    ``PhysicsCollisionAPI``, in order."""
+    ``PhysicsCollisionAPI``, or instances with it inside (mesh files), in order."""
     from pxr import Usd, UsdPhysics
 
     stage = Usd.Stage.Open(path)
@@ -112,9 +120,15 @@ def layout_from_usd(path: str, robot: Robot) -> ImporterLayout:
             name = next((k for k in keys if k in link_names), None)
             if name is not None and name not in layout.links:
                 layout.links[name] = str(prim.GetPath())
-                layout.colliders[name] = [
-                    str(c.GetPath()) for c in prim.GetChildren() if c.HasAPI(UsdPhysics.CollisionAPI)
-                ]
+                layout.colliders[name] = []
+                for child in prim.GetChildren():
+                    if child.HasAPI(UsdPhysics.CollisionAPI):
+                        layout.colliders[name].append(str(child.GetPath()))
+                    elif child.IsInstance() and any(
+                        p.HasAPI(UsdPhysics.CollisionAPI) for p in Usd.PrimRange(child, Usd.TraverseInstanceProxies())
+                    ):
+                        layout.colliders[name].append(str(child.GetPath()))
+                        layout.instanced.add(str(child.GetPath()))
         elif prim.IsA(UsdPhysics.Joint):
             name = next((k for k in keys if k in joint_names), None)
             if name is not None and name not in layout.joints:

@@ -41,6 +41,7 @@ class PhysicsLayer:
     layer: Layer
     materials: str  # the importer-side scope of robodesc's contact materials
     articulation_root: str | None  # where the importer put the articulation root
+    instanced: set[str] = field(default_factory=set)  # importer colliders inside instances
     missing: list[str] = field(default_factory=list)  # "link 'x'", "joint 'y'", ... the layout lacks
     prims: int = 0  # prims of robodesc's physics that found their place
 
@@ -57,7 +58,7 @@ def physics_layer(robot: Robot, options: UsdOptions, layout: ImporterLayout, fin
     source, interface, robot_path = robodesc_physics(robot, options, Findings())
     out = Layer()
     stage_metadata(out, layout.robot.lstrip("/"))
-    result = PhysicsLayer(out, f"{layout.robot}/{CONTACT_SCOPE}", layout.articulation_root)
+    result = PhysicsLayer(out, f"{layout.robot}/{CONTACT_SCOPE}", layout.articulation_root, layout.instanced)
     if layout.articulation_root is None:
         result.missing.append("the articulation root")
     mapping = _path_map(robot, robot_path, layout, result.missing)
@@ -103,7 +104,16 @@ def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result:
     if "PhysicsArticulationRootAPI" in prim.api_schemas:
         if result.articulation_root is not None:
             _over(prim, out.prim(result.articulation_root, specifier="over"), mapping, result)
-    elif (target := mapping.get(path)) is not None:
+    elif (target := mapping.get(path)) in result.instanced:
+        extra = _beyond_importer(prim)
+        if extra:
+            result.missing.append(
+                f"{path.rsplit('/collisions/', 1)[0].rsplit('/', 1)[-1]}'s mesh collider {target} "
+                f"({', '.join(extra)}: inside an instance the importer made, which a layer cannot edit)"
+            )
+        else:
+            result.prims += 1  # the importer already authors exactly this
+    elif target is not None:
         # Prims robodesc adds (its contact materials) are defined; everything else is an over.
         new = prim.specifier == "def" and target.startswith(result.materials)
         made = out.prim(target, prim.type_name if new else "", "def" if new else "over")
@@ -111,6 +121,16 @@ def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result:
     for index, (name, child) in enumerate(prim.children.items()):
         # Colliders by their place in the link (the importer's names are its own).
         _move(child, f"{path}/#{index}" if path.endswith("/collisions") else f"{path}/{name}", mapping, out, result)
+
+
+def _beyond_importer(collider: Prim) -> list[str]:
+    """What robodesc's collider says beyond the importer's own (CollisionAPI, convexHull)."""
+    extra = [s for s in collider.api_schemas if s not in ("PhysicsCollisionAPI", "PhysicsMeshCollisionAPI")]
+    for name, prop in collider.properties.items():
+        if name == "physics:approximation" and getattr(prop, "value", None) == "convexHull":
+            continue
+        extra.append(name)
+    return extra
 
 
 def _over(source: Prim, target: Prim, mapping: Mapping[str, str], result: PhysicsLayer) -> None:
