@@ -14,8 +14,8 @@ For every robot (the bundled examples, then corpus robots from ``robodesc.valida
    and must equal the folder's (the naming rules predicted every path) and find every prim;
 4. PhysX (ovphysx, its own venv; ``isaac6_physx_read.py``) reads three stages: robodesc's own USD,
    the import with ``importer_settings.json`` alone, and the import with the layer sublayered over it
-   (its ``physx`` variant selected, as the importer leaves it unselected). Each link's mass and
-   inertia and each joint's stiffness, damping, limits, effort and velocity bounds, armature and
+   (its ``physx`` variant selected, as the importer leaves it unselected). Each link's mass,
+   inertia and shapes' friction (the distinct values) and each joint's stiffness, damping, limits, effort and velocity bounds, armature and
    friction must equal robodesc's own USD (relative 1e-5, absolute 1e-9: float32 USD values).
 
 Results: one JSON object per robot; ``--out`` keeps them all.
@@ -40,6 +40,7 @@ sys.path.insert(0, os.path.join(ROOT, "src"))
 
 EXAMPLES = {"quadruped": "examples/quadruped.yaml", "arm6_gripper": "examples/arm6_gripper.yaml"}
 REL, ABS = 1e-5, 1e-9
+PER_SHAPE = ("staticFriction", "dynamicFriction")
 
 
 def _close(a: list[float], b: list[float]) -> bool:
@@ -49,18 +50,29 @@ def _close(a: list[float], b: list[float]) -> bool:
     return all(x == y or math.isclose(x, y, rel_tol=REL, abs_tol=ABS) for x, y in zip(a, b, strict=True))
 
 
-def compare(reference: dict[str, Any], other: dict[str, Any]) -> list[str]:
-    """Every link and joint quantity of ``other`` that differs from ``reference`` (or is missing)."""
+def compare(reference: dict[str, Any], other: dict[str, Any], names: dict[str, str]) -> list[str]:
+    """Every link, joint and articulation quantity of ``other`` that differs from ``reference`` (or
+    is missing). ``names``: the importer's prim name -> the IR name, where the importer renamed
+    (a child link named like a sibling visual becomes ``base_2``)."""
     diffs: list[str] = []
     for kind in ("links", "joints"):
+        theirs_by_name = {names.get(leaf, leaf): values for leaf, values in other[kind].items()}
         for name, values in reference[kind].items():
-            theirs = other[kind].get(name)
+            theirs = theirs_by_name.get(name)
             if theirs is None:
                 diffs.append(f"{kind[:-1]} {name}: missing")
                 continue
             for attr, ours in values.items():
-                if not _close(ours, theirs.get(attr, [])):
+                got = theirs.get(attr, [])
+                if attr in PER_SHAPE:  # the importer may split a mesh into several shapes
+                    ours, got = sorted(set(ours)), sorted(set(got))
+                if not _close(ours, got):
                     diffs.append(f"{kind[:-1]} {name} {attr}: {theirs.get(attr)} (robodesc USD {ours})")
+    # One articulation each (keyed by the root API's prim, which differs between the layouts).
+    ours_art = sorted(map(str, reference["articulations"].values()))
+    theirs_art = sorted(map(str, other["articulations"].values()))
+    if ours_art != theirs_art:
+        diffs.append(f"articulations: {theirs_art} (robodesc USD {ours_art})")
     return diffs
 
 
@@ -159,8 +171,9 @@ def run_robot(name: str, source: str, extra: dict[str, Any], envs: str, work: st
         return out
     own, settings_route, layer_route = json.loads(Path(parsed).read_text(encoding="utf-8"))["stages"]
     out["links"], out["joints"] = len(own["links"]), len(own["joints"])
-    out["importer_settings_diffs"] = compare(own, settings_route)
-    out["layer_diffs"] = compare(own, layer_route)
+    names = {path.rsplit("/", 1)[-1]: name for name, path in [*layout.links.items(), *layout.joints.items()]}
+    out["importer_settings_diffs"] = compare(own, settings_route, names)
+    out["layer_diffs"] = compare(own, layer_route, names)
     out["physx"] = "match" if not out["layer_diffs"] else f"{len(out['layer_diffs'])} differences"
     return out
 

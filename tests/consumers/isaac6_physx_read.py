@@ -1,6 +1,6 @@
 """Run in PhysX's interpreter (``robodesc.validation.physx_python``): open each USD stage given and
 write, as one JSON document, what PhysX (ovphysx) parsed for its articulation: per link (by prim
-name) mass and inertia, per joint (by prim name) drive gains, limits, effort and velocity bounds,
+name) mass, inertia and its shapes' friction, per joint (by prim name) drive gains, limits, effort and velocity bounds,
 armature and friction, and the articulation's counts.
 
     python isaac6_physx_read.py STAGES.json OUT.json
@@ -26,7 +26,7 @@ JOINT = (
     "jointDynamicFriction",
     "jointViscousFriction",
 )
-LINK = ("mass", "inertia")
+LINK = ("mass", "inertia", "staticFriction", "dynamicFriction")
 ARTICULATION = ("dofCount", "linkCount", "isFixedBase")
 
 

@@ -105,6 +105,14 @@ def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result:
         if result.articulation_root is not None:
             _over(prim, out.prim(result.articulation_root, specifier="over"), mapping, result)
     elif (target := mapping.get(path)) in result.instanced:
+        assert target is not None
+        # A material binding is inherited by the meshes inside (UsdShade resolves bindings up the
+        # namespace), so it goes onto the instance's root, which a layer may edit.
+        binding = prim.properties.get("material:binding:physics")
+        if isinstance(binding, Relationship):
+            made = out.prim(target, specifier="over")
+            made.apply("MaterialBindingAPI")
+            made.rel(binding.name, [t for t in map(lambda t: _remap(t, mapping), binding.targets) if t is not None])
         extra = _beyond_importer(prim)
         if extra:
             result.missing.append(
@@ -124,9 +132,13 @@ def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result:
 
 
 def _beyond_importer(collider: Prim) -> list[str]:
-    """What robodesc's collider says beyond the importer's own (CollisionAPI, convexHull)."""
-    extra = [s for s in collider.api_schemas if s not in ("PhysicsCollisionAPI", "PhysicsMeshCollisionAPI")]
+    """What robodesc's collider says beyond the importer's own (CollisionAPI, convexHull) and the
+    material binding the instance's root carries."""
+    handled = ("PhysicsCollisionAPI", "PhysicsMeshCollisionAPI", "MaterialBindingAPI")
+    extra = [s for s in collider.api_schemas if s not in handled]
     for name, prop in collider.properties.items():
+        if name == "material:binding:physics":
+            continue
         if name == "physics:approximation" and getattr(prop, "value", None) == "convexHull":
             continue
         extra.append(name)
