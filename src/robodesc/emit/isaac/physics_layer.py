@@ -11,8 +11,9 @@ role of the layered layout, ``emit/usd/layers.py``) in memory, and each of its p
 the importer's path for the same link, joint or collider (``importer_layout.py``) as an ``over``.
 What is dropped, and why: ``physics:body0/1`` (the importer's joints already name its bodies) and
 robodesc's base weld (the importer writes its own ``root_joint``); Isaac's robot schema lists
-(robodesc's paths). The articulation root API stays where the importer put it (two roots would be
-two articulations); robodesc's articulation settings go onto that prim. A prim the layout does not
+(robodesc's paths). A floating robot's articulation root is the root link in both layouts; for a
+fixed base the layer deletes the importer's root API from the base link and applies it to the robot
+prim, where robodesc puts it (one root: two would be two articulations). A prim the layout does not
 have is left out and named in the result.
 """
 
@@ -39,6 +40,7 @@ _DROPPED_SCHEMAS = ("PhysicsArticulationRootAPI", "IsaacRobotAPI", "IsaacLinkAPI
 @dataclass
 class PhysicsLayer:
     layer: Layer
+    robot: str  # the importer's robot prim
     materials: str  # the importer-side scope of robodesc's contact materials
     articulation_root: str | None  # where the importer put the articulation root
     instanced: set[str] = field(default_factory=set)  # importer colliders inside instances
@@ -58,7 +60,9 @@ def physics_layer(robot: Robot, options: UsdOptions, layout: ImporterLayout, fin
     source, interface, robot_path = robodesc_physics(robot, options, Findings())
     out = Layer()
     stage_metadata(out, layout.robot.lstrip("/"))
-    result = PhysicsLayer(out, f"{layout.robot}/{CONTACT_SCOPE}", layout.articulation_root, layout.instanced)
+    result = PhysicsLayer(
+        out, layout.robot, f"{layout.robot}/{CONTACT_SCOPE}", layout.articulation_root, layout.instanced
+    )
     if layout.articulation_root is None:
         result.missing.append("the articulation root")
     mapping = _path_map(robot, robot_path, layout, result.missing)
@@ -102,8 +106,17 @@ def _path_map(robot: Robot, robot_path: str, layout: ImporterLayout, missing: li
 def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result: PhysicsLayer) -> None:
     """Carry ``prim``'s opinions (and its children's) to their importer paths."""
     if "PhysicsArticulationRootAPI" in prim.api_schemas:
-        if result.articulation_root is not None:
-            _over(prim, out.prim(result.articulation_root, specifier="over"), mapping, result)
+        root = result.articulation_root
+        if root is not None and "/" not in path[1:] and root != result.robot:
+            # A fixed base: robodesc roots the articulation at the robot prim, above the weld to the
+            # world; the importer roots it at the base link, and PhysX then floats the base (read in
+            # ovphysx 0.7: isFixedBase 0 for the imported gripper arm and panda). Moved.
+            moved = out.prim(root, specifier="over")
+            moved.deleted_api_schemas += ["PhysicsArticulationRootAPI", "NewtonArticulationRootAPI"]
+            root = result.robot
+            out.prim(root, specifier="over").apply("PhysicsArticulationRootAPI")
+        if root is not None:
+            _over(prim, out.prim(root, specifier="over"), mapping, result)
     elif (target := mapping.get(path)) in result.instanced:
         assert target is not None
         # A material binding is inherited by the meshes inside (UsdShade resolves bindings up the
