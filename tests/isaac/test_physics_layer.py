@@ -138,3 +138,44 @@ def test_import_plus_layer_equals_robodesc_usd_in_physx(tmp_path: Path) -> None:
     # importer_settings.json alone: the gains arrive, the armature (0.005 kg·m²) does not.
     assert len(result["importer_settings_diffs"]) == 12
     assert all("jointArmature: [0.0]" in d for d in result["importer_settings_diffs"])
+
+
+def test_fixed_base_root_moves_to_the_robot_prim(tmp_path: Path) -> None:
+    result = robodesc.compile_for_isaac_sim(str(EXAMPLES / "arm6_gripper.yaml"), tmp_path / "isaac")
+    layer = Sdf.Layer.FindOrOpen(result.files["physics_layer"])
+    base = layer.GetPrimAtPath("/arm6_gripper/Geometry/base_link").GetInfo("apiSchemas")
+    robot = layer.GetPrimAtPath("/arm6_gripper").GetInfo("apiSchemas")
+    # The importer roots the articulation at base_link, which PhysX floats; robodesc's place is the robot.
+    assert list(base.deletedItems) == ["PhysicsArticulationRootAPI", "NewtonArticulationRootAPI"]
+    assert "PhysicsArticulationRootAPI" in robot.prependedItems
+    # Composed over an "import" whose root API sits on base_link, one root remains: the robot prim.
+    imported = tmp_path / "imported.usda"
+    imported.write_text(
+        '#usda 1.0\n(defaultPrim = "arm6_gripper")\ndef Xform "arm6_gripper" {\n def Scope "Geometry" {\n'
+        '  def Xform "base_link" (prepend apiSchemas = ["PhysicsRigidBodyAPI", "PhysicsArticulationRootAPI"]) {}\n'
+        " }\n}\n"
+    )
+    root = Sdf.Layer.CreateAnonymous(".usda")
+    root.subLayerPaths = [result.files["physics_layer"], str(imported)]
+    stage = Usd.Stage.Open(root)
+    roots = [str(p.GetPath()) for p in stage.Traverse() if "PhysicsArticulationRootAPI" in p.GetAppliedSchemas()]
+    assert roots == ["/arm6_gripper"]
+
+
+def test_fixed_arm_import_plus_layer_has_a_fixed_base_in_physx(tmp_path: Path) -> None:
+    import sys
+
+    from robodesc.validation.physx_python import physx_python
+
+    if not (ENVS / "isaacsim" / ".built").is_file() or physx_python() is None:
+        pytest.skip(f"no isaacsim environment or ovphysx in {ENVS} (tests/consumers/run.sh builds them)")
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "consumers"))
+    from isaac6_layer import run_robot  # type: ignore[import-not-found]
+
+    result = run_robot("arm6_gripper", str(EXAMPLES / "arm6_gripper.yaml"), {}, str(ENVS), str(tmp_path))
+    assert result["layer_diffs"] == []
+    # The importer's own root (on base_link): PhysX floats the base, held only by the root joint.
+    assert result["importer_settings_diffs"] == [
+        "articulations: [\"{'dofCount': [8.0], 'linkCount': [10.0], 'isFixedBase': [0.0]}\"] "
+        "(robodesc USD [\"{'dofCount': [8.0], 'linkCount': [10.0], 'isFixedBase': [1.0]}\"])"
+    ]
