@@ -44,6 +44,9 @@ class PhysicsLayer:
     materials: str  # the importer-side scope of robodesc's contact materials
     articulation_root: str | None  # where the importer put the articulation root
     instanced: set[str] = field(default_factory=set)  # importer colliders inside instances
+    # robodesc's materials that say only what PhysX assumes unbound (friction 0.5): losing their
+    # binding on an instanced collider changes nothing.
+    default_materials: set[str] = field(default_factory=set)
     missing: list[str] = field(default_factory=list)  # "link 'x'", "joint 'y'", ... the layout lacks
     prims: int = 0  # prims of robodesc's physics that found their place
 
@@ -67,6 +70,11 @@ def physics_layer(robot: Robot, options: UsdOptions, layout: ImporterLayout, fin
         result.missing.append("the articulation root")
     mapping = _path_map(robot, robot_path, layout, result.missing)
     mapping[f"{robot_path}/{CONTACT_SCOPE}"] = result.materials
+    scope = source.find(f"{robot_path}/{CONTACT_SCOPE}")
+    for name, material in scope.children.items() if scope is not None else ():
+        values = {k: getattr(v, "value", None) for k, v in material.properties.items()}
+        if values == {"physics:staticFriction": 0.5, "physics:dynamicFriction": 0.5}:
+            result.default_materials.add(f"{robot_path}/{CONTACT_SCOPE}/{name}")
     top = source.find(robot_path)
     if top is not None:
         _move(top, robot_path, mapping, out, result)
@@ -118,15 +126,7 @@ def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result:
         if root is not None:
             _over(prim, out.prim(root, specifier="over"), mapping, result)
     elif (target := mapping.get(path)) in result.instanced:
-        assert target is not None
-        # A material binding is inherited by the meshes inside (UsdShade resolves bindings up the
-        # namespace), so it goes onto the instance's root, which a layer may edit.
-        binding = prim.properties.get("material:binding:physics")
-        if isinstance(binding, Relationship):
-            made = out.prim(target, specifier="over")
-            made.apply("MaterialBindingAPI")
-            made.rel(binding.name, [t for t in map(lambda t: _remap(t, mapping), binding.targets) if t is not None])
-        extra = _beyond_importer(prim)
+        extra = _beyond_importer(prim, result.default_materials)
         if extra:
             result.missing.append(
                 f"{path.rsplit('/collisions/', 1)[0].rsplit('/', 1)[-1]}'s mesh collider {target} "
@@ -144,13 +144,16 @@ def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result:
         _move(child, f"{path}/#{index}" if path.endswith("/collisions") else f"{path}/{name}", mapping, out, result)
 
 
-def _beyond_importer(collider: Prim) -> list[str]:
-    """What robodesc's collider says beyond the importer's own (CollisionAPI, convexHull) and the
-    material binding the instance's root carries."""
-    handled = ("PhysicsCollisionAPI", "PhysicsMeshCollisionAPI", "MaterialBindingAPI")
+def _beyond_importer(collider: Prim, default_materials: set[str]) -> list[str]:
+    """What robodesc's collider says beyond the importer's own (CollisionAPI, convexHull)."""
+    # A contact material bound on the instance's root does not reach the meshes inside: ovphysx 0.7
+    # read Talos' and Stretch's bound friction (0.9, 0) as its default 0.5 that way.
+    binding = collider.properties.get("material:binding:physics")
+    plain = isinstance(binding, Relationship) and set(binding.targets) <= default_materials
+    handled = ("PhysicsCollisionAPI", "PhysicsMeshCollisionAPI", *(("MaterialBindingAPI",) if plain else ()))
     extra = [s for s in collider.api_schemas if s not in handled]
     for name, prop in collider.properties.items():
-        if name == "material:binding:physics":
+        if name == "material:binding:physics" and plain:
             continue
         if name == "physics:approximation" and getattr(prop, "value", None) == "convexHull":
             continue
