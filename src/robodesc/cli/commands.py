@@ -160,29 +160,20 @@ def cmd_compile(args: argparse.Namespace) -> int:
 
 
 def cmd_layer(args: argparse.Namespace) -> int:
-    """The Isaac folder compiled into a temporary folder with ``importer_usd`` = ``--onto``; only its
-    physics layer is kept (the one code path the folder's own layer takes)."""
-    import shutil
-    import tempfile
-
+    """The Isaac folder's physics layer for an existing import (``api.isaac_physics_layer``)."""
     if not args.output:
         raise ConfigError("robodesc layer writes one file: give it with -o physics.usda")
     if not os.path.isfile(args.onto):
         raise ConfigError(f"--onto {args.onto}: no such file")
-    args.isaac_sim = True
     options = {
         **_input_options(args),
         **_pass_options(args),
-        **{k: v for k, v in target_options(args).items() if k in _accepted("isaac")},
-        "importer_usd": os.path.abspath(args.onto),
+        **target_options(args),
         "mesh_paths": args.mesh_paths,
         "preset": args.preset,
         "validate": args.validate,
     }
-    with tempfile.TemporaryDirectory() as tmp:
-        folder = os.path.join(tmp, "isaac")
-        result = api.compile_to(args.input, "isaac", folder, **options)
-        shutil.copyfile(result.files["physics_layer"], args.output)
+    result = api.isaac_physics_layer(args.input, args.onto, args.output, **options)
     render.print_findings(result.findings, args.quiet, args.verbose)
     if not args.quiet:
         print(f"robodesc: physics layer {args.output} over {args.onto}", file=sys.stderr)

@@ -19,15 +19,11 @@ have is left out and named in the result.
 
 from __future__ import annotations
 
-import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from robodesc.emit.isaac.importer_layout import ImporterLayout
-from robodesc.emit.usd.context import CONTACT_SCOPE, JOINTS_SCOPE, PHYSICS, UsdContext
-from robodesc.emit.usd.emitter import build_layers
-from robodesc.emit.usd.layers import LayerSet, stage_metadata
-from robodesc.emit.usd.options import UsdOptions
+from robodesc.emit.usd import PhysicsOpinions, UsdOptions, physics_opinions
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
 from robodesc.usdfile.spec import Layer, Prim, Relationship
@@ -51,42 +47,33 @@ class PhysicsLayer:
     prims: int = 0  # prims of robodesc's physics that found their place
 
 
-def robodesc_physics(robot: Robot, options: UsdOptions, findings: Findings) -> tuple[Layer, Layer | None, str]:
-    """robodesc's own physics layer (and interface layer, for the scene) for ``robot``, in memory."""
-    layers = LayerSet.create("robot.usda", layered=True)
-    ctx = UsdContext(robot=robot, options=options, findings=findings, layer_dir=os.getcwd(), layers=layers.roles)
-    build_layers(ctx, layers)
-    return layers.roles[PHYSICS], layers.interface, ctx.robot_path
-
-
 def physics_layer(robot: Robot, options: UsdOptions, layout: ImporterLayout, findings: Findings) -> PhysicsLayer:
-    source, interface, robot_path = robodesc_physics(robot, options, Findings())
-    out = Layer()
-    stage_metadata(out, layout.robot.lstrip("/"))
+    ours = physics_opinions(robot, options, Findings())
+    source, robot_path = ours.layer, ours.robot_path
+    out = Layer(default_prim=layout.robot.lstrip("/"), meters_per_unit=1.0, kilograms_per_unit=1.0, up_axis="Z")
     result = PhysicsLayer(
-        out, layout.robot, f"{layout.robot}/{CONTACT_SCOPE}", layout.articulation_root, layout.instanced
+        out, layout.robot, f"{layout.robot}/{ours.materials_scope}", layout.articulation_root, layout.instanced
     )
     if layout.articulation_root is None:
         result.missing.append("the articulation root")
-    mapping = _path_map(robot, robot_path, layout, result.missing)
-    mapping[f"{robot_path}/{CONTACT_SCOPE}"] = result.materials
-    scope = source.find(f"{robot_path}/{CONTACT_SCOPE}")
+    mapping = _path_map(robot, ours, layout, result.missing)
+    mapping[f"{robot_path}/{ours.materials_scope}"] = result.materials
+    scope = source.find(f"{robot_path}/{ours.materials_scope}")
     for name, material in scope.children.items() if scope is not None else ():
         values = {k: getattr(v, "value", None) for k, v in material.properties.items()}
         if values == {"physics:staticFriction": 0.5, "physics:dynamicFriction": 0.5}:
-            result.default_materials.add(f"{robot_path}/{CONTACT_SCOPE}/{name}")
+            result.default_materials.add(f"{robot_path}/{ours.materials_scope}/{name}")
     top = source.find(robot_path)
     if top is not None:
         _move(top, robot_path, mapping, out, result)
-    if interface is not None and interface.find("/PhysicsScene") is not None:
-        scene = interface.find("/PhysicsScene")
-        assert scene is not None
-        out.root.children["PhysicsScene"] = scene
+    if ours.scene is not None:
+        out.root.children["PhysicsScene"] = ours.scene
     return result
 
 
-def _path_map(robot: Robot, robot_path: str, layout: ImporterLayout, missing: list[str]) -> dict[str, str]:
+def _path_map(robot: Robot, source: PhysicsOpinions, layout: ImporterLayout, missing: list[str]) -> dict[str, str]:
     """robodesc's prim path -> the importer's, for every prim that carries physics."""
+    robot_path = source.robot_path
     mapping: dict[str, str] = {}
     for link in robot.links:
         ours = f"{robot_path}/{link.name}"
@@ -107,7 +94,7 @@ def _path_map(robot: Robot, robot_path: str, layout: ImporterLayout, missing: li
         if theirs is None:
             missing.append(f"joint {joint.name!r}")
         else:
-            mapping[f"{robot_path}/{JOINTS_SCOPE}/{joint.name}"] = theirs
+            mapping[f"{robot_path}/{source.joints_scope}/{joint.name}"] = theirs
     return mapping
 
 
