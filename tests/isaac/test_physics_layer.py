@@ -179,3 +179,14 @@ def test_fixed_arm_import_plus_layer_has_a_fixed_base_in_physx(tmp_path: Path) -
         "articulations: [\"{'dofCount': [8.0], 'linkCount': [10.0], 'isFixedBase': [0.0]}\"] "
         "(robodesc USD [\"{'dofCount': [8.0], 'linkCount': [10.0], 'isFixedBase': [1.0]}\"])"
     ]
+
+
+def test_contact_materials_are_defined_and_bound(tmp_path: Path) -> None:
+    result = robodesc.compile_for_isaac_sim(str(QUADRUPED), tmp_path / "isaac", friction_combine="min")
+    stage = Usd.Stage.Open(result.files["physics_layer"])
+    materials = [p for p in stage.TraverseAll() if p.GetTypeName() == "Material"]
+    assert [str(p.GetPath()) for p in materials] == ["/quadruped/PhysicsMaterials/contact"]
+    assert materials[0].GetAttribute("physxMaterial:frictionCombineMode").Get() == "min"
+    assert materials[0].GetAttribute("physics:staticFriction").Get() == pytest.approx(0.5)
+    foot = stage.GetPrimAtPath("/quadruped/Geometry/trunk/FL_hip/FL_thigh/FL_calf/sphere_1")
+    assert foot.GetRelationship("material:binding:physics").GetTargets() == [materials[0].GetPath()]

@@ -38,6 +38,7 @@ class PhysicsLayer:
     layer: Layer
     robot: str  # the importer's robot prim
     materials: str  # the importer-side scope of robodesc's contact materials
+    materials_source: str  # robodesc's scope of them
     articulation_root: str | None  # where the importer put the articulation root
     instanced: set[str] = field(default_factory=set)  # importer colliders inside instances
     # robodesc's materials that say only what PhysX assumes unbound (friction 0.5): losing their
@@ -52,7 +53,12 @@ def physics_layer(robot: Robot, options: UsdOptions, layout: ImporterLayout, fin
     source, robot_path = ours.layer, ours.robot_path
     out = Layer(default_prim=layout.robot.lstrip("/"), meters_per_unit=1.0, kilograms_per_unit=1.0, up_axis="Z")
     result = PhysicsLayer(
-        out, layout.robot, f"{layout.robot}/{ours.materials_scope}", layout.articulation_root, layout.instanced
+        out,
+        layout.robot,
+        f"{layout.robot}/{ours.materials_scope}",
+        f"{robot_path}/{ours.materials_scope}",
+        layout.articulation_root,
+        layout.instanced,
     )
     if layout.articulation_root is None:
         result.missing.append("the articulation root")
@@ -112,7 +118,7 @@ def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result:
             out.prim(root, specifier="over").apply("PhysicsArticulationRootAPI")
         if root is not None:
             _over(prim, out.prim(root, specifier="over"), mapping, result)
-    elif (target := mapping.get(path)) in result.instanced:
+    elif (target := mapping.get(path) or _remap(path, {result.materials_source: result.materials})) in result.instanced:
         extra = _beyond_importer(prim, result.default_materials)
         if extra:
             result.missing.append(
