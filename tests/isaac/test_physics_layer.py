@@ -190,3 +190,10 @@ def test_contact_materials_are_defined_and_bound(tmp_path: Path) -> None:
     assert materials[0].GetAttribute("physics:staticFriction").Get() == pytest.approx(0.5)
     foot = stage.GetPrimAtPath("/quadruped/Geometry/trunk/FL_hip/FL_thigh/FL_calf/sphere_1")
     assert foot.GetRelationship("material:binding:physics").GetTargets() == [materials[0].GetPath()]
+
+
+def test_loop_joints_are_named_not_carried(tmp_path: Path) -> None:
+    result = robodesc.compile_for_isaac_sim(str(EXAMPLES / "four_bar.yaml"), tmp_path / "isaac")
+    missing = [f.message for f in result.findings if f.code == "isaac-layer-missing"]
+    assert len(missing) == 1 and missing[0].endswith("left out: loop joint 'coupler_rocker'")
+    assert "loop_joints" not in Path(result.files["physics_layer"]).read_text()
