@@ -22,6 +22,7 @@ if TYPE_CHECKING:
         compile_to_sdf,
         compile_to_urdf,
         compile_to_usd,
+        isaac_physics_layer,
         load,
         validate,
     )
@@ -37,6 +38,7 @@ __all__ = [
     "compile_to_sdf",
     "compile_to_urdf",
     "compile_to_usd",
+    "isaac_physics_layer",
     "load",
     "validate",
 ]

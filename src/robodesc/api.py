@@ -189,6 +189,31 @@ def compile_for_isaac_sim(
     return _compile("isaac", source, target, progress, options, IsaacSettings)
 
 
+def isaac_physics_layer(
+    source: Source,
+    onto: str | os.PathLike[str],
+    out: str | os.PathLike[str],
+    *,
+    progress: Progress | None = None,
+    **options: Any,
+) -> CompileResult:
+    """``robodesc layer``: the Isaac folder's ``<robot>_physics.usda`` for a robot Isaac Sim 6's URDF
+    importer already imported to ``onto``, its prim paths read from that USD (docs/isaac.md), written
+    to ``out``. Takes :func:`compile_for_isaac_sim`'s options; prims the layer cannot find are named
+    in the warning ``isaac-layer-missing``."""
+    import shutil
+    import tempfile
+
+    from robodesc.emit.isaac import IsaacSettings
+
+    with tempfile.TemporaryDirectory(prefix="robodesc-layer-") as tmp:
+        options = {**options, "importer_usd": os.path.abspath(onto)}
+        result = _compile("isaac", source, os.path.join(tmp, "isaac"), progress, options, IsaacSettings)
+        shutil.copyfile(result.files["physics_layer"], out)
+    result.files = {"physics_layer": os.fspath(out)}
+    return result
+
+
 def inspect(source: Source, **options: Any) -> InspectReport:
     """Load ``source`` and describe it: tree, DOF, total mass and every finding (``robodesc inspect``)."""
     from robodesc.inspect_robot import describe

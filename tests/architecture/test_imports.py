@@ -235,6 +235,7 @@ NAMING_ALLOWED = {
         "compile_for_ros2",
         "compile_for_gazebo",
         "compile_for_isaac_sim",
+        "isaac_physics_layer",  # robodesc layer: the Isaac folder's physics layer for an existing import
         "validate_file",
     },
 }

@@ -309,6 +309,7 @@ def test_cli_isaac_sim_writes_the_folder(tmp_path: Path, capsys: pytest.CaptureF
         "gripper_arm.urdf",
         "importer_settings.json",
         "gripper_arm_isaaclab.py",
+        "gripper_arm_physics.usda",
         "validation.md",
         "validation.json",
         "findings.md",

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import random
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -54,3 +55,25 @@ def test_strings_quote_like_usd_core(text: str) -> None:
     Sdf.AttributeSpec(prim, "s", Sdf.ValueTypeNames.String).default = text
     exported = layer.ExportToString()
     assert f"string s = {quote(text)}\n" in exported
+
+
+def test_deleted_api_schemas_read_back_in_usd_core(tmp_path: Path) -> None:
+    from pxr import Usd
+
+    from robodesc.usdfile.spec import Layer
+    from robodesc.usdfile.usda import usda_text
+
+    layer = Layer()
+    prim = layer.prim("/robot/base", specifier="over")
+    prim.deleted_api_schemas.append("PhysicsArticulationRootAPI")
+    prim.apply("PhysicsRigidBodyAPI")
+    over = tmp_path / "over.usda"
+    over.write_text(usda_text(layer))
+    base = tmp_path / "base.usda"
+    base.write_text(
+        '#usda 1.0\ndef Xform "robot" {\n def Xform "base" (prepend apiSchemas = ["PhysicsArticulationRootAPI"]) {}\n}\n'
+    )
+    root = Sdf.Layer.CreateAnonymous(".usda")
+    root.subLayerPaths = [str(over), str(base)]
+    # The stronger layer's delete removes what the weaker one applied.
+    assert list(Usd.Stage.Open(root).GetPrimAtPath("/robot/base").GetAppliedSchemas()) == ["PhysicsRigidBodyAPI"]

@@ -161,6 +161,27 @@ def cmd_compile(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_layer(args: argparse.Namespace) -> int:
+    """The Isaac folder's physics layer for an existing import (``api.isaac_physics_layer``)."""
+    if not args.output:
+        raise ConfigError("robodesc layer writes one file: give it with -o physics.usda")
+    if not os.path.isfile(args.onto):
+        raise ConfigError(f"--onto {args.onto}: no such file")
+    options = {
+        **_input_options(args),
+        **_pass_options(args),
+        **target_options(args),
+        "mesh_paths": args.mesh_paths,
+        "preset": args.preset,
+        "validate": args.validate,
+    }
+    result = api.isaac_physics_layer(args.input, args.onto, args.output, **options)
+    render.print_findings(result.findings, args.quiet, args.verbose)
+    if not args.quiet:
+        print(f"robodesc: physics layer {args.output} over {args.onto}", file=sys.stderr)
+    return 0
+
+
 def _validation_failed(args: argparse.Namespace, target: str, result: CompileResult) -> int:
     """Exit 1: the output differs from the source because of robodesc. Nothing was written; the
     full table is printed (and written to --report)."""
@@ -354,6 +375,7 @@ def cmd_batch(args: argparse.Namespace) -> int:
 
 
 COMMANDS = {
+    "layer": cmd_layer,
     "compile": cmd_compile,
     "batch": cmd_batch,
     "expand": cmd_expand,

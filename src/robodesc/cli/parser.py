@@ -131,7 +131,14 @@ def build_parser() -> argparse.ArgumentParser:
     from robodesc.batch.command import add_batch_parser
 
     add_batch_parser(sub, compile_parser)  # takes compile's own options
-    commands = [compile_parser, _inspect_parser(sub), _validate_parser(sub), _expand_parser(sub), *_view_parsers(sub)]
+    commands = [
+        compile_parser,
+        _layer_parser(sub),
+        _inspect_parser(sub),
+        _validate_parser(sub),
+        _expand_parser(sub),
+        *_view_parsers(sub),
+    ]
     for sp in commands:
         sp.add_argument(
             "--debug", action="store_true", default=argparse.SUPPRESS, help="show the traceback of an internal error"
@@ -139,11 +146,32 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _compile_parser(sub: Any) -> argparse.ArgumentParser:
+def _layer_parser(sub: Any) -> argparse.ArgumentParser:
+    """``robodesc layer ROBOT --onto IMPORTED.usd -o physics.usda``: compile's flags (the Isaac
+    ones matter), the imported USD, and the layer file."""
+    lay = _compile_parser(
+        sub,
+        "layer",
+        "write robodesc's physics as a USD layer over a robot Isaac Sim 6's importer already imported",
+        "Compile INPUT as --isaac-sim does and write only its physics layer, addressed to the prims of "
+        "--onto (the USD Isaac Sim 6's URDF importer wrote from that robot's URDF; docs/isaac.md). Prims the "
+        "layer cannot find are named in a warning.",
+    )
+    lay.add_argument("--onto", required=True, metavar="IMPORTED.usd", help="the USD the importer wrote")
+    return lay
+
+
+def _compile_parser(
+    sub: Any,
+    name: str = "compile",
+    summary: str = "compile a robot description to a target",
+    text: str = "",
+) -> argparse.ArgumentParser:
     comp: argparse.ArgumentParser = sub.add_parser(
-        "compile",
-        help="compile a robot description to a target",
-        description=f"Compile INPUT ({describe_inputs()}) to a target format, running the verifier and the passes you select.\n\ntargets:\n{target_lines()}",
+        name,
+        help=summary,
+        description=text
+        or f"Compile INPUT ({describe_inputs()}) to a target format, running the verifier and the passes you select.\n\ntargets:\n{target_lines()}",
         formatter_class=argparse.RawDescriptionHelpFormatter,
         epilog=EPILOG,
     )

@@ -110,6 +110,9 @@ class Prim:
     payloads: list[Payload] = field(default_factory=list)  # written as a prepended list op
     properties: dict[str, Property] = field(default_factory=dict)
     children: dict[str, Prim] = field(default_factory=dict)
+    # Written as a deleted list op (.usda only): a layer over another asset removes an API schema
+    # that asset applied (the Isaac physics layer moves the articulation root).
+    deleted_api_schemas: list[str] = field(default_factory=list)
 
     def child(self, name: str, type_name: str = "", specifier: str = "def") -> Prim:
         """The named child, created (with this type and specifier) if it is not there yet."""

@@ -92,6 +92,8 @@ def _prim(prim: Prim, depth: int, out: list[str], texts: _Texts) -> None:
 def _prim_metadata(prim: Prim, depth: int) -> list[str]:
     pad = INDENT * depth
     lines: list[str] = []
+    if prim.deleted_api_schemas:
+        lines.append(f"{pad}delete apiSchemas = [{', '.join(quote(s) for s in prim.deleted_api_schemas)}]\n")
     if prim.api_schemas:
         lines.append(f"{pad}prepend apiSchemas = [{', '.join(quote(s) for s in prim.api_schemas)}]\n")
     if prim.asset_name is not None:

@@ -60,6 +60,7 @@ def isaac_file_names(robot: Robot) -> dict[str, str]:
         "urdf": f"{stem}.urdf",
         "importer_settings": "importer_settings.json",
         "isaaclab": f"{stem}_isaaclab.py",
+        "physics_layer": f"{stem}_physics.usda",
     }
 
 
@@ -89,6 +90,7 @@ def write_isaac_folder(
                 names["urdf"]: urdf,
                 names["importer_settings"]: importer_settings_json(robot, settings),
                 names["isaaclab"]: isaac_lab_module(robot, settings, names["usd"], findings, __version__).text,
+                names["physics_layer"]: importer_physics_layer(robot, settings, findings, initial),
             },
         )
         # A layered USD adds its payload folder: report every top-level entry.
@@ -96,6 +98,38 @@ def write_isaac_folder(
             name: os.path.join(out_dir, name) for name in sorted(os.listdir(staging)) if name not in names.values()
         }
     return {**{role: os.path.join(out_dir, name) for role, name in names.items()}, **extra}
+
+
+def importer_physics_layer(
+    robot: Robot,
+    settings: IsaacSettings,
+    findings: Findings,
+    initial: Mapping[str, float] | None = None,
+    onto: str | None = None,
+) -> str:
+    """The physics layer for the USD Isaac Sim 6's importer makes of the folder's URDF (``onto``, or
+    ``settings.importer_usd``: read the paths from that import; else the importer's naming rules)."""
+    from robodesc.emit.isaac.importer_layout import layout_from_rules, layout_from_usd
+    from robodesc.emit.isaac.physics_layer import physics_layer
+    from robodesc.usdfile.usda import usda_text
+
+    imported = onto or settings.importer_usd
+    layout = layout_from_usd(imported, robot) if imported else layout_from_rules(robot)
+    result = physics_layer(robot, usd_options(settings, initial), layout, findings)
+    if result.missing:
+        where = imported or "the importer's naming rules"
+        # Links and joints first: a missing body or drive matters more than a collider's settings.
+        missing = sorted(result.missing, key=lambda m: not m.startswith(("link ", "joint ")))
+        findings.warn(
+            "isaac-layer-missing",
+            f"{len(missing)} prim(s) the physics layer cannot address in {where}, left out: "
+            + ", ".join(missing[:20])
+            + (" ..." if len(missing) > 20 else ""),
+            element=f"robot {robot.name!r}",
+            loc=robot.src,
+            stage="emit:isaac",
+        )
+    return usda_text(result.layer)
 
 
 def _portable(loc: SourceLoc, source_file: str | None) -> SourceLoc:

@@ -57,6 +57,16 @@ class IsaacSettings:
     # The Isaac Sim release the USD's PhysX joint attributes are written for (docs/isaac.md).
     isaac_version: str = field(default="6", metadata=usd.ISAAC_VERSION)
     motor_envelope: bool = field(default=False, metadata=usd.MOTOR_ENVELOPE)
+    # The USD Isaac Sim 6's importer made of the folder's URDF: the physics layer's prim paths are
+    # read from it instead of computed by the importer's naming rules (docs/isaac.md).
+    importer_usd: str | None = field(
+        default=None,
+        metadata=flag(
+            "the USD Isaac Sim 6's URDF importer wrote from this folder's URDF: <robot>_physics.usda addresses "
+            "its prims as read from it (default: by the importer's naming rules)",
+            metavar="FILE",
+        ),
+    )
     # Spawn pose for Isaac Lab: base position (m) and the initial joint positions (rad) by regex.
     init_pos: tuple[float, float, float] = field(default=(0.0, 0.0, 0.0), metadata=common.INIT_POS)
     init_joint_pos: dict[str, float] = field(default_factory=dict, metadata=common.INIT_JOINT_POS)
@@ -171,7 +181,8 @@ def importer_settings(robot: Robot, settings: IsaacSettings) -> dict[str, object
             "rest_offset": settings.rest_offset,
         },
         "per_joint_si_gains": per_joint,
-        "robodesc_settings": asdict(settings),
+        # importer_usd is a path on this machine, read once to address the physics layer: not a setting.
+        "robodesc_settings": {k: v for k, v in asdict(settings).items() if k != "importer_usd"},
     }
     if uniform_k is None or uniform_d is None:
         sim5["note"] = "gains differ per joint: the USD asset carries each joint's drive; see per_joint_si_gains"

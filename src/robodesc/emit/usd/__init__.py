@@ -24,12 +24,14 @@ from robodesc.emit.usd.options import (
 from robodesc.emit.usd.target import TARGET
 
 if TYPE_CHECKING:
-    from robodesc.emit.usd.emitter import emit_usd
+    from robodesc.emit.usd.emitter import PhysicsOpinions, emit_usd, physics_opinions
+
+_WRITER = ("emit_usd", "physics_opinions", "PhysicsOpinions")
 
 
 def __getattr__(name: str) -> Any:
-    if name == "emit_usd":
-        return importlib.import_module("robodesc.emit.usd.emitter").emit_usd
+    if name in _WRITER:
+        return getattr(importlib.import_module("robodesc.emit.usd.emitter"), name)
     raise AttributeError(f"module 'robodesc.emit.usd' has no attribute {name!r}")
 
 
@@ -45,6 +47,8 @@ __all__ = [
     "REST_OFFSET",
     "TARGET",
     "VELOCITY_ITERATIONS",
+    "PhysicsOpinions",
     "UsdOptions",
     "emit_usd",
+    "physics_opinions",
 ]

@@ -19,10 +19,12 @@ Prims are authored in IR order, so the same IR gives byte-identical files.
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass
 
 from robodesc.emit.usd.bodies import emit_articulation, emit_body, emit_physics_scene, emit_robot_schema
 from robodesc.emit.usd.contact import PhysicsMaterials
 from robodesc.emit.usd.context import (
+    CONTACT_SCOPE,
     JOINTS_SCOPE,
     LOOPS_SCOPE,
     PHYSICS,
@@ -40,8 +42,9 @@ from robodesc.emit.usd.sensors import emit_fixed_frame, emit_sensor
 from robodesc.ir.diagnostics import BrokenReferenceError, ConfigError, Findings, UnsupportedError
 from robodesc.ir.model import FixedFrame, Robot, Sensor
 from robodesc.ir.rigid import link_frames
+from robodesc.usdfile.spec import Layer, Prim
 
-__all__ = ["UsdOptions", "emit_usd"]
+__all__ = ["PhysicsOpinions", "UsdOptions", "emit_usd", "physics_opinions"]
 
 
 def emit_usd(robot: Robot, path: str, options: UsdOptions | None = None) -> Findings:
@@ -64,6 +67,27 @@ def emit_usd(robot: Robot, path: str, options: UsdOptions | None = None) -> Find
     build_layers(ctx, layers)
     write_layers(layers, path, ctx.robot_path[1:])
     return findings
+
+
+@dataclass
+class PhysicsOpinions:
+    """What the emitter's ``Physics`` role holds for a robot (the layered layout's Physics layer),
+    in memory: for a layer that carries robodesc's physics onto another asset (emit/isaac)."""
+
+    layer: Layer
+    scene: Prim | None  # the /PhysicsScene (options.physics_scene)
+    robot_path: str  # the robot prim, e.g. "/quadruped"
+    joints_scope: str = JOINTS_SCOPE  # <robot_path>/<joints_scope>/<joint>
+    materials_scope: str = CONTACT_SCOPE  # <robot_path>/<materials_scope>/<contact material>
+
+
+def physics_opinions(robot: Robot, options: UsdOptions, findings: Findings) -> PhysicsOpinions:
+    """Author the robot as :func:`emit_usd` does, keep its physics opinions, write nothing."""
+    layers = LayerSet.create("robot.usda", layered=True)
+    ctx = UsdContext(robot=robot, options=options, findings=findings, layer_dir=os.getcwd(), layers=layers.roles)
+    build_layers(ctx, layers)
+    scene = layers.interface.find("/PhysicsScene") if layers.interface is not None else None
+    return PhysicsOpinions(layers.roles[PHYSICS], scene, ctx.robot_path)
 
 
 def build_layers(ctx: UsdContext, layers: LayerSet) -> None:

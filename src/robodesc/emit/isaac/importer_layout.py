@@ -1,0 +1,138 @@
+"""Where Isaac Sim 6's URDF importer puts each link, joint and collider.
+
+Isaac Sim 6.2's importer is urdf-usd-converter 0.3; measured on its output for the example
+quadruped and gripper arm (and read in its ``_impl/link.py``, ``utils.py``, ``convert.py``)::
+
+    /<robot name>                           default prim (the URDF's <robot name>, made a valid name)
+        /Geometry/<root link>/<child link>/...  links nested along the tree, in URDF order
+            <link>/<visual or collision>    the link's visuals, then its collisions (a mesh file: an
+                                            instanced Xform, CollisionAPI and convexHull on the
+                                            meshes inside), named by the
+                                            element's name, else the mesh file's stem, else the shape
+                                            tag (box, sphere, cylinder, capsule), made unique among
+                                            the link prim's children ("box", "box_1"); claimed
+                                            before the child links' names
+        /Physics/<joint>                    every joint, plus root_joint (the base weld) first
+    the articulation root: the root link's prim, fixed base or not
+
+Names are made unique with ``_1``, ``_2`` ... (usdex's ``NameCache``). A layout is either computed
+by these rules from the IR (:func:`layout_from_rules`) or read from an imported USD
+(:func:`layout_from_usd`, which needs usd-core); the physics layer (``physics_layer.py``) addresses
+prims only through it.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+
+from robodesc.ir.geometry import Box, Capsule, Cylinder, Mesh, Sphere
+from robodesc.ir.model import Collision, Robot, Visual
+
+
+@dataclass
+class ImporterLayout:
+    robot: str  # the default prim's path
+    links: dict[str, str] = field(default_factory=dict)  # IR link name -> prim path
+    joints: dict[str, str] = field(default_factory=dict)  # IR joint name -> prim path
+    colliders: dict[str, list[str]] = field(default_factory=dict)  # link -> collider paths, IR order
+    articulation_root: str | None = None
+    # Colliders whose shapes the importer puts inside an instance (mesh files): a layer cannot edit
+    # instance proxies, so only what the importer itself authors there (CollisionAPI, convexHull) holds.
+    instanced: set[str] = field(default_factory=set)
+    source: str = "rules"  # "rules", or the imported USD read
+
+
+def _unique(name: str, used: set[str]) -> str:
+    """usdex's NameCache: the name itself when free, else the first free ``name_N`` (N from 1)."""
+    if name not in used:
+        used.add(name)
+        return name
+    index = 1
+    while f"{name}_{index}" in used:
+        index += 1
+    used.add(f"{name}_{index}")
+    return f"{name}_{index}"
+
+
+def _geometry_name(item: Visual | Collision) -> str:
+    if item.name:
+        return item.name
+    geometry = item.geometry
+    if isinstance(geometry, Mesh):
+        return os.path.splitext(os.path.basename(geometry.uri))[0]
+    tags = {Box: "box", Sphere: "sphere", Cylinder: "cylinder", Capsule: "capsule"}
+    return next((tag for kind, tag in tags.items() if isinstance(geometry, kind)), "geometry")
+
+
+def layout_from_rules(robot: Robot) -> ImporterLayout:
+    """The paths the importer gives the robot robodesc writes as the folder's URDF (names already
+    valid identifiers: the Isaac preset sanitizes them)."""
+    layout = ImporterLayout(robot=f"/{robot.name}")
+    children: dict[str, list[str]] = {}
+    for joint in robot.joints:
+        children.setdefault(joint.parent, []).append(joint.child)
+    links = robot.link_map()
+    stack = [(robot.root.name, f"{layout.robot}/Geometry", set[str]())]
+    while stack:
+        name, parent, used = stack.pop()
+        path = f"{parent}/{_unique(name, used)}"
+        layout.links[name] = path
+        link = links[name]
+        own: set[str] = set()
+        for visual in link.visuals:
+            _unique(_geometry_name(visual), own)
+        layout.colliders[name] = [f"{path}/{_unique(_geometry_name(c), own)}" for c in link.collisions]
+        layout.instanced.update(
+            p for p, c in zip(layout.colliders[name], link.collisions, strict=True) if isinstance(c.geometry, Mesh)
+        )
+        # Reversed onto the stack so the children are named in URDF order.
+        stack.extend((child, path, own) for child in reversed(children.get(name, [])))
+    layout.articulation_root = layout.links[robot.root.name]
+    used_joints = {"root_joint"}
+    for joint in robot.joints:
+        layout.joints[joint.name] = f"{layout.robot}/Physics/{_unique(joint.name, used_joints)}"
+    return layout
+
+
+def layout_from_usd(path: str, robot: Robot) -> ImporterLayout:
+    """Read the layout from an imported USD (its ``physx`` variant selected when it has the
+    importer's ``Physics`` variant set): links are its rigid bodies, joints its joint prims, both
+    matched to the IR by prim name or displayName; colliders the children of each link prim with
+    ``PhysicsCollisionAPI``, or instances with it inside (mesh files), in order."""
+    from pxr import Usd, UsdPhysics
+
+    stage = Usd.Stage.Open(path)
+    default = stage.GetDefaultPrim()
+    if not default:
+        default = next(iter(stage.GetPseudoRoot().GetChildren()), None)
+    if default is None:
+        return ImporterLayout(robot="/", source=path)
+    variants = default.GetVariantSets()
+    if variants.HasVariantSet("Physics") and "physx" in variants.GetVariantSet("Physics").GetVariantNames():
+        variants.GetVariantSet("Physics").SetVariantSelection("physx")
+    layout = ImporterLayout(robot=str(default.GetPath()), source=path)
+    link_names = {link.name for link in robot.links}
+    joint_names = {joint.name for joint in robot.joints}
+    for prim in Usd.PrimRange(default):
+        keys = (prim.GetName(), prim.GetDisplayName())
+        if prim.HasAPI(UsdPhysics.RigidBodyAPI):
+            name = next((k for k in keys if k in link_names), None)
+            if name is not None and name not in layout.links:
+                layout.links[name] = str(prim.GetPath())
+                layout.colliders[name] = []
+                for child in prim.GetChildren():
+                    if child.HasAPI(UsdPhysics.CollisionAPI):
+                        layout.colliders[name].append(str(child.GetPath()))
+                    elif child.IsInstance() and any(
+                        p.HasAPI(UsdPhysics.CollisionAPI) for p in Usd.PrimRange(child, Usd.TraverseInstanceProxies())
+                    ):
+                        layout.colliders[name].append(str(child.GetPath()))
+                        layout.instanced.add(str(child.GetPath()))
+        elif prim.IsA(UsdPhysics.Joint):
+            name = next((k for k in keys if k in joint_names), None)
+            if name is not None and name not in layout.joints:
+                layout.joints[name] = str(prim.GetPath())
+        if prim.HasAPI(UsdPhysics.ArticulationRootAPI) and layout.articulation_root is None:
+            layout.articulation_root = str(prim.GetPath())
+    return layout

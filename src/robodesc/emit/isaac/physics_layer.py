@@ -1,0 +1,178 @@
+"""``<robot>_physics.usda``: robodesc's physics as overs on the USD Isaac Sim 6's importer writes.
+
+Isaac Sim 6's URDF importer (urdf-usd-converter) authors no derived gains, armature, friction
+efforts or scene settings. This layer carries them: sublayered over the importer's USD, it sets
+drives and gains, effort and velocity limits, armature and joint friction, masses and inertias,
+colliders' approximations, offsets and contact materials, the articulation settings and the
+physics scene.
+
+It is not written twice: robodesc's own USD emitter authors its physics layer (the ``Physics``
+role of the layered layout, ``emit/usd/layers.py``) in memory, and each of its prims is moved onto
+the importer's path for the same link, joint or collider (``importer_layout.py``) as an ``over``.
+What is dropped, and why: ``physics:body0/1`` (the importer's joints already name its bodies) and
+robodesc's base weld (the importer writes its own ``root_joint``); Isaac's robot schema lists
+(robodesc's paths). A floating robot's articulation root is the root link in both layouts; for a
+fixed base the layer deletes the importer's root API from the base link and applies it to the robot
+prim, where robodesc puts it (one root: two would be two articulations). A prim the layout does not
+have is left out and named in the result.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+from robodesc.emit.isaac.importer_layout import ImporterLayout
+from robodesc.emit.usd import PhysicsOpinions, UsdOptions, physics_opinions
+from robodesc.ir.diagnostics import Findings
+from robodesc.ir.model import Robot
+from robodesc.usdfile.spec import Layer, Prim, Relationship
+
+# Opinions the importer's prims already hold, or that name robodesc's own paths.
+_DROPPED_PROPERTIES = ("physics:body0", "physics:body1", "isaac:physics:robotLinks", "isaac:physics:robotJoints")
+_DROPPED_SCHEMAS = ("PhysicsArticulationRootAPI", "IsaacRobotAPI", "IsaacLinkAPI", "IsaacJointAPI")
+
+
+@dataclass
+class PhysicsLayer:
+    layer: Layer
+    robot: str  # the importer's robot prim
+    materials: str  # the importer-side scope of robodesc's contact materials
+    materials_source: str  # robodesc's scope of them
+    articulation_root: str | None  # where the importer put the articulation root
+    instanced: set[str] = field(default_factory=set)  # importer colliders inside instances
+    # robodesc's materials that say only what PhysX assumes unbound (friction 0.5): losing their
+    # binding on an instanced collider changes nothing.
+    default_materials: set[str] = field(default_factory=set)
+    missing: list[str] = field(default_factory=list)  # "link 'x'", "joint 'y'", ... the layout lacks
+    prims: int = 0  # prims of robodesc's physics that found their place
+
+
+def physics_layer(robot: Robot, options: UsdOptions, layout: ImporterLayout, findings: Findings) -> PhysicsLayer:
+    ours = physics_opinions(robot, options, Findings())
+    source, robot_path = ours.layer, ours.robot_path
+    out = Layer(default_prim=layout.robot.lstrip("/"), meters_per_unit=1.0, kilograms_per_unit=1.0, up_axis="Z")
+    result = PhysicsLayer(
+        out,
+        layout.robot,
+        f"{layout.robot}/{ours.materials_scope}",
+        f"{robot_path}/{ours.materials_scope}",
+        layout.articulation_root,
+        layout.instanced,
+    )
+    if layout.articulation_root is None:
+        result.missing.append("the articulation root")
+    mapping = _path_map(robot, ours, layout, result.missing)
+    mapping[f"{robot_path}/{ours.materials_scope}"] = result.materials
+    scope = source.find(f"{robot_path}/{ours.materials_scope}")
+    for name, material in scope.children.items() if scope is not None else ():
+        values = {k: getattr(v, "value", None) for k, v in material.properties.items()}
+        if values == {"physics:staticFriction": 0.5, "physics:dynamicFriction": 0.5}:
+            result.default_materials.add(f"{robot_path}/{ours.materials_scope}/{name}")
+    top = source.find(robot_path)
+    if top is not None:
+        _move(top, robot_path, mapping, out, result)
+    if ours.scene is not None:
+        out.root.children["PhysicsScene"] = ours.scene
+    return result
+
+
+def _path_map(robot: Robot, source: PhysicsOpinions, layout: ImporterLayout, missing: list[str]) -> dict[str, str]:
+    """robodesc's prim path -> the importer's, for every prim that carries physics."""
+    robot_path = source.robot_path
+    mapping: dict[str, str] = {}
+    for link in robot.links:
+        ours = f"{robot_path}/{link.name}"
+        theirs = layout.links.get(link.name)
+        if theirs is None:
+            missing.append(f"link {link.name!r}")
+            continue
+        mapping[ours] = theirs
+        colliders = layout.colliders.get(link.name, [])
+        for index in range(len(link.collisions)):
+            # robodesc names its collider prims in IR order; the importer's list is in the same order.
+            if index < len(colliders):
+                mapping[f"{ours}/collisions/#{index}"] = colliders[index]
+            else:
+                missing.append(f"collision {index} of link {link.name!r}")
+    for joint in robot.joints:
+        theirs = layout.joints.get(joint.name)
+        if theirs is None:
+            missing.append(f"joint {joint.name!r}")
+        else:
+            mapping[f"{robot_path}/{source.joints_scope}/{joint.name}"] = theirs
+    # Where the importer puts a <loop_joint> was not measured: not addressed, and said so.
+    missing.extend(f"loop joint {loop.name!r}" for loop in robot.loop_joints)
+    return mapping
+
+
+def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result: PhysicsLayer) -> None:
+    """Carry ``prim``'s opinions (and its children's) to their importer paths."""
+    if "PhysicsArticulationRootAPI" in prim.api_schemas:
+        root = result.articulation_root
+        if root is not None and "/" not in path[1:] and root != result.robot:
+            # A fixed base: robodesc roots the articulation at the robot prim, above the weld to the
+            # world; the importer roots it at the base link, and PhysX then floats the base (read in
+            # ovphysx 0.7: isFixedBase 0 for the imported gripper arm and panda). Moved.
+            moved = out.prim(root, specifier="over")
+            moved.deleted_api_schemas += ["PhysicsArticulationRootAPI", "NewtonArticulationRootAPI"]
+            root = result.robot
+            out.prim(root, specifier="over").apply("PhysicsArticulationRootAPI")
+        if root is not None:
+            _over(prim, out.prim(root, specifier="over"), mapping, result)
+    elif (target := mapping.get(path) or _remap(path, {result.materials_source: result.materials})) in result.instanced:
+        extra = _beyond_importer(prim, result.default_materials)
+        if extra:
+            result.missing.append(
+                f"{path.rsplit('/collisions/', 1)[0].rsplit('/', 1)[-1]}'s mesh collider {target} "
+                f"({', '.join(extra)}: inside an instance the importer made, which a layer cannot edit)"
+            )
+        else:
+            result.prims += 1  # the importer already authors exactly this
+    elif target is not None:
+        # Prims robodesc adds (its contact materials) are defined; everything else is an over.
+        new = prim.specifier == "def" and target.startswith(result.materials)
+        made = out.prim(target, prim.type_name if new else "", "def" if new else "over")
+        _over(prim, made, mapping, result)
+    for index, (name, child) in enumerate(prim.children.items()):
+        # Colliders by their place in the link (the importer's names are its own).
+        _move(child, f"{path}/#{index}" if path.endswith("/collisions") else f"{path}/{name}", mapping, out, result)
+
+
+def _beyond_importer(collider: Prim, default_materials: set[str]) -> list[str]:
+    """What robodesc's collider says beyond the importer's own (CollisionAPI, convexHull)."""
+    # A contact material bound on the instance's root does not reach the meshes inside: ovphysx 0.7
+    # read Talos' and Stretch's bound friction (0.9, 0) as its default 0.5 that way.
+    binding = collider.properties.get("material:binding:physics")
+    plain = isinstance(binding, Relationship) and set(binding.targets) <= default_materials
+    handled = ("PhysicsCollisionAPI", "PhysicsMeshCollisionAPI", *(("MaterialBindingAPI",) if plain else ()))
+    extra = [s for s in collider.api_schemas if s not in handled]
+    for name, prop in collider.properties.items():
+        if name == "material:binding:physics" and plain:
+            continue
+        if name == "physics:approximation" and getattr(prop, "value", None) == "convexHull":
+            continue
+        extra.append(name)
+    return extra
+
+
+def _over(source: Prim, target: Prim, mapping: Mapping[str, str], result: PhysicsLayer) -> None:
+    result.prims += 1
+    for schema in source.api_schemas:
+        if schema not in _DROPPED_SCHEMAS:
+            target.apply(schema)
+    for name, prop in source.properties.items():
+        if name in _DROPPED_PROPERTIES:
+            continue
+        if isinstance(prop, Relationship):
+            targets = [_remap(t, mapping) for t in prop.targets]
+            target.rel(name, [t for t in targets if t is not None], custom=prop.custom)
+        else:
+            target.properties[name] = prop
+
+
+def _remap(path: str, mapping: Mapping[str, str]) -> str | None:
+    for ours, theirs in mapping.items():
+        if path == ours or path.startswith(ours + "/"):
+            return theirs + path[len(ours) :]
+    return None

@@ -1,0 +1,199 @@
+"""The Isaac Sim 6 route: ``<robot>_physics.usda`` over the USD Isaac Sim 6.2's importer writes.
+
+The paths asserted below were read from Isaac Sim 6.2's import (``isaacsim-asset-isolated`` 6.2,
+urdf-usd-converter 0.3.2) of the examples' Isaac folders. The last test runs that importer and PhysX
+(ovphysx) where the consumer tier built them, and skips elsewhere.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+from pxr import Sdf, Usd
+
+import robodesc
+from robodesc.cli import main
+from robodesc.emit.isaac.importer_layout import layout_from_rules
+from robodesc.frontends.urdf import read_urdf_string
+from tests.conftest import EXAMPLES
+
+QUADRUPED = EXAMPLES / "quadruped.yaml"
+ENVS = Path(os.environ.get("ROBODESC_CONSUMERS_DIR", Path.home() / ".cache" / "robodesc-consumers"))
+
+
+@pytest.fixture(scope="module")
+def quadruped(tmp_path_factory: pytest.TempPathFactory) -> robodesc.CompileResult:
+    return robodesc.compile_for_isaac_sim(str(QUADRUPED), tmp_path_factory.mktemp("quad") / "isaac")
+
+
+def test_rules_give_the_paths_isaac_sim_6_2_wrote(quadruped: robodesc.CompileResult) -> None:
+    layout = layout_from_rules(quadruped.robot)
+    calf = "/quadruped/Geometry/trunk/FL_hip/FL_thigh/FL_calf"
+    assert layout.robot == "/quadruped"
+    assert layout.links["trunk"] == "/quadruped/Geometry/trunk"
+    assert layout.links["FL_calf"] == calf
+    # The visuals claim "box" and "sphere" first.
+    assert layout.colliders["FL_calf"] == [f"{calf}/box_1", f"{calf}/sphere_1"]
+    assert layout.joints["FL_knee"] == "/quadruped/Physics/FL_knee"
+    assert layout.articulation_root == "/quadruped/Geometry/trunk"
+
+
+def test_rules_make_names_unique_as_the_importer_does() -> None:
+    robot = read_urdf_string(
+        """<robot name="r">
+  <link name="base"><visual><geometry><box size="1 1 1"/></geometry></visual>
+    <collision name="lid"><geometry><box size="1 1 1"/></geometry></collision></link>
+  <link name="lid"/>
+  <link name="root_joint"/>
+  <joint name="a" type="fixed"><parent link="base"/><child link="lid"/></joint>
+  <joint name="root_joint" type="fixed"><parent link="base"/><child link="root_joint"/></joint>
+</robot>"""
+    )
+    layout = layout_from_rules(robot)
+    # The collision took "lid" before the child link did; the importer's base weld took root_joint.
+    assert layout.colliders["base"] == ["/r/Geometry/base/lid"]
+    assert layout.links["lid"] == "/r/Geometry/base/lid_1"
+    assert layout.joints["root_joint"] == "/r/Physics/root_joint_1"
+
+
+def test_layer_carries_robodesc_usd_physics_as_overs(quadruped: robodesc.CompileResult) -> None:
+    layer = Sdf.Layer.FindOrOpen(quadruped.files["physics_layer"])
+    defined = []
+
+    def visit(path: Sdf.Path) -> None:
+        spec = layer.GetPrimAtPath(path)
+        if spec.specifier == Sdf.SpecifierDef:
+            defined.append(str(path))
+
+    layer.Traverse(Sdf.Path.absoluteRootPath, lambda p: visit(p) if p.IsPrimPath() else None)
+    # Only robodesc's own additions are defined: the contact materials and the scene (none here).
+    assert all(p.startswith("/quadruped/PhysicsMaterials") or p == "/PhysicsScene" for p in defined), defined
+    own = Usd.Stage.Open(quadruped.files["usd"])
+    knee = layer.GetPrimAtPath("/quadruped/Physics/FL_knee")
+    ours = own.GetPrimAtPath("/quadruped/joints/FL_knee")
+    for name in (
+        "drive:angular:physics:stiffness",
+        "drive:angular:physics:damping",
+        "drive:angular:physics:maxForce",
+        "physics:lowerLimit",
+        "physics:upperLimit",
+        "physxJointAxis:angular:armature",
+        "physxJointAxis:angular:maxJointVelocity",
+        "physxJointAxis:angular:staticFrictionEffort",
+    ):
+        assert knee.attributes[name].default == pytest.approx(ours.GetAttribute(name).Get(), rel=1e-7), name
+    assert "physics:body0" not in knee.properties  # the importer's joint names its own bodies
+    calf = layer.GetPrimAtPath("/quadruped/Geometry/trunk/FL_hip/FL_thigh/FL_calf")
+    assert calf.attributes["physics:mass"].default == pytest.approx(0.25)
+    # The articulation settings go where the importer put the root API; the API is not applied twice.
+    trunk = layer.GetPrimAtPath("/quadruped/Geometry/trunk")
+    assert "physxArticulation:enabledSelfCollisions" in trunk.attributes
+    assert "PhysicsArticulationRootAPI" not in trunk.GetInfo("apiSchemas").prependedItems
+
+
+def test_layer_command_names_the_prims_it_cannot_find(
+    quadruped: robodesc.CompileResult, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # An "import" that lost a joint and a link: robodesc's own USD, edited.
+    imported = tmp_path / "imported.usda"
+    stage = Usd.Stage.Open(quadruped.files["usd"])
+    stage.Flatten().Export(str(imported))
+    edited = Sdf.Layer.FindOrOpen(str(imported))
+    edit = Sdf.BatchNamespaceEdit()
+    edit.Add(Sdf.NamespaceEdit.Remove("/quadruped/joints/FR_knee"))
+    edit.Add(Sdf.NamespaceEdit.Remove("/quadruped/RR_calf"))
+    assert edited.Apply(edit)
+    edited.Save()
+    out = tmp_path / "physics.usda"
+    code = main(["layer", str(QUADRUPED), "--onto", str(imported), "-o", str(out), "--no-validate"])
+    err = capsys.readouterr().err
+    assert code == 0
+    assert "cannot address" in err and "joint 'FR_knee'" in err and "link 'RR_calf'" in err
+    layer = Sdf.Layer.FindOrOpen(str(out))
+    # The rest is addressed at the paths read from that USD (robodesc's own flat layout here).
+    assert layer.GetPrimAtPath("/quadruped/joints/FL_knee") is not None
+    assert layer.GetPrimAtPath("/quadruped/joints/FR_knee") is None
+    assert layer.GetPrimAtPath("/quadruped/FL_calf").attributes["physics:mass"].default == pytest.approx(0.25)
+
+
+def test_import_plus_layer_equals_robodesc_usd_in_physx(tmp_path: Path) -> None:
+    import sys
+
+    from robodesc.validation.physx_python import physx_python
+
+    if not (ENVS / "isaacsim" / ".built").is_file():
+        pytest.skip(f"no isaacsim consumer environment in {ENVS} (tests/consumers/run.sh builds it)")
+    if physx_python() is None:
+        pytest.skip("PhysX (ovphysx) is not installed (tests/consumers/run.sh)")
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "consumers"))
+    from isaac6_layer import run_robot  # type: ignore[import-not-found]
+
+    result = run_robot("quadruped", str(QUADRUPED), {}, str(ENVS), str(tmp_path))
+    assert result["import"] == "pass"
+    assert result["prims_missing"] == [] and result["rules_match_import"]
+    assert (result["links"], result["joints"]) == (13, 12)
+    assert result["layer_diffs"] == []
+    # importer_settings.json alone: the gains arrive, the armature (0.005 kg·m²) does not.
+    assert len(result["importer_settings_diffs"]) == 12
+    assert all("jointArmature: [0.0]" in d for d in result["importer_settings_diffs"])
+
+
+def test_fixed_base_root_moves_to_the_robot_prim(tmp_path: Path) -> None:
+    result = robodesc.compile_for_isaac_sim(str(EXAMPLES / "arm6_gripper.yaml"), tmp_path / "isaac")
+    layer = Sdf.Layer.FindOrOpen(result.files["physics_layer"])
+    base = layer.GetPrimAtPath("/arm6_gripper/Geometry/base_link").GetInfo("apiSchemas")
+    robot = layer.GetPrimAtPath("/arm6_gripper").GetInfo("apiSchemas")
+    # The importer roots the articulation at base_link, which PhysX floats; robodesc's place is the robot.
+    assert list(base.deletedItems) == ["PhysicsArticulationRootAPI", "NewtonArticulationRootAPI"]
+    assert "PhysicsArticulationRootAPI" in robot.prependedItems
+    # Composed over an "import" whose root API sits on base_link, one root remains: the robot prim.
+    imported = tmp_path / "imported.usda"
+    imported.write_text(
+        '#usda 1.0\n(defaultPrim = "arm6_gripper")\ndef Xform "arm6_gripper" {\n def Scope "Geometry" {\n'
+        '  def Xform "base_link" (prepend apiSchemas = ["PhysicsRigidBodyAPI", "PhysicsArticulationRootAPI"]) {}\n'
+        " }\n}\n"
+    )
+    root = Sdf.Layer.CreateAnonymous(".usda")
+    root.subLayerPaths = [result.files["physics_layer"], str(imported)]
+    stage = Usd.Stage.Open(root)
+    roots = [str(p.GetPath()) for p in stage.Traverse() if "PhysicsArticulationRootAPI" in p.GetAppliedSchemas()]
+    assert roots == ["/arm6_gripper"]
+
+
+def test_fixed_arm_import_plus_layer_has_a_fixed_base_in_physx(tmp_path: Path) -> None:
+    import sys
+
+    from robodesc.validation.physx_python import physx_python
+
+    if not (ENVS / "isaacsim" / ".built").is_file() or physx_python() is None:
+        pytest.skip(f"no isaacsim environment or ovphysx in {ENVS} (tests/consumers/run.sh builds them)")
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "consumers"))
+    from isaac6_layer import run_robot  # type: ignore[import-not-found]
+
+    result = run_robot("arm6_gripper", str(EXAMPLES / "arm6_gripper.yaml"), {}, str(ENVS), str(tmp_path))
+    assert result["layer_diffs"] == []
+    # The importer's own root (on base_link): PhysX floats the base, held only by the root joint.
+    assert result["importer_settings_diffs"] == [
+        "articulations: [\"{'dofCount': [8.0], 'linkCount': [10.0], 'isFixedBase': [0.0]}\"] "
+        "(robodesc USD [\"{'dofCount': [8.0], 'linkCount': [10.0], 'isFixedBase': [1.0]}\"])"
+    ]
+
+
+def test_contact_materials_are_defined_and_bound(tmp_path: Path) -> None:
+    result = robodesc.compile_for_isaac_sim(str(QUADRUPED), tmp_path / "isaac", friction_combine="min")
+    stage = Usd.Stage.Open(result.files["physics_layer"])
+    materials = [p for p in stage.TraverseAll() if p.GetTypeName() == "Material"]
+    assert [str(p.GetPath()) for p in materials] == ["/quadruped/PhysicsMaterials/contact"]
+    assert materials[0].GetAttribute("physxMaterial:frictionCombineMode").Get() == "min"
+    assert materials[0].GetAttribute("physics:staticFriction").Get() == pytest.approx(0.5)
+    foot = stage.GetPrimAtPath("/quadruped/Geometry/trunk/FL_hip/FL_thigh/FL_calf/sphere_1")
+    assert foot.GetRelationship("material:binding:physics").GetTargets() == [materials[0].GetPath()]
+
+
+def test_loop_joints_are_named_not_carried(tmp_path: Path) -> None:
+    result = robodesc.compile_for_isaac_sim(str(EXAMPLES / "four_bar.yaml"), tmp_path / "isaac")
+    missing = [f.message for f in result.findings if f.code == "isaac-layer-missing"]
+    assert len(missing) == 1 and missing[0].endswith("left out: loop joint 'coupler_rocker'")
+    assert "loop_joints" not in Path(result.files["physics_layer"]).read_text()
