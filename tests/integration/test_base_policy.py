@@ -28,7 +28,8 @@ TARGETS = ("usd", "isaac", "sdf", "mjcf")
 def _floats(target: str, out: Path) -> bool:
     """Whether the written file lets the root move, read from the file itself."""
     if target in ("usd", "isaac"):
-        usd = out if target == "usd" else next(out.glob("*.usd*"))
+        # The Isaac folder's robot, not its physics layer for Isaac Sim 6's importer (overs only).
+        usd = out if target == "usd" else next(p for p in out.glob("*.usd*") if not p.name.endswith("_physics.usda"))
         stage = Usd.Stage.Open(str(usd))
         welds = [
             p

@@ -106,7 +106,7 @@ def test_spirit_folder_stands_by_default(tmp_path: Path) -> None:
     pose = data["init_state"]["joint_pos"]
     assert sum(1 for v in pose.values() if v != 0.0) == 8
     assert 0.3 < data["init_state"]["pos"][2] < 0.4
-    stage = Usd.Stage.Open(str(next((tmp_path / "spirit").glob("*.usda"))))
+    stage = Usd.Stage.Open(str(tmp_path / "spirit" / "spirit.usda"))
     seen = 0
     for prim in stage.Traverse():
         if not prim.IsA(UsdPhysics.RevoluteJoint):

@@ -27,6 +27,9 @@ ENGINES = tuple(dict.fromkeys(e for engines in READERS.values() for e in engines
 JOINS_WHEN_READ = ("physx",)
 # What a folder output offers the engines: the USD at its top (the Isaac folder's robot).
 _FOLDER_KINDS = ("usd",)
+# Files at that top that are layers, not stages to simulate: the Isaac folder's physics layer for
+# Isaac Sim 6's importer (overs only, emit/isaac/physics_layer.py).
+_LAYER_ENDINGS = ("_physics.usda",)
 _SUFFIXES = {
     ".urdf": "urdf",
     ".xml": "mjcf",
@@ -52,6 +55,8 @@ def folder_files(folder: str) -> dict[str, str]:
     found: dict[str, list[str]] = {}
     for name in names:
         kind = kind_of(name)
+        if name.endswith(_LAYER_ENDINGS):
+            continue
         if kind in _FOLDER_KINDS and os.path.isfile(os.path.join(folder, name)):
             found.setdefault(kind, []).append(os.path.join(folder, name))
     return {kind: paths[0] for kind, paths in found.items() if len(paths) == 1}
