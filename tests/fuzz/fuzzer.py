@@ -547,7 +547,11 @@ def check_output(target: str, out: Path, source: Path | None = None) -> str | No
             return None
         from pxr import Usd
 
-        usd = out if target != "isaac" else next(iter(sorted(p for p in out.glob("*.usd*") if not p.name.endswith("_physics.usda"))), None)
+        usd = (
+            out
+            if target != "isaac"
+            else next(iter(sorted(p for p in out.glob("*.usd*") if not p.name.endswith("_physics.usda"))), None)
+        )
         if usd is None:
             return "no USD file in the Isaac folder"
         if target == "isaac" and stem is not None and usd.name != f"{stem}.usda":
