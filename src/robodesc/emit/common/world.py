@@ -19,7 +19,7 @@ from robodesc.emit.common.stance import CLEARANCE, Stance
 from robodesc.ir.diagnostics import ConfigError, Findings
 from robodesc.ir.geometry import Box, Mesh, Vec3
 from robodesc.ir.model import Robot
-from robodesc.ir.rigid import Frame, link_frames, pose_frame
+from robodesc.ir.rigid import Frame, apply, link_frames, pose_frame, transpose
 from robodesc.ir.world import CordField, HeightImage, Plane, StaticBody, World, WorldCollider
 from robodesc.meshes.heightfield import DEFAULT_RESOLUTION, HeightfieldError, HeightGrid, rasterize
 
@@ -243,13 +243,9 @@ def _level(frame: Frame) -> bool:
 
 
 def _to_local(frame: Frame, point: Vec3) -> Vec3:
-    r = frame.rotation
-    d = (point[0] - frame.translation[0], point[1] - frame.translation[1], point[2] - frame.translation[2])
-    return (
-        r[0][0] * d[0] + r[1][0] * d[1] + r[2][0] * d[2],
-        r[0][1] * d[0] + r[1][1] * d[1] + r[2][1] * d[2],
-        r[0][2] * d[0] + r[1][2] * d[1] + r[2][2] * d[2],
-    )
+    """``point`` (world) in ``frame``: the inverse transform, Rᵀ (p - t)."""
+    t = frame.translation
+    return apply(transpose(frame.rotation), (point[0] - t[0], point[1] - t[1], point[2] - t[2]))
 
 
 def _low_points(robot: Robot, q: Mapping[str, float]) -> list[Vec3]:
