@@ -18,7 +18,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from robodesc.emit.common.base import BaseChoice, choose_base, report_base
+from robodesc.emit.common.base import BY_FLAG, BaseChoice, choose_base, report_base
 from robodesc.emit.common.staging import Staging, check_output
 from robodesc.emit.common.target import CheckRequest, EmitRequest, Emitted, Target
 from robodesc.frontends.load import Source, load_source
@@ -162,6 +162,10 @@ def _request(
             # One base for every target, decided before the emitter (emit/common/base.py).
             base = choose_base(robot, given.get("fix_base"))
             built.fix_base = base.fixed
+            if base.reason == BY_FLAG:
+                # The flag overrides a composition's (or MJCF/SDF source's) base: the consumers' checks
+                # then compare the files with the base the user asked for, not the one it replaced.
+                robot.fixed_base = base.fixed
             report_base(robot, base, findings)
     request = EmitRequest(
         out=stage.path,

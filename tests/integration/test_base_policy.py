@@ -101,6 +101,16 @@ def test_flags_win(target: str, tmp_path: Path) -> None:
     assert _floats(target, out)
 
 
+@pytest.mark.parametrize("target", ["usd", "mjcf"])
+def test_flag_against_the_composition_passes_validation(target: str, tmp_path: Path) -> None:
+    """quadruped.yaml says ``base: floating``; ``--fix-base`` wins, and the consumer's check compares the
+    file with the base asked for (it once failed: "the source says floating base, the USD is fixed-base")."""
+    out = tmp_path / {"usd": "robot.usda", "mjcf": "robot.xml"}[target]
+    result = robodesc.compile_to(str(EXAMPLES / "quadruped.yaml"), target, out, fix_base=True)
+    assert result.validation is not None and result.validation.ok
+    assert not _floats(target, out)
+
+
 def test_summary_line_says_the_base(tmp_path: Path) -> None:
     out = tmp_path / "robot.usda"
     run = subprocess.run(
