@@ -179,6 +179,9 @@ def _build(
             collisions += builder.geom(body, c.geometry, c.origin, [*COLLIDER_RGBA[:3], 1.0], COLLISION_GROUP, frame)
     if floor is not None:
         _add_floor(builder, floor)
+    if posable:
+        # No multisampling for clips: software GL (llvmpipe) spends most of a frame resolving it.
+        builder.spec.visual.quality.offsamples = 0
     model = _compile(builder)
     mocap = {name: int(model.body_mocapid[model.body(body).id]) for name, body in bodies.items()}
     return BuiltModel(model=model, visuals=visuals, collisions=collisions, skipped=builder.skipped, bodies=mocap)
