@@ -98,6 +98,12 @@ def check_video_folder(folder: str, source: Any = None) -> None:
         raise OutputPathError(f"--video {folder}: the folder is not writable")
 
 
+def check_video_file(out: str, source: Any = None) -> None:
+    """Refuse a ``render --video FILE`` that cannot be written, or that is not .mp4 or .gif (exit 2)."""
+    check_output(out, folder=False, source=source, what="--video", suffixes=(".mp4", ".gif"), example="robot.mp4")
+    choose_format(os.path.splitext(out)[1].lower().lstrip("."))
+
+
 def file_stem(name: str) -> str:
     """A robot's name as a file name: letters, digits, ``-``, ``_`` and ``.`` kept, no leading dot."""
     stem = re.sub(r"[^A-Za-z0-9._-]+", "_", name).lstrip(".")
@@ -145,7 +151,7 @@ def _at(samples: Sequence[tuple[float, Any]], t: float, start: Any) -> Any:
 
 def sweep_panel(robot: Robot, seconds: float = SWEEP_SECONDS, frame_dt: float = 1.0 / FPS) -> Panel:
     """``render --video``: every driven joint from its home position to its lower limit, to its
-    upper limit and back home, all at once (a continuous joint over a half turn each way), in
+    upper limit and back home, all at once (a joint without limits a quarter turn each way), in
     ``seconds``; the root stays still."""
     spans: dict[str, tuple[float, float, float]] = {}
     for joint in robot.joints:
@@ -412,7 +418,7 @@ def render_video(
     (:func:`sweep_panel`), MP4 or GIF by ``out``'s suffix, ``size`` rounded down to multiples of 16."""
     from robodesc.view.source import Loaded, load_for_view
 
-    check_output(out, folder=False, source=source, what="--video", suffixes=(".mp4", ".gif"), example="robot.mp4")
+    check_video_file(out, None if isinstance(source, Loaded) else source)
     fmt = choose_format(os.path.splitext(out)[1].lower().lstrip("."))
     width, height = (max(16, size[0] // 16 * 16), max(16, size[1] // 16 * 16))
     loaded = source if isinstance(source, Loaded) else load_for_view(source, options, target)
