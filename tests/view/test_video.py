@@ -218,11 +218,10 @@ def test_cli_refuses_a_video_folder_it_cannot_use(
     assert sorted(os.listdir(tmp_path)) == ["afile", "arm.urdf"]
 
 
-def test_a_failed_clip_leaves_earlier_files_as_they_were(
-    tmp_path: Path, gl_here: str, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    arm = tmp_path / "arm.urdf"
-    arm.write_text(ARM.format(name="arm", kind="revolute"))
+def test_a_failed_clip_leaves_earlier_files_as_they_were(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The encoder writes a hidden file beside the clip, renamed into place: a failure leaves the
+    earlier file byte-identical and no temporary; a symlink where a clip goes is replaced, never
+    written through. (Encoded here, with frames made up: a render may run in a child process.)"""
     out = tmp_path / "clips"
     out.mkdir()
     earlier = out / "arm_hold-fixed.gif"
@@ -230,22 +229,22 @@ def test_a_failed_clip_leaves_earlier_files_as_they_were(
     outside = tmp_path / "outside.gif"
     outside.write_bytes(b"not robodesc's")
     (out / "arm_drop.gif").symlink_to(outside)
+    frames = [np.full((48, 64, 3), level, dtype=np.uint8) for level in (0, 128, 255)]
 
     def broken(frames: list[np.ndarray], path: str, fps: int) -> None:
         Path(path).write_bytes(b"half")
         raise OSError("disk full")
 
-    monkeypatch.setattr(video, "_write_gif", broken)
-    with pytest.raises(OSError, match="disk full"):
-        write_dynamics_clips(_report(arm, stiffness=0.05), str(out), fmt="gif")
+    with monkeypatch.context() as patch:
+        patch.setattr(video, "_write_gif", broken)
+        with pytest.raises(OSError, match="disk full"):
+            video.encode(frames, str(earlier), "gif")
     assert earlier.read_bytes() == b"an earlier clip"
     assert sorted(os.listdir(out)) == ["arm_drop.gif", "arm_hold-fixed.gif"]  # the temporary removed
-    monkeypatch.undo()
-    # A symlink where a clip goes is replaced, never written through.
-    tripod = tmp_path / "tripod.urdf"
-    tripod.write_text(TRIPOD.replace('name="tripod"', 'name="arm"'))
-    write_dynamics_clips(_report(tripod), str(out), fmt="gif")
+    video.encode(frames, str(out / "arm_drop.gif"), "gif")
     assert outside.read_bytes() == b"not robodesc's" and not (out / "arm_drop.gif").is_symlink()
+    decoded = read_frames(str(out / "arm_drop.gif"))
+    assert [int(f.mean()) for f in decoded] == [0, 128, 255]
 
 
 def test_validate_video_on_the_command_line(tmp_path: Path, gl_here: str) -> None:
