@@ -244,7 +244,7 @@ def cmd_validate(args: argparse.Namespace) -> int:
         if result.dynamics is not None:
             print(result.dynamics.to_text())
         if args.video:
-            render.print_clips(clips, args.video)
+            render.print_clips(clips, args.video, simulated=result.dynamics is not None)
     return code
 
 

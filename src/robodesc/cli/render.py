@@ -282,13 +282,12 @@ def clip_dict(clip: Any) -> dict[str, Any]:
     }
 
 
-def print_clips(clips: list[Any], folder: str | None = None) -> None:
-    """One line per clip on standard error, naming the format and what wrote it."""
+def print_clips(clips: list[Any], folder: str | None = None, simulated: bool = True) -> None:
+    """One line per clip on standard error, naming the format and what wrote it; with ``folder``,
+    a line saying why there is none (``simulated``: whether the dynamics ran at all)."""
     if folder is not None and not clips:
-        print(
-            f"robodesc: --video {display_path(folder)}: no clip (no engine ran a scenario the robot moves in)",
-            file=sys.stderr,
-        )
+        why = "no engine ran a scenario the robot moves in" if simulated else "nothing was simulated (see above)"
+        print(f"robodesc: --video {display_path(folder)}: no clip: {why}", file=sys.stderr)
     for clip in clips:
         how = (
             "MP4 (imageio-ffmpeg)" if clip.format == "mp4" else "GIF (Pillow; MP4 needs pip install 'robodesc[video]')"
