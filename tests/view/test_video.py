@@ -258,3 +258,16 @@ def test_validate_video_on_the_command_line(tmp_path: Path, gl_here: str) -> Non
     assert clip["panels"] == ["mujoco (urdf)", "mujoco (source)"]  # the output, and its source beside it
     assert os.path.isfile(tmp_path / clip["path"]) or os.path.isfile(clip["path"])
     assert sorted(os.listdir(tmp_path)) == ["arm.urdf", "clips"]  # nothing else in the working folder
+
+
+def test_help_explains_the_video_options(capsys: pytest.CaptureFixture[str]) -> None:
+    from robodesc.cli import main
+
+    for command, says in (
+        ("validate", ["--video DIR", "--video-format", "imageio-ffmpeg", "GIF", "one panel per engine"]),
+        ("render", ["--video FILE.mp4", "swept", "lower limit", ".gif"]),
+    ):
+        with pytest.raises(SystemExit):
+            main([command, "--help"])
+        text = " ".join(capsys.readouterr().out.split())
+        assert all(s in text for s in says), (command, text)
