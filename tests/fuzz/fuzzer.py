@@ -587,9 +587,17 @@ def _clip_problem(target: str, out: Path) -> str | None:
     from robodesc.view.video import FPS, SWEEP_SECONDS, read_frames
 
     if target == "render-video":
-        count = len(read_frames(str(out)))
+        from PIL import Image, ImageSequence
+
+        # Pillow's GIF writer merges identical consecutive frames into one of their summed
+        # duration (two poses a pixel apart at 64x48): the playing time is what must hold.
         expected = round(SWEEP_SECONDS * FPS) + 1
-        return None if count == expected else f"{count} frames, not {expected}"
+        with Image.open(out) as gif:
+            played = sum(int(f.info.get("duration", 0)) for f in ImageSequence.Iterator(gif))
+        frames = len(read_frames(str(out)))
+        if played != expected * round(1000 / FPS) or frames < 2:
+            return f"{frames} frames playing {played} ms, not {expected} frames of {round(1000 / FPS)} ms"
+        return None
     names = sorted(os.listdir(out))
     if (out / "earlier.txt").read_bytes() != SENTINEL:
         return "the file beside the clips changed"

@@ -62,7 +62,7 @@ class Panel:
 class Clip:
     path: str
     scenario: str
-    frames: int
+    frames: int  # drawn (a GIF merges identical consecutive ones: fewer in the file, as long)
     width: int
     height: int
     format: str  # "mp4" or "gif"
