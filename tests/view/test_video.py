@@ -247,17 +247,35 @@ def test_a_failed_clip_leaves_earlier_files_as_they_were(tmp_path: Path, monkeyp
     assert [int(f.mean()) for f in decoded] == [0, 128, 255]
 
 
-def test_validate_video_on_the_command_line(tmp_path: Path, gl_here: str) -> None:
-    arm = tmp_path / "arm.urdf"
-    arm.write_text(ARM.format(name="arm", kind="revolute"))
-    done = _cli("validate", str(arm), "--dynamics", "--engines", "mujoco", "--video", "clips", "--json", cwd=tmp_path)
-    assert done.returncode == 0, done.stderr
-    doc = json.loads(done.stdout)
+def test_validate_video_on_the_command_line(
+    tmp_path: Path, gl_here: str, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The CLI's path end to end, in process, with the runs cut to 0.4 s (the flag has no duration;
+    at 0.2 s the slide's block would not yet have slid its 5 cm)."""
+    import dataclasses
+
+    from robodesc import check_dynamics
+    from robodesc.cli import main
+
+    given = check_dynamics.dynamics_options
+    monkeypatch.setattr(
+        check_dynamics, "dynamics_options", lambda *a: dataclasses.replace(given(*a), duration=2 * SECONDS)
+    )
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "arm.urdf").write_text(ARM.format(name="arm", kind="revolute"))
+    code = main(["validate", "arm.urdf", "--dynamics", "--engines", "mujoco", "--video", "clips", "--json"])
+    doc = json.loads(capsys.readouterr().out)
+    assert code == 0, [c for c in doc["dynamics"]["checks"] if c["status"] != "pass"]
     (clip,) = doc["videos"]
-    assert clip["scenario"] == "hold-fixed" and clip["frames"] == 51
+    frames = round(2 * SECONDS / video.FRAME_DT) + 1
+    assert clip["scenario"] == "hold-fixed" and clip["frames"] == frames
     assert clip["panels"] == ["mujoco (urdf)", "mujoco (source)"]  # the output, and its source beside it
-    assert os.path.isfile(tmp_path / clip["path"]) or os.path.isfile(clip["path"])
+    assert (clip["width"], clip["height"]) == (2 * video.PANEL[0], video.PANEL[1])
+    assert len(read_frames(clip["path"])) == frames
     assert sorted(os.listdir(tmp_path)) == ["arm.urdf", "clips"]  # nothing else in the working folder
+    assert os.listdir(tmp_path / "clips") == [
+        "arm_hold-fixed.mp4" if video.encoder_available() else "arm_hold-fixed.gif"
+    ]
 
 
 def test_help_explains_the_video_options(capsys: pytest.CaptureFixture[str]) -> None:
