@@ -21,6 +21,8 @@ code, a batch job crashed), ``hang`` (the time bound, or a batch job's timeout),
 robodesc bug, and both are to be fixed), ``bad-output`` (exit 0 but the output does not load),
 ``partial-output`` (a failed run changed the earlier output), ``ran-python`` (a batch ran a Python
 file it was not told to) or ``escaped`` (a batch wrote outside its output folder).
+One in ten ``validate --dynamics`` and ``render`` cases asks for clips too (``--video``,
+:data:`VIDEO`): they must decode, with the expected frame count, and nothing else may be left beside them.
 The test tier (``tests/fuzz/run.sh``) also runs each case in a child process, so that a signal
 (a segfault in native code) is a ``crash`` and a hang in native code is a ``hang``.
 """
@@ -58,8 +60,19 @@ COMMANDS: dict[str, tuple[list[str], list[str], str | None]] = {
     "render": (["render"], ["-o", "out.png"], "out.png"),
     "dynamics": (["validate"], ["-t", "urdf", "--dynamics", "--engines", "mujoco"], None),
 }
+# Moving pictures (issue 34): a share of the dynamics and render cases asks for a clip too, drawn
+# from a separate random sequence so that every other case stays what it was for a given seed.
+# (command -> the case's name, command line after the input, output name in the working folder.)
+VIDEO: dict[str, tuple[str, list[str], str]] = {
+    "dynamics": ("dynamics-video", [*COMMANDS["dynamics"][1], "--video", "clips"], "clips"),
+    "render": ("render-video", ["--video", "out.gif", "--size", "64x48"], "out.gif"),
+}
+# Of those cases: drawing 2 x 51 frames costs more than the simulation. ROBODESC_FUZZ_VIDEO_SHARE=1
+# turns every one of them into a clip case (benchmarks/results/fuzz_tier.md, the video-only run).
+VIDEO_SHARE = float(os.environ.get("ROBODESC_FUZZ_VIDEO_SHARE", "0.1"))
 FILE_TARGETS = ("urdf", "sdf", "usda", "usdc", "mjcf")
 TIME_LIMIT = 30  # seconds per case: far above any honest case (the slowest take ~2 s)
+VIDEO_TIME_LIMIT = 80  # a clip case: software GL on a loaded machine; under the tier's 30 + 60 s bound
 SENTINEL = b"earlier output: a failed run must leave these bytes alone\n"
 
 EXTREMES = (
@@ -389,6 +402,8 @@ def prepare(case: int, seed: int, root: Path) -> Case:
     if rng.random() < COMMAND_SHARE:
         command = rng.choice(sorted(COMMANDS))
         before, after, out_name = COMMANDS[command]
+        if command in VIDEO and random.Random(f"{seed}:{case}:video").random() < VIDEO_SHARE:
+            command, after, out_name = VIDEO[command]
         argv = [*before, os.path.join("..", seed_file), *after]
         out = work / out_name if out_name else work
         return Case(argv, path, command, applied, out, cwd=work, out_name=out_name)
@@ -523,6 +538,8 @@ def check_output(target: str, out: Path, source: Path | None = None) -> str | No
             return None  # nothing written
         if target == "render":
             return None if out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" else "not a PNG"
+        if target in ("dynamics-video", "render-video"):
+            return _clip_problem(target, out)
         if target == "view":
             return _page_problem(out)
         if target in ("urdf", "sdf"):
@@ -562,6 +579,36 @@ def check_output(target: str, out: Path, source: Path | None = None) -> str | No
         return None
     except Exception as exc:  # the consumer's own failure is the finding
         return f"{type(exc).__name__}: {exc}"
+
+
+def _clip_problem(target: str, out: Path) -> str | None:
+    """Why the clips of a successful run are not: a file that does not decode or has the wrong
+    frame count, a temporary left, or the earlier file beside them changed."""
+    from robodesc.view.video import FPS, SWEEP_SECONDS, read_frames
+
+    if target == "render-video":
+        from PIL import Image, ImageSequence
+
+        # Pillow's GIF writer merges identical consecutive frames into one of their summed
+        # duration (two poses a pixel apart at 64x48): the playing time is what must hold.
+        expected = round(SWEEP_SECONDS * FPS) + 1
+        with Image.open(out) as gif:
+            played = sum(int(f.info.get("duration", 0)) for f in ImageSequence.Iterator(gif))
+        frames = len(read_frames(str(out)))
+        if played != expected * round(1000 / FPS) or frames < 2:
+            return f"{frames} frames playing {played} ms, not {expected} frames of {round(1000 / FPS)} ms"
+        return None
+    names = sorted(os.listdir(out))
+    if (out / "earlier.txt").read_bytes() != SENTINEL:
+        return "the file beside the clips changed"
+    for name in names:
+        if name == "earlier.txt":
+            continue
+        if not name.endswith((".mp4", ".gif")) or name.startswith("."):
+            return f"{name} left in the clips' folder"
+        if len(read_frames(str(out / name))) < 2:
+            return f"{name} has fewer than two frames"
+    return None
 
 
 def _page_problem(page: Path) -> str | None:
@@ -683,6 +730,8 @@ def run_case(case: int, seed: int, root: Path, time_limit: int = TIME_LIMIT) -> 
         before = _snapshot(out) if prepared.target != "dynamics" else {}
     stdout, stderr = io.StringIO(), io.StringIO()
     argv = prepared.argv
+    if prepared.target.endswith("-video"):
+        time_limit = max(time_limit, VIDEO_TIME_LIMIT)
     here = os.getcwd()
     try:
         if prepared.cwd is not None:

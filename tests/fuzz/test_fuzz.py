@@ -53,6 +53,9 @@ def test_fuzz_failed_runs_leave_earlier_output(outcomes: list[Outcome]) -> None:
 def test_fuzz_reaches_every_target_and_seed(outcomes: list[Outcome]) -> None:
     plain = {"urdf", "sdf", "usda", "usdc", "isaac", "mjcf", "ros2"}
     commands = {"view", "render", "dynamics"}
-    assert {o.target for o in outcomes} == plain | {f"batch-{t}" for t in plain} | commands
+    # The clips (dynamics-video, render-video) are one case in ten of their commands: 300 cases
+    # may hold none of one kind.
+    reached = {o.target for o in outcomes} - {"dynamics-video", "render-video"}
+    assert reached == plain | {f"batch-{t}" for t in plain} | commands
     assert len({o.seed_file for o in outcomes}) == 4
     assert any(o.status == "ok" for o in outcomes) and any(o.status == "refused" for o in outcomes)

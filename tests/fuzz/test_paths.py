@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import os
 import shutil
+import sys
 from pathlib import Path
 
 import pytest
@@ -89,3 +90,31 @@ def test_validation_leaves_nothing_in_the_working_folder(tmp_path: Path, monkeyp
     assert main(["compile", str(source), "-t", "mjcf", "-o", str(tmp_path / "o" / "robot.xml"), "-q"]) == 0
     assert main(["validate", str(source), "--dynamics", "--engines", "mujoco"]) == 0
     assert os.listdir(work) == []
+
+
+def test_engine_workers_leave_nothing_in_the_working_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Newton's solver is MuJoCo: an unstable run in its worker (``validate -t usd --dynamics
+    --engines newton`` of an arm of 1e-9 kg driven at kp 1e15) left MUJOCO_LOG.TXT in the user's
+    folder. Every worker now starts in a scratch folder. Shown with MuJoCo in this interpreter, as
+    the Newton worker runs it, so that no Newton venv is needed."""
+    from robodesc.validation.worker import run_worker
+
+    script = tmp_path / "unstable_worker.py"
+    script.write_text(
+        "import json, os, sys\n"
+        "import mujoco\n"
+        "json.loads(sys.stdin.read())\n"
+        "m = mujoco.MjModel.from_xml_string('<mujoco><worldbody><body><joint/><geom size=\".1\"/></body></worldbody></mujoco>')\n"
+        "d = mujoco.MjData(m)\n"
+        "d.qvel[0] = float('inf')\n"
+        "mujoco.mj_step(m, d)\n"
+        "print(json.dumps({'cwd': os.getcwd(), 'warnings': int(d.warning[mujoco.mjtWarning.mjWARN_BADQVEL].number)}))\n"
+    )
+    work = tmp_path / "work"
+    work.mkdir()
+    monkeypatch.chdir(work)
+    done = run_worker(sys.executable, str(script), {}, 120.0, "test")
+    assert done.answer is not None, done.failure
+    assert done.answer["warnings"] == 1  # MuJoCo did warn, and wrote its log where the worker started
+    assert os.listdir(work) == []
+    assert not os.path.exists(done.answer["cwd"])  # the scratch folder went with the worker

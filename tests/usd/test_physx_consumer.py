@@ -17,7 +17,7 @@ from robodesc.validation import physx_usd
 from robodesc.validation.compare import expected_inertial
 from robodesc.validation.physx_python import physx_python
 from robodesc.validation.physx_usd import PENDING_FIXES, PHYSX_REL_TOL, read_physx, validate_usd_physx
-from robodesc.validation.report import Status, ValidationReport
+from robodesc.validation.report import Status, Tally, ValidationReport
 
 ROOT = Path(__file__).resolve().parents[2]
 PYTHON = physx_python()
@@ -207,3 +207,23 @@ def test_a_follower_without_a_drive_has_no_force_bound(tmp_path: Path) -> None:
     assert (follow["drive_type"], follow["max_force"]) == (0, 0)
     report = validate_usd_physx(result.robot, str(out))
     assert _rows(report, "physx-max-force", Status.PASS) == ["2 joints"], report.to_text()
+
+
+def test_a_source_bound_of_1e30_is_no_bound() -> None:
+    """``effort="1e30" velocity="1e30"`` (a URDF's "no limit"): PhysX reads both as unbounded; that
+    failed ``compile -t usd`` on main fc66c1d with exit 1, "robodesc's fault"."""
+    report = ValidationReport(robot="r", target="usd", consumer="physx")
+    tally = Tally(report, "physx-max-force", PHYSX_REL_TOL, "relative")
+    physx_usd._bound(tally, "joint 'hinge'", None, 1e30, "maximum N·m", "N·m")
+    physx_usd._bound(tally, "joint 'hinge'", 3.4e38, 5.7e31, "maximum velocity", "deg/s")
+    assert (tally.checked, tally.failed) == (2, 0)
+    physx_usd._bound(tally, "joint 'hinge'", None, 100.0, "maximum N·m", "N·m")  # a real bound PhysX lost
+    assert tally.failed == 1
+
+
+@needs_physx
+def test_a_urdf_without_limits_written_as_1e30_validates(tmp_path: Path) -> None:
+    source = tmp_path / "big.urdf"
+    source.write_text(MASSLESS.replace('effort="10" velocity="2"', 'effort="1e30" velocity="1e30"'), encoding="utf-8")
+    result = compile_to(str(source), "usd", str(tmp_path / "big.usda"))  # validated: raises on exit 1
+    assert result.validation is not None and result.validation.ok, result.validation.to_text()

@@ -220,11 +220,13 @@ def cmd_validate(args: argparse.Namespace) -> int:
         _place_gains(args, dynamics, options)
     elif args.stiffness or args.damping:
         raise ConfigError("--stiffness and --damping set the gains --dynamics simulates: add --dynamics")
+    clip_format = _video_setup(args, dynamics)
     result = api.check(args.input, args.target, dynamics=dynamics, **options)
     report = result.validation
     if report is None:
         raise ConfigError(f"target {args.target!r} has nothing to validate")
     code = 0 if report.ok and (result.dynamics is None or result.dynamics.ok) else 1
+    clips = _write_clips(args, result.dynamics, clip_format)
     if args.report:
         from robodesc._files import write_atomic
 
@@ -233,13 +235,51 @@ def cmd_validate(args: argparse.Namespace) -> int:
         doc = render.json_doc("validate", code, target=args.target, result=result)
         doc["files"] = {}
         doc["dynamics"] = result.dynamics.as_dict() if result.dynamics is not None else None
+        if args.video:
+            doc["videos"] = [render.clip_dict(c) for c in clips]
         print(json.dumps(doc, indent=2))
     else:
         render.print_findings(result.findings, quiet=False)
         print(report.to_text())
         if result.dynamics is not None:
             print(result.dynamics.to_text())
+        if args.video:
+            render.print_clips(clips, args.video, simulated=result.dynamics is not None)
     return code
+
+
+def _video_setup(args: argparse.Namespace, dynamics: dict[str, Any] | bool) -> str | None:
+    """``--video DIR``: refused before any work when it cannot be written (exit 2); the runners then
+    record the poses the clips draw. A progress line per engine on a terminal. The clips' format."""
+    if isinstance(dynamics, dict) and sys.stderr.isatty() and not args.json:
+        dynamics["progress"] = _progress
+    if not args.video:
+        if args.video_format:
+            raise ConfigError("--video-format sets the format of --video's clips: add --video DIR")
+        return None
+    if not isinstance(dynamics, dict):
+        raise ConfigError("--video DIR draws the runs of --dynamics: add --dynamics")
+    from robodesc.view.render import prefer_backend
+    from robodesc.view.video import check_video_folder, choose_format
+
+    check_video_folder(args.video, args.input)
+    chosen = choose_format(args.video_format)
+    dynamics["record"] = True
+    prefer_backend()  # before the engines import MuJoCo: the clips then draw in this process
+    return chosen
+
+
+def _write_clips(args: argparse.Namespace, report: Any, clip_format: str | None) -> list[Any]:
+    if clip_format is None or report is None:
+        return []
+    from robodesc.view.video import write_dynamics_clips
+
+    progress = _progress if sys.stderr.isatty() and not args.json else None
+    return write_dynamics_clips(report, args.video, fmt=clip_format, progress=progress)
+
+
+def _progress(line: str) -> None:
+    print(f"robodesc: {line} ...", file=sys.stderr, flush=True)
 
 
 def _dynamics_options(args: argparse.Namespace) -> dict[str, Any] | bool:
@@ -333,22 +373,41 @@ def cmd_view(args: argparse.Namespace) -> int:
 def cmd_render(args: argparse.Namespace) -> int:
     from robodesc.view.render import parse_size, render_png
 
-    done = render_png(
-        args.input,
-        args.output,
-        view=args.view,
-        size=parse_size(args.size),
-        grid_views=args.grid,
-        collision=args.collision,
-        options=_view_options(args),
-        target=args.target,
-    )
-    for why in done.skipped:
-        print(f"warning: not drawn: {why}", file=sys.stderr)
-    print(
-        f"robodesc: {render.display_path(done.path)}: {done.width}x{done.height} ({done.backend}) in {done.seconds:.2f} s",
-        file=sys.stderr,
-    )
+    if not args.output and not args.video:
+        raise ConfigError("render: give -o FILE.png, --video FILE.mp4, or both")
+    if args.video:
+        from robodesc.view.video import check_video_file
+
+        check_video_file(args.video, args.input)  # before the picture: a bad path costs nothing
+    if args.output:
+        done = render_png(
+            args.input,
+            args.output,
+            view=args.view,
+            size=parse_size(args.size or "800x600"),
+            grid_views=args.grid,
+            collision=args.collision,
+            options=_view_options(args),
+            target=args.target,
+        )
+        for why in done.skipped:
+            print(f"warning: not drawn: {why}", file=sys.stderr)
+        print(
+            f"robodesc: {render.display_path(done.path)}: {done.width}x{done.height} ({done.backend}) in {done.seconds:.2f} s",
+            file=sys.stderr,
+        )
+    if args.video:
+        from robodesc.view.video import render_video
+
+        clip = render_video(
+            args.input,
+            args.video,
+            size=parse_size(args.size or "640x480"),
+            collision=args.collision,
+            options=_view_options(args),
+            target=args.target,
+        )
+        render.print_clips([clip])
     return 0
 
 

@@ -421,6 +421,20 @@ def _validate_parser(sub: Any) -> argparse.ArgumentParser:
         default=[],
         help="home pose for --dynamics (rad or m, first match wins; repeatable); default 0 clamped into the limits",
     )
+    dyn.add_argument(
+        "--video",
+        metavar="DIR",
+        help="with --dynamics: write a clip per scenario the robot moves in (hold-fixed, drop) to "
+        "DIR/<robot>_<scenario>.mp4, one panel per engine side by side, drawn by MuJoCo's offscreen renderer "
+        "from the poses each engine reported, at half speed. MP4 needs imageio-ffmpeg (pip install "
+        "'robodesc[video]'); without it a GIF is written. Files already in DIR are replaced one by one, "
+        "never written through",
+    )
+    dyn.add_argument(
+        "--video-format",
+        choices=("mp4", "gif"),
+        help="the clips' format for --video (default: mp4 when imageio-ffmpeg is installed, else gif)",
+    )
 
     return valp
 
@@ -456,7 +470,7 @@ def _view_parsers(sub: Any) -> list[argparse.ArgumentParser]:
             ),
         )
         p.add_argument("input", help=f"the robot: {describe_inputs()}")
-        p.add_argument("-o", "--output", required=True, metavar="FILE.html" if name == "view" else "FILE.png")
+        p.add_argument("-o", "--output", required=name == "view", metavar="FILE.html" if name == "view" else "FILE.png")
         p.add_argument(
             "-t",
             "--target",
@@ -466,9 +480,17 @@ def _view_parsers(sub: Any) -> list[argparse.ArgumentParser]:
         p.add_argument("--preset", choices=list(PRESETS), help="the passes' preset (with --target), as for compile")
         if name == "render":
             p.add_argument("--view", choices=list(VIEWS), default="iso", help="camera direction (default iso)")
-            p.add_argument("--size", default="800x600", metavar="WxH", help="image size in pixels (default 800x600)")
+            p.add_argument("--size", metavar="WxH", help="image size in pixels (default 800x600; 640x480 for --video)")
             p.add_argument("--grid", action="store_true", help="front, side, top and iso in a 2x2 grid")
             p.add_argument("--collision", action="store_true", help="draw the colliders only")
+            p.add_argument(
+                "--video",
+                metavar="FILE.mp4",
+                help="also (or instead of -o) write a clip: every driven joint swept from its home position to its "
+                "lower limit, to its upper limit and back, in 4 s at 25 fps, the root still; .mp4 (needs "
+                "imageio-ffmpeg: pip install 'robodesc[video]') or .gif. --size sets its frame size (default "
+                "640x480, rounded down to multiples of 16)",
+            )
         add_input_options(p)
         made.append(p)
     sub.choices["inspect"].add_argument(

@@ -266,3 +266,36 @@ def json_doc(
     if report is not None:
         doc["validation"] = json.loads(report.to_json())
     return doc
+
+
+def clip_dict(clip: Any) -> dict[str, Any]:
+    """A clip of ``--video`` (robodesc.view.video.Clip) for ``--json``."""
+    return {
+        "path": clip.path,
+        "scenario": clip.scenario,
+        "format": clip.format,
+        "frames": clip.frames,
+        "width": clip.width,
+        "height": clip.height,
+        "panels": clip.panels,
+        "seconds": round(clip.seconds, 3),
+    }
+
+
+def print_clips(clips: list[Any], folder: str | None = None, simulated: bool = True) -> None:
+    """One line per clip on standard error, naming the format and what wrote it; with ``folder``,
+    a line saying why there is none (``simulated``: whether the dynamics ran at all)."""
+    if folder is not None and not clips:
+        why = "no engine ran a scenario the robot moves in" if simulated else "nothing was simulated (see above)"
+        print(f"robodesc: --video {display_path(folder)}: no clip: {why}", file=sys.stderr)
+    for clip in clips:
+        how = (
+            "MP4 (imageio-ffmpeg)" if clip.format == "mp4" else "GIF (Pillow; MP4 needs pip install 'robodesc[video]')"
+        )
+        for why in clip.skipped:
+            print(f"warning: not drawn: {why}", file=sys.stderr)
+        print(
+            f"robodesc: {display_path(clip.path)}: {clip.scenario}, {len(clip.panels)} panel(s) "
+            f"({', '.join(clip.panels)}), {clip.frames} frames {clip.width}x{clip.height}, {how} in {clip.seconds:.2f} s",
+            file=sys.stderr,
+        )

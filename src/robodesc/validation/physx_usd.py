@@ -423,8 +423,11 @@ def _effort(angular: bool) -> str:
 
 
 def _bound(tally: Tally, label: str, have: float | None, want: float | None, what: str, unit: str) -> None:
-    """A bound PhysX may hold as 'none' (FLT_MAX): equal when both are given, else both absent."""
+    """A bound PhysX may hold as 'none' (FLT_MAX): equal when both are given, else both absent.
+    The source's bound goes through the same rule: an effort or velocity limit of 1e30 (a common
+    way to write "none" in URDF) is read by PhysX as unbounded, which is what the source means."""
     have = None if have is None or have >= UNBOUNDED else float(have)
+    want = None if want is None or want >= UNBOUNDED else float(want)
     if want is None and have is None:
         tally.ok()
     elif want is None:

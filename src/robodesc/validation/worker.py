@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import os
 import subprocess
+import tempfile
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -29,17 +30,25 @@ def warp_cache() -> str:
 
 
 def run_worker(python: str, script: str, request: dict[str, Any], timeout: float, engine: str) -> WorkerAnswer:
-    """Run ``script`` with ``python`` on ``request``; ``engine`` names it in the failure."""
+    """Run ``script`` with ``python`` on ``request``; ``engine`` names it in the failure.
+
+    The worker starts in a scratch folder, removed after it: an engine's files (MuJoCo, under
+    Newton, appends its warnings to MUJOCO_LOG.TXT in the working folder) never land in the user's
+    folder. Every path a request holds is absolute."""
+    # A relative interpreter path (ROBODESC_NEWTON_PYTHON=venv/bin/python) is the user's folder's.
+    python = os.path.abspath(python) if os.sep in python else python
     try:
-        done = subprocess.run(
-            [python, script],
-            input=json.dumps(request),
-            capture_output=True,
-            text=True,
-            timeout=timeout,
-            check=False,
-            env={**os.environ, "WARP_CACHE_PATH": warp_cache()},
-        )
+        with tempfile.TemporaryDirectory(prefix="robodesc-worker-") as scratch:
+            done = subprocess.run(
+                [python, os.path.abspath(script)],
+                input=json.dumps(request),
+                capture_output=True,
+                text=True,
+                timeout=timeout,
+                check=False,
+                cwd=scratch,
+                env={**os.environ, "WARP_CACHE_PATH": warp_cache()},
+            )
     except subprocess.TimeoutExpired:
         return WorkerAnswer(None, f"{engine} did not finish in {timeout:g} s")
     lines = done.stdout.splitlines()

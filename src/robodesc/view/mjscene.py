@@ -22,6 +22,7 @@ from robodesc.view.scene import COLLIDER_RGBA, DEFAULT_RGBA, home
 
 VISUAL_GROUP = 1
 COLLISION_GROUP = 3
+FLOOR_GROUP = 0  # the clips' floor (build_posable)
 
 
 @dataclass(slots=True)
@@ -30,6 +31,7 @@ class BuiltModel:
     visuals: int = 0
     collisions: int = 0
     skipped: list[str] = field(default_factory=list)  # shapes left out, and why
+    bodies: dict[str, int] = field(default_factory=dict)  # build_posable: link -> its mocap index
 
 
 def _rgba(material: Material | None, named: dict[str, Material]) -> list[float]:
@@ -134,26 +136,78 @@ def build_model(robot: Robot, size: tuple[int, int] = (640, 480), collision: boo
     return _build(mujoco, robot, size, visual=False)
 
 
-def _build(mujoco: Any, robot: Robot, size: tuple[int, int], visual: bool) -> BuiltModel:
+def build_posable(
+    robot: Robot, size: tuple[int, int] = (640, 480), collision: bool = False, floor: float | None = None
+) -> BuiltModel:
+    """The picture model of ``robot`` with one mocap body per link (``BuiltModel.bodies``), so a
+    clip poses it frame by frame (robodesc.view.video) from link frames the IR's kinematics give;
+    ``floor``: the half size (m) of a checkered floor at z = 0, in :data:`FLOOR_GROUP`."""
+    import mujoco
+
+    if not collision:
+        built = _build(mujoco, robot, size, visual=True, posable=True, floor=floor)
+        if built.visuals:
+            return built
+    return _build(mujoco, robot, size, visual=False, posable=True, floor=floor)
+
+
+def _build(
+    mujoco: Any, robot: Robot, size: tuple[int, int], visual: bool, posable: bool = False, floor: float | None = None
+) -> BuiltModel:
     builder = _Builder(mujoco, size)
     named = {m.name: m for m in robot.materials}
     q = {j.name: home(j) for j in robot.joints if j.mimic is None and j.type.dof == 1}
     frames = link_frames(robot, q)
     visuals = collisions = 0
+    bodies: dict[str, str] = {}
     for link in robot.links:
         frame = frames.get(link.name)
         if frame is None:  # not reachable from a root: the verifier refused such robots already
             continue
         # Every geom on the world body at its home-pose frame: MuJoCo's mjSpec walks every body
         # each time a geom is added (mjCModel::MakeTreeLists), so a body per link made a
-        # 50,000-link picture quadratic; the picture needs no bodies.
+        # 50,000-link picture quadratic; the picture needs no bodies. A clip needs them, one
+        # mocap body per link with its geoms in the link's frame.
         body = builder.spec.worldbody
+        if posable:
+            body = builder.spec.worldbody.add_body(name=f"link{len(bodies)}", mocap=True)
+            bodies[link.name] = body.name
+            frame = Frame()
         for v in link.visuals if visual else ():
             visuals += builder.geom(body, v.geometry, v.origin, _rgba(v.material, named), VISUAL_GROUP, frame)
         for c in () if visual else link.collisions:
             collisions += builder.geom(body, c.geometry, c.origin, [*COLLIDER_RGBA[:3], 1.0], COLLISION_GROUP, frame)
+    if floor is not None:
+        _add_floor(builder, floor)
+    if posable:
+        # No multisampling for clips: software GL (llvmpipe) spends most of a frame resolving it.
+        builder.spec.visual.quality.offsamples = 0
     model = _compile(builder)
-    return BuiltModel(model=model, visuals=visuals, collisions=collisions, skipped=builder.skipped)
+    mocap = {name: int(model.body_mocapid[model.body(body).id]) for name, body in bodies.items()}
+    return BuiltModel(model=model, visuals=visuals, collisions=collisions, skipped=builder.skipped, bodies=mocap)
+
+
+def _add_floor(builder: _Builder, half: float) -> None:
+    mj = builder.mj
+    builder.spec.add_texture(
+        name="floor",
+        type=mj.mjtTexture.mjTEXTURE_2D,
+        builtin=mj.mjtBuiltin.mjBUILTIN_CHECKER,
+        rgb1=[0.72, 0.74, 0.77],
+        rgb2=[0.62, 0.64, 0.68],
+        width=256,
+        height=256,
+    )
+    material = builder.spec.add_material(name="floor", texrepeat=[4, 4], texuniform=True)
+    material.textures[mj.mjtTextureRole.mjTEXROLE_RGB] = "floor"
+    builder.spec.worldbody.add_geom(
+        type=mj.mjtGeom.mjGEOM_PLANE,
+        size=[half, half, 0.01],
+        material="floor",
+        group=FLOOR_GROUP,
+        contype=0,
+        conaffinity=0,
+    )
 
 
 def _compile(builder: _Builder) -> Any:

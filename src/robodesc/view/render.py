@@ -16,7 +16,9 @@ import os
 import subprocess
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any, TypeVar
 
 import numpy as np
 
@@ -32,6 +34,7 @@ from robodesc.view.views import VIEWS
 
 BACKENDS = ("egl", "osmesa")
 GRID_VIEWS = ("front", "side", "top", "iso")
+T = TypeVar("T")
 
 
 class RenderUnavailable(RobodescError):
@@ -101,11 +104,7 @@ def render_views(
     option.geomgroup[:] = 0
     option.geomgroup[group] = 1
     points = corners(model, data, {group})
-    try:
-        # The smallest font: the picture has no text, and the font textures cost time to make.
-        renderer = mujoco.Renderer(model, height=size[1], width=size[0], font_scale=mujoco.mjtFontScale.mjFONTSCALE_50)
-    except Exception as exc:  # mujoco.FatalError, GLFW/EGL/OSMesa errors: the backend does not work here
-        raise _BackendFailed(f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}") from None
+    renderer = new_renderer(model, size)
     try:
         camera = mujoco.MjvCamera()
         camera.type = mujoco.mjtCamera.mjCAMERA_FREE
@@ -150,6 +149,26 @@ def render_png(
     loaded = source if isinstance(source, Loaded) else load_for_view(source, options, target)
     tile = (width // 2, height // 2) if grid_views else (width, height)
     views = list(GRID_VIEWS) if grid_views else [view]
+
+    def draw() -> RenderResult:
+        images, skipped = render_views(loaded, views, tile, collision)
+        image = grid(images) if grid_views else images[0]
+        write_png(out, image)
+        return RenderResult(out, image.shape[1], image.shape[0], "", time.perf_counter() - start, skipped)
+
+    def child(backend: str) -> RenderResult:
+        report = run_child("robodesc.view.render", (loaded.robot, views, tile, collision, out), backend)
+        return RenderResult(out, report["width"], report["height"], backend, 0.0, report["skipped"])
+
+    result, backend = with_backend(draw, child)
+    result.backend, result.seconds = backend, time.perf_counter() - start
+    return result
+
+
+def with_backend(draw: Callable[[], T], child: Callable[[str], T]) -> tuple[T, str]:
+    """``draw()`` in this process with the first GL backend that works, or ``child(backend)`` (a
+    render in a new process, :func:`run_child`) when this process cannot use it; (its result, the
+    backend). Raises :class:`RenderUnavailable` when none works."""
     candidates = backend_candidates()
     if not candidates:
         raise RenderUnavailable(UNAVAILABLE)
@@ -158,52 +177,71 @@ def render_png(
     if chosen is None or chosen == first:
         _select(first)
         try:
-            images, skipped = render_views(loaded, views, tile, collision)
+            return draw(), first
         except (_BackendFailed, ImportError) as exc:
             if not rest:
                 raise RenderUnavailable(f"{UNAVAILABLE} (MUJOCO_GL={first}: {exc})") from None
-            return _in_child(loaded, out, rest[0], views, tile, collision, start)
-        image = grid(images) if grid_views else images[0]
-        write_png(out, image)
-        return RenderResult(out, image.shape[1], image.shape[0], first, time.perf_counter() - start, skipped)
+            return child(rest[0]), rest[0]
     # This process's MuJoCo chose another backend when it was imported (a worker that validated
     # first, a test run): render in a child process that chooses ours.
     failures = []
     for backend in candidates:
         try:
-            return _in_child(loaded, out, backend, views, tile, collision, start)
+            return child(backend), backend
         except RenderUnavailable as exc:
             failures.append(str(exc))
     raise RenderUnavailable(failures[-1])
 
 
-def _in_child(
-    loaded: Loaded, out: str, backend: str, views: list[str], tile: tuple[int, int], collision: bool, start: float
-) -> RenderResult:
-    """Render in a new Python process with ``backend`` (this one has another GL platform loaded)."""
+def prefer_backend() -> None:
+    """Choose the first working GL backend before MuJoCo is imported (``validate --video``
+    simulates before it draws): its renders then run in this process, not a child's."""
+    candidates = backend_candidates()
+    if candidates and _chosen_backend() is None:
+        _select(candidates[0])
+
+
+def new_renderer(model: Any, size: tuple[int, int]) -> Any:
+    """A ``mujoco.Renderer`` of ``size`` (width, height), or :class:`_BackendFailed`."""
+    import mujoco
+
+    try:
+        # The smallest font: robodesc draws no text with MuJoCo, and font textures cost time to make.
+        return mujoco.Renderer(model, height=size[1], width=size[0], font_scale=mujoco.mjtFontScale.mjFONTSCALE_50)
+    except Exception as exc:  # mujoco.FatalError, GLFW/EGL/OSMesa errors: the backend does not work here
+        raise _BackendFailed(f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}") from None
+
+
+def run_child(module: str, job: Any, backend: str) -> dict[str, Any]:
+    """Run ``python -m module JOB`` with ``backend`` (``job`` pickled to the file JOB) and return
+    the JSON on its last line of output; :class:`RenderUnavailable` when it fails."""
     import pickle
     import tempfile
 
     with tempfile.TemporaryDirectory(prefix="robodesc-render-") as tmp:
-        job = os.path.join(tmp, "job.pickle")
-        with open(job, "wb") as handle:
-            pickle.dump((loaded.robot, views, tile, collision, out), handle)
+        path = os.path.join(tmp, "job.pickle")
+        with open(path, "wb") as handle:
+            pickle.dump(job, handle)
         env = {**os.environ, "MUJOCO_GL": backend, "PYOPENGL_PLATFORM": backend}
         done = subprocess.run(
-            [sys.executable, "-m", "robodesc.view.render", job], env=env, capture_output=True, text=True, check=False
+            [sys.executable, "-m", module, path], env=env, capture_output=True, text=True, check=False
         )
     if done.returncode != 0:
         last = (done.stderr.strip().splitlines() or ["no output"])[-1]
         raise RenderUnavailable(f"{UNAVAILABLE} (MUJOCO_GL={backend}: {last})")
-    report = json.loads(done.stdout.strip().splitlines()[-1])
-    return RenderResult(out, report["width"], report["height"], backend, time.perf_counter() - start, report["skipped"])
+    answer: dict[str, Any] = json.loads(done.stdout.strip().splitlines()[-1])
+    return answer
+
+
+def read_job(path: str) -> Any:
+    import pickle
+
+    with open(path, "rb") as handle:
+        return pickle.load(handle)
 
 
 def _child_main(job: str) -> int:
-    import pickle
-
-    with open(job, "rb") as handle:
-        robot, views, tile, collision, out = pickle.load(handle)
+    robot, views, tile, collision, out = read_job(job)
     images, skipped = render_views(Loaded(robot=robot, findings=[]), views, tile, collision)
     image = grid(images) if len(images) == 4 else images[0]
     write_png(out, image)

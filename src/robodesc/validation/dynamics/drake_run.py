@@ -173,9 +173,9 @@ def _robot_run(robot: Robot, path: str, options: Any, setup: Setup, run: Run, *,
             _set_position(joint, context, setup.pose[name])
     if floor and _floating(root):
         plant.SetFreeBodyPose(context, root, RigidTransform(_vec(0.0, 0.0, setup.stand_height + setup.drop_clearance)))
-    height = (lambda: float(plant.EvalBodyPoseInWorld(context, root).translation()[2])) if floor else None
+    where = (lambda: plant.EvalBodyPoseInWorld(context, root)) if floor else None
     peaks = _watch_efforts(simulator, plant, table)
-    _advance(simulator, context, table, setup, run, height)
+    _advance(simulator, context, table, setup, run, where)
     if run.ok:
         run.set_peaks(peaks, setup.effort)
     if run.ok and floor:
@@ -237,8 +237,10 @@ def _advance(
     table: dict[str, Any],
     setup: Setup,
     run: Run,
-    height: Callable[[], float] | None = None,
+    where: Callable[[], Any] | None = None,
 ) -> None:
+    """Step to the end in samples of ``_SAMPLE``; ``where`` gives the free root's pose (a
+    ``RigidTransform``) when the robot was dropped."""
     joints = {n: j for n in setup.pose if (j := table.get(n)) is not None and j.num_positions() == 1}
     if setup.pose and not joints:
         run.ok, run.error = False, "none of the robot's driven joints is in the file"
@@ -248,8 +250,13 @@ def _advance(
     heights: list[tuple[float, float]] = []
     for k in range(1, steps + 1):
         simulator.AdvanceTo(k * _SAMPLE)
-        if height is not None:
-            heights.append((k * _SAMPLE, height()))
+        if where is not None:
+            pose = where()
+            heights.append((k * _SAMPLE, float(pose.translation()[2])))
+            if setup.record:
+                quat = pose.rotation().ToQuaternion()
+                xyz_wxyz = (*pose.translation(), quat.w(), quat.x(), quat.y(), quat.z())
+                run.root.append((k * _SAMPLE, tuple(float(c) for c in xyz_wxyz)))
         q = {n: float(j.GetOnePosition(context)) for n, j in joints.items()}
         if not all(math.isfinite(v) for v in q.values()):
             run.ok, run.error = False, f"state not finite after {k * _SAMPLE:.3g} s"
@@ -257,7 +264,7 @@ def _advance(
         run.trajectory.append((k * _SAMPLE, q))
     run.final_q = q
     run.drift, run.worst_joint = max(((abs(v - setup.pose[n]), n) for n, v in q.items()), default=(0.0, ""))
-    run.settle = settle_time(heights) if height is not None else None
+    run.settle = settle_time(heights) if where is not None else None
 
 
 def _watch_efforts(simulator: Any, plant: Any, table: dict[str, Any]) -> dict[str, float]:

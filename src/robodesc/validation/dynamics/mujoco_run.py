@@ -128,6 +128,9 @@ def _simulate(model: Any, data: Any, setup: Setup, run: Run, addr: dict[str, int
                 run.trajectory.append(((step + 1) * setup.timestep, q))
                 if root is not None:
                     heights.append(((step + 1) * setup.timestep, float(data.xpos[root][2])))
+                    if setup.record:
+                        pose = (*data.xpos[root], *data.xquat[root])  # MuJoCo's quaternions are w, x, y, z
+                        run.root.append(((step + 1) * setup.timestep, tuple(float(c) for c in pose)))
     run.settle = settle_time(heights) if root is not None else None
     run.final_q = {n: float(data.qpos[a]) for n, a in addr.items()}
     worst = max(((abs(q - setup.pose[n]), n) for n, q in run.final_q.items()), default=(0.0, ""))

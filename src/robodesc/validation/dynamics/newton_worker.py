@@ -125,7 +125,10 @@ def _run_robot(req, scenario):
                 return {**run, "ok": False, "error": f"state not finite after {(step + 1) * dt:.3g} s"}
             run["trajectory"].append([(step + 1) * dt, {n: float(jq[names[n][0]]) for n in pose}])
             if floor:
-                run.setdefault("heights", []).append([(step + 1) * dt, float(state0.body_q.numpy()[root_body][2])])
+                bq = [float(c) for c in state0.body_q.numpy()[root_body]]
+                run.setdefault("heights", []).append([(step + 1) * dt, bq[2]])
+                if setup.get("record"):  # body_q is px py pz qx qy qz qw; the answer's is xyz, wxyz
+                    run.setdefault("root", []).append([(step + 1) * dt, [*bq[:3], bq[6], *bq[3:6]]])
     jq = state0.joint_q.numpy()
     final = {n: float(jq[names[n][0]]) for n in pose}
     worst = max(((abs(v - pose[n]), n) for n, v in final.items()), default=(0.0, ""))

@@ -364,8 +364,14 @@ def _simulate(sim, req, info, scenario, floor, mu):
         if (step + 1) % every == 0:
             run["trajectory"].append([(step + 1) * dt, {driven[p][0]: v / driven[p][1] for p, v in q.items()}])
             if floor:
-                z = sim.read(T.ARTICULATION, ["rootPosition"])["rootPosition"]
-                heights.append([(step + 1) * dt, float(next(iter(z.values()))[2]) * mpu])
+                record = bool(setup.get("record"))
+                names = ["rootPosition", "rootOrientation"] if record else ["rootPosition"]
+                now = sim.read(T.ARTICULATION, names)
+                xyz = [float(c) * mpu for c in next(iter(now["rootPosition"].values()))]
+                heights.append([(step + 1) * dt, xyz[2]])
+                if record:  # ovphysx's quaternions are x, y, z, w; the answer's w, x, y, z
+                    qx, qy, qz, qw = (float(c) for c in next(iter(now["rootOrientation"].values())))
+                    run.setdefault("root", []).append([(step + 1) * dt, [*xyz, qw, qx, qy, qz]])
     final = {driven[p][0]: v / driven[p][1] for p, v in q.items()}
     pose = setup["pose"]
     worst = max(((abs(v - pose[n]), n) for n, v in final.items()), default=(0.0, ""))

@@ -8,6 +8,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from robodesc.ir.model import Robot
 from robodesc.validation.report import Check, Status
 
 # A dropped robot has settled once its root height stays within this of where it ends.
@@ -57,6 +58,9 @@ class Run:
     saturation: dict[str, float] = field(default_factory=dict)
     # (time, {joint: q}) samples, for comparing an output with its source in one engine.
     trajectory: list[tuple[float, dict[str, float]]] = field(default_factory=list)
+    # (time, (x, y, z, qw, qx, qy, qz)) of the root link in the world, SI, at the trajectory's
+    # samples: filled by the drop only when ``Setup.record`` asks (``validate --video``).
+    root: list[tuple[float, tuple[float, ...]]] = field(default_factory=list)
 
     def as_dict(self) -> dict[str, Any]:
         keys = ("engine", "file", "scenario", "ok", "error", "drift", "worst_joint", "height", "tilt", "mu")
@@ -89,6 +93,9 @@ class DynamicsReport:
     runs: list[Run] = field(default_factory=list)
     checks: list[Check] = field(default_factory=list)
     info: dict[str, Any] = field(default_factory=dict)
+    # The IR the runs' joints are named after (the source's), for drawing the runs
+    # (robodesc.view.video); not part of the report's text or JSON.
+    model: Robot | None = field(default=None, repr=False, compare=False)
 
     @property
     def ok(self) -> bool:
@@ -156,6 +163,7 @@ def run_from_json(engine: str, kind: str, raw: Mapping[str, Any], limits: Mappin
     run.seconds = float(raw.get("seconds", 0.0))
     run.final_q = {str(k): float(v) for k, v in (raw.get("final_q") or {}).items()}
     run.trajectory = [(float(t), {str(k): float(v) for k, v in q.items()}) for t, q in raw.get("trajectory", [])]
+    run.root = [(float(t), tuple(float(c) for c in pose)) for t, pose in raw.get("root", [])]
     if raw.get("heights"):
         run.settle = settle_time([(float(t), float(z)) for t, z in raw["heights"]])
     if raw.get("peak_effort"):

@@ -85,7 +85,7 @@ def run_dynamics(
     """
     opts = options or DynamicsOptions()
     setup = make_setup(robot, opts)
-    report = DynamicsReport(robot=robot.name)
+    report = DynamicsReport(robot=robot.name, model=robot)
     report.info["pose_note"] = opts.defaults or "pose from the given table, else 0 clamped into limits"
     report.info["setup"] = setup.as_dict()
     started = time.perf_counter()
@@ -124,6 +124,8 @@ def _run_engine(
     report: DynamicsReport,
     scenarios: tuple[str, ...] = SCENARIOS,
 ) -> list[Run]:
+    if opts.progress is not None:
+        opts.progress(f"{engine} ({kind}): {', '.join(scenarios)}")
     started = time.perf_counter()
     try:
         return _run_engine_timed(engine, robot, path, kind, setup, opts, report, scenarios)

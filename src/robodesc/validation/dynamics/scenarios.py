@@ -9,7 +9,7 @@ they read the same numbers from the same kind of file (an output against its sou
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -78,6 +78,11 @@ class DynamicsOptions:
     # What chose the pose and gains when the caller gave none (``validate --dynamics`` fills them
     # with the Isaac folder's defaults, robodesc.check_dynamics.default_stance); shown in the report.
     defaults: str | None = None
+    # Record the dropped root's pose at every trajectory sample (``Run.root``), for the clips of
+    # ``validate --video``; off, the runners read nothing more than the verdicts need.
+    record: bool = False
+    # Called with a line before each engine runs (``validate --dynamics`` prints it on a terminal).
+    progress: Callable[[str], None] | None = None
 
 
 @dataclass(slots=True)
@@ -104,6 +109,7 @@ class Setup:
     duration: float = 1.0
     timestep: float = 0.001
     drop_clearance: float = 0.05
+    record: bool = False  # DynamicsOptions.record
 
     def as_dict(self) -> dict[str, Any]:
         return {
@@ -116,6 +122,8 @@ class Setup:
             "duration": self.duration,
             "timestep": self.timestep,
             "drop_clearance": self.drop_clearance,
+            # Only when asked: the report's setup (info["setup"]) stays as it was without it.
+            **({"record": True} if self.record else {}),
         }
 
 
@@ -276,4 +284,5 @@ def make_setup(robot: Robot, options: DynamicsOptions) -> Setup:
         duration=options.duration,
         timestep=options.timestep,
         drop_clearance=options.drop_clearance,
+        record=options.record,
     )
