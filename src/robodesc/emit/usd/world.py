@@ -233,6 +233,7 @@ def _cords(world: Prim, cords: CordField, anchors: list[Vec3]) -> None:
 
 
 def _mesh(prim: Prim, shape: Mesh, collider: WorldCollider, body: StaticBody, findings: Findings) -> bool:
+    from robodesc.emit.usd.geometry import author_mesh  # the robot's mesh writer: normals and UVs too
     from robodesc.meshes.buffers import MeshReadError
     from robodesc.meshes.data import build_mesh
 
@@ -248,11 +249,7 @@ def _mesh(prim: Prim, shape: Mesh, collider: WorldCollider, body: StaticBody, fi
             stage=STAGE,
         )
         return False
-    prim.attr("points", "point3f[]", data.points)
-    prim.attr("faceVertexCounts", "int[]", data.face_vertex_counts)
-    prim.attr("faceVertexIndices", "int[]", data.face_vertex_indices)
-    prim.attr("subdivisionScheme", "token", "none", uniform=True)
-    prim.attr("extent", "float3[]", data.extent)
+    author_mesh(prim, data)
     return True
 
 
