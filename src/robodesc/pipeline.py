@@ -185,7 +185,7 @@ def compile_robot(
     if options.world.given and not spec.worlds:
         raise UnsupportedError(
             f"-t {spec.name} describes the robot alone and cannot hold a world; a world (--world FILE, --terrain) "
-            "is written by -t mjcf, -t usd and -t sdf (docs/worlds.md)",
+            "is written by -t mjcf, -t usd, -t sdf and --isaac-sim (docs/worlds.md)",
             element="--world" if options.world.file is not None else "--terrain",
         )
     if out is not None:
@@ -260,7 +260,9 @@ def _world(robot: Robot, options: CompileOptions, findings: Findings, progress: 
         return None
     progress("placing the robot in the world")
     given = options.world
-    return place_world(robot, world, findings, resolution=given.terrain_resolution, spawn=given.spawn)
+    return place_world(
+        robot, world, findings, resolution=given.terrain_resolution, spawn=given.spawn, copies=given.copies
+    )
 
 
 def _emit(

@@ -52,8 +52,11 @@ def world_options(args: argparse.Namespace) -> dict[str, Any]:
         out["terrain_size"] = _numbers(args.terrain_size, "--terrain-size", (3,))
     if getattr(args, "terrain_resolution", None) is not None:
         out["terrain_resolution"] = args.terrain_resolution
-    if getattr(args, "spawn", None):
-        out["spawn"] = _numbers(args.spawn, "--spawn", (2, 3))
+    spawn = getattr(args, "spawn", None)
+    if spawn:
+        # --spawn may be given several times: a copy of the robot at each point.
+        points = [_numbers(text, "--spawn", (2, 3)) for text in ([spawn] if isinstance(spawn, str) else spawn)]
+        out["spawn"] = points[0] if len(points) == 1 else points
     if getattr(args, "contact_sensors", None) is not None:
         out["contact_sensors"] = args.contact_sensors
     return out

@@ -268,8 +268,10 @@ def add_world_options(p: argparse.ArgumentParser) -> None:
     g.add_argument(
         "--spawn",
         metavar="X,Y[,Z]",
+        action="append",
         help="where the robot stands in the world (default: the world's include of it, else the origin); "
-        "without Z its height comes from the ground under its feet",
+        "without Z its height comes from the ground under its feet. Given several times: a copy of the robot "
+        "at each point (MJCF, USD, SDF), each on the ground under its own feet",
     )
     g.add_argument(
         "--cords",

@@ -37,10 +37,10 @@ def _write_world(robot: Robot, request: EmitRequest, out: str, findings: Finding
     assert placed is not None
     final = request.final or out
     floating = not request.options.fix_base and robot.root.name != "world"
-    root = placed.root_position(robot, Stance(complete(robot, {}), "zeros"), floating)
+    roots = placed.root_positions(robot, Stance(complete(robot, {}), "zeros"), floating)
     path = os.path.join(os.path.dirname(os.path.abspath(out)), world_file_name(final))
     contacts = any(s.type.value == "contact" for s in robot.sensors)
-    write_world(path, final, robot.name, placed, root, findings, contacts=contacts)
+    write_world(path, final, robot.name, placed, roots, findings, contacts=contacts)
     return path
 
 

@@ -17,13 +17,14 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from robodesc.emit.usd.context import set_pose
 from robodesc.emit.usd.layers import encode, stage_metadata
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.geometry import Box, Cylinder, Mesh, Sphere, Vec3
-from robodesc.ir.rigid import Frame, pose_frame
+from robodesc.ir.rigid import Frame, pose_frame, rpy_rotation
 from robodesc.ir.world import CordField, HeightImage, Plane, StaticBody, WorldCollider
 from robodesc.usdfile.spec import Layer, Payload, Prim
 
@@ -40,24 +41,53 @@ def world_file_name(robot_file: str) -> str:
     return f"{stem}_world{ext}"
 
 
+def copy_names(robot_prim: str, count: int) -> list[str]:
+    """The prim of each copy of the robot: its own name alone, ``<name>_0`` ... for several."""
+    return [robot_prim] if count == 1 else [f"{robot_prim}_{i}" for i in range(count)]
+
+
 def write_world(
     path: str,
     robot_file: str,
     robot_prim: str,
     placed: PlacedWorld,
-    root: Vec3,
+    roots: Sequence[Vec3],
     findings: Findings,
     *,
     contacts: bool = False,
 ) -> None:
-    """Write the world stage to ``path``; ``robot_file`` is the robot's final file name beside it."""
+    """Write the world stage to ``path``; ``robot_file`` is the robot's final file name beside it,
+    brought in once per root (several copies: one payload each, ``/World/<robot>_<i>``)."""
     from robodesc._files import write_atomic
 
+    layer, world = _ground(placed, findings)
+    _scene(world, placed, contacts)
+    for cords, anchors in placed.cords:
+        _cords(world, cords, anchors)
+    turn = rpy_rotation((0.0, 0.0, placed.yaw))
+    for name, root in zip(copy_names(robot_prim, len(roots)), roots, strict=True):
+        robot = world.child(name, "Xform")
+        robot.payloads.append(Payload(f"./{os.path.basename(robot_file)}", f"/{robot_prim}"))
+        set_pose(robot, Frame(translation=root, rotation=turn))
+    write_atomic(path, encode(layer, os.path.splitext(path)[1].lower()))
+
+
+def write_terrain(path: str, placed: PlacedWorld, findings: Findings) -> None:
+    """The world's ground alone (static bodies and their friction; no scene, robot or cords): what
+    Isaac Lab's ``TerrainImporterCfg(terrain_type="usd")`` references under its own prim, beside the
+    ``PhysicsScene`` its ``SimulationCfg`` makes."""
+    from robodesc._files import write_atomic
+
+    layer, _ = _ground(placed, findings)
+    write_atomic(path, encode(layer, os.path.splitext(path)[1].lower()))
+
+
+def _ground(placed: PlacedWorld, findings: Findings) -> tuple[Layer, Prim]:
+    """A layer whose default prim ``/World`` holds the world's static bodies and their materials."""
     layer = Layer()
     stage_metadata(layer, WORLD)
     world = layer.prim(f"/{WORLD}", "Xform")
     world.kind = "assembly"
-    _scene(world, placed, contacts)
     material = _terrain_material(world, placed)
     if not placed.world.bodies:  # a world of cords alone: a ground plane under them
         ground = world.child("ground", "Plane")
@@ -70,12 +100,7 @@ def write_world(
         set_pose(body_prim, pose_frame(body.pose))
         for collider in body.colliders:
             _collider(body_prim, body, collider, material, findings)
-    for cords, anchors in placed.cords:
-        _cords(world, cords, anchors)
-    robot = world.child(robot_prim, "Xform")
-    robot.payloads.append(Payload(f"./{os.path.basename(robot_file)}", f"/{robot_prim}"))
-    set_pose(robot, Frame(translation=root))
-    write_atomic(path, encode(layer, os.path.splitext(path)[1].lower()))
+    return layer, world
 
 
 def _scene(world: Prim, placed: PlacedWorld, contacts: bool) -> None:
