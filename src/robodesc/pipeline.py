@@ -182,6 +182,12 @@ def compile_robot(
 ) -> CompileResult:
     load_plugins(options.plugins)
     spec = target_spec(target)
+    if options.world.spawn is not None and not options.world.given:
+        raise ConfigError(
+            "--spawn places the robot in a world: give the world with --world FILE, --terrain FILE or --cords FILE "
+            "(docs/worlds.md)",
+            element="--spawn",
+        )
     if options.world.given and not spec.worlds:
         raise UnsupportedError(
             f"-t {spec.name} describes the robot alone and cannot hold a world; a world (--world FILE, --terrain) "

@@ -83,9 +83,13 @@ def _place_in_world(robot: Robot, request: EmitRequest, stance: Stance) -> None:
         return
     floating = not options.fix_base and robot.root.name != "world"
     zero = _Stance(complete(robot, {}), "zeros")
-    options.init_pos = placed.root_position(robot, zero, floating)
+    roots = placed.root_positions(robot, zero, floating)
+    options.init_pos = roots[0]
+    homes = [r[2] for r in placed.root_positions(robot, stance, floating)] if floating else [r[2] for r in roots]
     if floating:
-        options.home_height = placed.root_position(robot, stance, floating)[2]
+        options.home_height = homes[0]
+    if len(roots) > 1:
+        options.copies = tuple(zip(roots, homes, strict=True))
 
 
 def _contact_defaults(robot: Robot, request: EmitRequest, stance: Stance, findings: Findings) -> None:

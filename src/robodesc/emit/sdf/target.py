@@ -62,10 +62,11 @@ def _world(robot: Robot, request: EmitRequest, findings: Findings) -> None:
         options.step_size = physics.step
     if physics.gravity is not None:
         options.gravity = physics.gravity
+    floating = not options.fix_base and robot.root.name != "world"
+    roots = placed.root_positions(robot, Stance(complete(robot, {}), "zeros"), floating)
     if options.model_pose is None:
-        floating = not options.fix_base and robot.root.name != "world"
-        root = placed.root_position(robot, Stance(complete(robot, {}), "zeros"), floating)
-        options.model_pose = Pose(root, (0.0, 0.0, placed.yaw))
+        options.model_pose = Pose(roots[0], (0.0, 0.0, placed.yaw))
+    options.copy_poses = [Pose(root, (0.0, 0.0, placed.yaw)) for root in roots[1:]]
 
 
 TARGET = Target(
