@@ -130,7 +130,7 @@ class PlacedWorld:
 
 
 def place_world(
-    robot: Robot,
+    robot: Robot | None,
     world: World,
     findings: Findings,
     *,
@@ -138,7 +138,8 @@ def place_world(
     spawn: tuple[float, ...] | None = None,
     copies: tuple[tuple[float, ...], ...] = (),
 ) -> PlacedWorld:
-    """Heightfields of the world's terrains (at ``resolution`` m, default 2 cm) and the spawn point."""
+    """Heightfields of the world's terrains (at ``resolution`` m, default 2 cm) and the spawn point
+    (``robot`` None: a world compiled alone, with no robot to place)."""
     placed = PlacedWorld(world)
     resolution = resolution or DEFAULT_RESOLUTION
     if not (resolution > 0 and math.isfinite(resolution)):
@@ -148,7 +149,8 @@ def place_world(
             grid = _grid(body, collider, resolution, findings)
             if grid is not None:
                 placed.grids.append(grid)
-    _spawn(robot, world, spawn or (copies[0] if copies else None), placed)
+    if robot is not None:
+        _spawn(robot, world, spawn or (copies[0] if copies else None), placed)
     if len(copies) > 1:
         placed.copies = [_point(point) for point in copies]
     for cords in world.cords:

@@ -4,9 +4,9 @@ its scene and converted meshes beside the file (docs/mjcf.md, Outputs)."""
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
-from robodesc.emit.common.target import EmitRequest, Emitted, Target
+from robodesc.emit.common.target import EmitRequest, Emitted, Target, WorldAlone
 from robodesc.emit.mjcf.actuators import FROM_TARGET, joint_kind
 from robodesc.emit.mjcf.check import check_mjcf
 from robodesc.emit.mjcf.options import MjcfOptions
@@ -17,6 +17,7 @@ from robodesc.ir.rules import lookup
 
 if TYPE_CHECKING:
     from robodesc.emit.common.stance import Stance
+    from robodesc.emit.common.world import PlacedWorld
 
 STAGE = "emit:mjcf"
 
@@ -162,6 +163,13 @@ def _asked_drives(robot: Robot, request: EmitRequest) -> dict[str, tuple[float, 
     }
 
 
+def world_alone(placed: PlacedWorld, out: str, options: Any, findings: Findings, validate: bool) -> WorldAlone:
+    """A world file given as the input, written alone (robodesc.emit.mjcf.world.write_world_alone)."""
+    from robodesc.emit.mjcf.world import write_world_alone  # the writer loads when it writes
+
+    return write_world_alone(placed, out, options, findings, validate)
+
+
 # The "mjcf" preset (passes/presets.py): MuJoCo refuses an invalid inertia on a moving body, so
 # invalid ones are repaired from geometry, as the Isaac folder does, and each repair reported.
 TARGET = Target(
@@ -176,5 +184,6 @@ TARGET = Target(
     owned=lambda options, out: (scene_name(out),) if options.scene else (),
     derives_gains=True,
     worlds=True,
+    world_alone=world_alone,
     options_title="MJCF (-t mjcf; docs/mjcf.md)",
 )

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from robodesc.emit.common.numbers import fmt, fmt_vec
+from robodesc.emit.common.target import WorldAlone
 from robodesc.emit.common.world import PlacedWorld, TerrainGrid
 from robodesc.emit.mjcf.contact_params import ROLL, TORSION
 from robodesc.emit.mjcf.scene import SCENE
@@ -88,12 +89,17 @@ def copy_prefix(stem: str, index: int) -> str:
 
 
 def world_scene_text(
-    robot_file: str, placed: PlacedWorld, findings: Findings, robot: RobotSurface, copies: Copies | None = None
+    robot_file: str | None,
+    placed: PlacedWorld,
+    findings: Findings,
+    robot: RobotSurface | None,
+    copies: Copies | None = None,
 ) -> str:
     """The scene with the world's ground instead of the plane floor, and its physics; with
-    ``copies``, the robot attached once per copy instead of included."""
-    base = os.path.basename(robot_file)
-    stem = os.path.splitext(base)[0]
+    ``copies``, the robot attached once per copy instead of included. ``robot_file`` None: the
+    world alone (a world file as the input), named ``placed.world.name``."""
+    base = os.path.basename(robot_file) if robot_file is not None else ""
+    stem = os.path.splitext(base)[0] if robot_file is not None else placed.world.name
     head = SCENE.format(stem=stem, robot=base, floor_pos="").partition("  <worldbody>")[0]
     option = _option(placed, copies.option if copies is not None else {})
     assets = ET.Element("asset")
@@ -106,6 +112,8 @@ def world_scene_text(
         for collider in body.colliders:
             _collider(placed, body, collider, assets, world, findings, robot)
     tail = ""
+    if robot_file is None:
+        head = head.replace(f'  <include file="{base}"/>\n', "", 1).replace(f"{stem} scene", stem, 1)
     if copies is not None:
         head = head.replace(f'  <include file="{base}"/>\n', "", 1)
         ET.SubElement(assets, "model", name=stem, file=base)
@@ -123,6 +131,22 @@ def world_scene_text(
     extra_assets = _indent(assets) if len(assets) else ""
     body_text = _indent(world)
     return text + extra_assets + body_text + tail + "</mujoco>\n"
+
+
+def write_world_alone(placed: PlacedWorld, out: str, options: object, findings: Findings, validate: bool) -> WorldAlone:
+    """``robodesc compile W.world -t mjcf -o world.xml``: the scene with no robot."""
+    from robodesc._files import write_atomic
+
+    text = world_scene_text(None, placed, findings, None)
+    write_atomic(out, text)
+    if not validate:
+        return {"mjcf": out}, None
+    from robodesc.validation.world import check_mjcf_world
+
+    # Every geom written directly in the world body (the ground's), as MuJoCo should count them.
+    body = ET.fromstring(text).find("worldbody")
+    geoms = len(body.findall("geom")) if body is not None else 0
+    return {"mjcf": out}, check_mjcf_world(out, placed.world.name, placed.world.physics, geoms)
 
 
 def _option(placed: PlacedWorld, robot: dict[str, str]) -> str:
@@ -146,7 +170,7 @@ def _collider(
     assets: ET.Element,
     world: ET.Element,
     findings: Findings,
-    robot: RobotSurface,
+    robot: RobotSurface | None,
 ) -> None:
     frame = pose_frame(body.pose) @ pose_frame(collider.origin)
     name = f"{body.name}/{collider.name}"
@@ -154,7 +178,8 @@ def _collider(
     surface = collider.surface
     mu = surface.mu if surface is not None and surface.mu is not None else 1.0  # ODE's default
     attrs["friction"] = fmt_vec((mu, TORSION, ROLL))
-    attrs["priority"] = str(_priority(mu, robot, collider, body, findings))
+    if robot is not None:  # alone, a world has no robot whose friction to yield to or win over
+        attrs["priority"] = str(_priority(mu, robot, collider, body, findings))
     shape = collider.shape
     grid = placed.grid_of(collider)
     if grid is not None:

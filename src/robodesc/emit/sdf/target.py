@@ -3,13 +3,17 @@
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING, Any
 
 from robodesc._files import write_atomic
-from robodesc.emit.common.target import EmitRequest, Emitted, Target
+from robodesc.emit.common.target import EmitRequest, Emitted, Target, WorldAlone
 from robodesc.emit.sdf.check import check_sdf
 from robodesc.emit.sdf.options import SdfOptions
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
+
+if TYPE_CHECKING:
+    from robodesc.emit.common.world import PlacedWorld
 
 
 def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
@@ -69,6 +73,13 @@ def _world(robot: Robot, request: EmitRequest, findings: Findings) -> None:
     options.copy_poses = [Pose(root, (0.0, 0.0, placed.yaw)) for root in roots[1:]]
 
 
+def world_alone(placed: PlacedWorld, out: str, options: Any, findings: Findings, validate: bool) -> WorldAlone:
+    """A world file given as the input, written alone (robodesc.emit.sdf.world.write_world_alone)."""
+    from robodesc.emit.sdf.world import write_world_alone  # the writer loads when it writes
+
+    return write_world_alone(placed, out, options, findings, validate)
+
+
 TARGET = Target(
     name="sdf",
     emit=emit_target,
@@ -78,5 +89,6 @@ TARGET = Target(
     stdout=True,
     check=check_sdf,
     worlds=True,
+    world_alone=world_alone,
     options_title="SDF (-t sdf; docs/sdf.md)",
 )

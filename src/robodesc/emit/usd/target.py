@@ -7,7 +7,7 @@ from robodesc.emit.common.target import EmitRequest, Emitted, Target
 from robodesc.emit.usd.check import check_usd
 from robodesc.emit.usd.layers import PAYLOAD_DIR
 from robodesc.emit.usd.options import UsdOptions
-from robodesc.emit.usd.world import world_file_name
+from robodesc.emit.usd.world import world_file_name, write_world_alone
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
 
@@ -58,5 +58,6 @@ TARGET = Target(
     owned=lambda options, out: (PAYLOAD_DIR,) if options.layered else (),
     worlds=True,
     world_files=lambda options, out: (world_file_name(out),),
+    world_alone=write_world_alone,
     options_title="USD and Isaac Sim (-t usd, --isaac-sim; see docs/usd.md, docs/isaac.md)",
 )

@@ -29,6 +29,7 @@ from robodesc.ir.world import CordField, HeightImage, Plane, StaticBody, WorldCo
 from robodesc.usdfile.spec import Layer, Payload, Prim
 
 if TYPE_CHECKING:  # the placement reads meshes (numpy); a plain USD compile must not import it
+    from robodesc.emit.common.target import WorldAlone
     from robodesc.emit.common.world import PlacedWorld
 
 STAGE = "emit:usd"
@@ -48,28 +49,31 @@ def copy_names(robot_prim: str, count: int) -> list[str]:
 
 def write_world(
     path: str,
-    robot_file: str,
+    robot_file: str | None,
     robot_prim: str,
     placed: PlacedWorld,
     roots: Sequence[Vec3],
     findings: Findings,
     *,
     contacts: bool = False,
-) -> None:
+) -> int:
     """Write the world stage to ``path``; ``robot_file`` is the robot's final file name beside it,
-    brought in once per root (several copies: one payload each, ``/World/<robot>_<i>``)."""
+    brought in once per root (several copies: one payload each, ``/World/<robot>_<i>``). No
+    ``roots``: the world alone (a world file as the input). Returns the static colliders written."""
     from robodesc._files import write_atomic
 
-    layer, world = _ground(placed, findings)
+    layer, world, count = _ground(placed, findings)
     _scene(world, placed, contacts)
     for cords, anchors in placed.cords:
         _cords(world, cords, anchors)
     turn = rpy_rotation((0.0, 0.0, placed.yaw))
-    for name, root in zip(copy_names(robot_prim, len(roots)), roots, strict=True):
+    for name, root in zip(copy_names(robot_prim, len(roots)) if roots else [], roots, strict=True):
+        assert robot_file is not None
         robot = world.child(name, "Xform")
         robot.payloads.append(Payload(f"./{os.path.basename(robot_file)}", f"/{robot_prim}"))
         set_pose(robot, Frame(translation=root, rotation=turn))
     write_atomic(path, encode(layer, os.path.splitext(path)[1].lower()))
+    return count
 
 
 def write_terrain(path: str, placed: PlacedWorld, findings: Findings) -> None:
@@ -78,12 +82,13 @@ def write_terrain(path: str, placed: PlacedWorld, findings: Findings) -> None:
     ``PhysicsScene`` its ``SimulationCfg`` makes."""
     from robodesc._files import write_atomic
 
-    layer, _ = _ground(placed, findings)
+    layer, _, _ = _ground(placed, findings)
     write_atomic(path, encode(layer, os.path.splitext(path)[1].lower()))
 
 
-def _ground(placed: PlacedWorld, findings: Findings) -> tuple[Layer, Prim]:
-    """A layer whose default prim ``/World`` holds the world's static bodies and their materials."""
+def _ground(placed: PlacedWorld, findings: Findings) -> tuple[Layer, Prim, int]:
+    """A layer whose default prim ``/World`` holds the world's static bodies and their materials,
+    and the number of colliders it holds."""
     layer = Layer()
     stage_metadata(layer, WORLD)
     world = layer.prim(f"/{WORLD}", "Xform")
@@ -95,12 +100,13 @@ def _ground(placed: PlacedWorld, findings: Findings) -> tuple[Layer, Prim]:
         ground.attr("length", "double", PLANE_SIZE)
         ground.attr("axis", "token", "Z", uniform=True)
         ground.apply("PhysicsCollisionAPI")
+    count = 0 if placed.world.bodies else 1
     for body in placed.world.bodies:
         body_prim = world.child(_name(body.name), "Xform")
         set_pose(body_prim, pose_frame(body.pose))
         for collider in body.colliders:
-            _collider(body_prim, body, collider, material, findings)
-    return layer, world
+            count += _collider(body_prim, body, collider, material, findings)
+    return layer, world, count
 
 
 def _scene(world: Prim, placed: PlacedWorld, contacts: bool) -> None:
@@ -151,14 +157,15 @@ def _terrain_material(world: Prim, placed: PlacedWorld) -> dict[float, str]:
 
 def _collider(
     body_prim: Prim, body: StaticBody, collider: WorldCollider, materials: dict[float, str], findings: Findings
-) -> None:
+) -> bool:
+    """Write one collider; False when it has no USD form (it is left out, with a warning)."""
     shape = collider.shape
     name = _name(collider.name)
     if isinstance(shape, Mesh):
         prim = body_prim.child(name, "Mesh")
         if not _mesh(prim, shape, collider, body, findings):
             del body_prim.children[name]
-            return
+            return False
         prim.apply("PhysicsMeshCollisionAPI")
         prim.attr("physics:approximation", "token", "none", uniform=True)
     elif isinstance(shape, HeightImage):
@@ -169,7 +176,7 @@ def _collider(
             loc=collider.src,
             stage=STAGE,
         )
-        return
+        return False
     elif isinstance(shape, Box):
         prim = body_prim.child(name, "Cube")
         prim.attr("size", "double", 1.0)
@@ -189,7 +196,7 @@ def _collider(
         prim.attr("length", "double", PLANE_SIZE)
         prim.attr("axis", "token", "Z", uniform=True)
     else:  # pragma: no cover - the world IR has no other shape
-        return
+        return False
     if not isinstance(shape, Box):
         set_pose(prim, pose_frame(collider.origin))
     prim.apply("PhysicsCollisionAPI")
@@ -197,6 +204,17 @@ def _collider(
     if surface is not None and surface.mu is not None:
         prim.apply("MaterialBindingAPI")
         prim.rel("material:binding:physics", [materials[surface.mu]])
+    return True
+
+
+def write_world_alone(placed: PlacedWorld, out: str, options: object, findings: Findings, validate: bool) -> WorldAlone:
+    """``robodesc compile W.world -t usd``: the world stage, with no robot, at ``out``."""
+    count = write_world(out, None, "", placed, [], findings)
+    if not validate:
+        return {"usd": out}, None
+    from robodesc.validation.world import check_usd_world
+
+    return {"usd": out}, check_usd_world(out, placed.world.name, placed.world.physics, count)
 
 
 def _cords(world: Prim, cords: CordField, anchors: list[Vec3]) -> None:
