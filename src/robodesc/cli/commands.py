@@ -98,8 +98,11 @@ def _accepted(target: str) -> set[str]:
 def compile_options(args: argparse.Namespace) -> CompileOptions:
     """The compile flags as options (every target's: each target keeps its own). ``batch`` runs
     many targets from one command line, so it takes them all."""
-    opts = build_options({**_input_options(args), "mesh_paths": args.mesh_paths, "preset": args.preset})
-    opts.target_options = target_options(args)
+    opts = build_options(
+        {**_input_options(args), **world_options(args), "mesh_paths": args.mesh_paths, "preset": args.preset}
+    )
+    # Every robot of a batch in the same world (--world FILE ...); a bare --world is SDF's own.
+    opts.target_options = {**target_options(args), **_bare_world(args)}
     opts.passes = _pass_options(args)
     opts.validate = args.validate
     return opts
