@@ -321,7 +321,8 @@ def cmd_inspect(args: argparse.Namespace) -> int:
 
 
 def _view_options(args: argparse.Namespace) -> CompileOptions:
-    return build_options({**_input_options(args), "preset": getattr(args, "preset", None)})
+    # The world the picture shows the robot in (--world, --terrain, --spawn ...).
+    return build_options({**_input_options(args), **world_options(args), "preset": getattr(args, "preset", None)})
 
 
 def cmd_view(args: argparse.Namespace) -> int:

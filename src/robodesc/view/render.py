@@ -25,7 +25,7 @@ from robodesc.frontends.load import Source
 from robodesc.ir.diagnostics import RobodescError
 from robodesc.options import CompileOptions
 from robodesc.view.camera import corners, frame_camera
-from robodesc.view.mjscene import COLLISION_GROUP, VISUAL_GROUP, build_model
+from robodesc.view.mjscene import COLLISION_GROUP, VISUAL_GROUP, WORLD_GROUP, build_model
 from robodesc.view.png import Image, write_png
 from robodesc.view.source import Loaded, load_for_view
 from robodesc.view.views import VIEWS
@@ -91,7 +91,7 @@ def render_views(
     """One image per view of the loaded robot, each ``size`` (width, height)."""
     import mujoco
 
-    built = build_model(loaded.robot, size, collision)
+    built = build_model(loaded.robot, size, collision, loaded.world)
     model = built.model
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
@@ -100,6 +100,8 @@ def render_views(
     option = mujoco.MjvOption()
     option.geomgroup[:] = 0
     option.geomgroup[group] = 1
+    option.geomgroup[WORLD_GROUP] = 1
+    # The camera frames the robot (its copies), not the whole terrain: the ground is seen around it.
     points = corners(model, data, {group})
     try:
         # The smallest font: the picture has no text, and the font textures cost time to make.
@@ -187,7 +189,7 @@ def _in_child(
     with tempfile.TemporaryDirectory(prefix="robodesc-render-") as tmp:
         job = os.path.join(tmp, "job.pickle")
         with open(job, "wb") as handle:
-            pickle.dump((loaded.robot, views, tile, collision, out), handle)
+            pickle.dump((loaded.robot, loaded.world, views, tile, collision, out), handle)
         env = {**os.environ, "MUJOCO_GL": backend, "PYOPENGL_PLATFORM": backend}
         done = subprocess.run(
             [sys.executable, "-m", "robodesc.view.render", job], env=env, capture_output=True, text=True, check=False
@@ -203,8 +205,8 @@ def _child_main(job: str) -> int:
     import pickle
 
     with open(job, "rb") as handle:
-        robot, views, tile, collision, out = pickle.load(handle)
-    images, skipped = render_views(Loaded(robot=robot, findings=[]), views, tile, collision)
+        robot, world, views, tile, collision, out = pickle.load(handle)
+    images, skipped = render_views(Loaded(robot=robot, findings=[], world=world), views, tile, collision)
     image = grid(images) if len(images) == 4 else images[0]
     write_png(out, image)
     print(json.dumps({"width": int(image.shape[1]), "height": int(image.shape[0]), "skipped": skipped}))
