@@ -6,8 +6,11 @@ fields of Isaac Lab 3's TerrainImporterCfg and SimulationCfg."""
 from __future__ import annotations
 
 import ast
+import json
 import math
+import os
 import runpy
+import subprocess
 import sys
 import types
 from pathlib import Path
@@ -17,7 +20,9 @@ import pytest
 from pxr import Usd, UsdGeom, UsdPhysics
 
 import robodesc
+from robodesc.validation.physx_python import physx_python
 from tests.conftest import EXAMPLES, WORLDS
+from tests.worlds.physx_scripts import positions
 
 QUADRUPED = EXAMPLES / "quadruped.yaml"
 STEP = WORLDS / "step_20cm" / "step_20cm.world"
@@ -133,3 +138,24 @@ def test_isaac_flat_plane_world_is_isaac_labs_plane(tmp_path: Path) -> None:
     assert module["WORLD"]["terrain_type"] == "plane" and module["TERRAIN_USD_PATH"] is None
     assert "terrain" not in result.files and module["WORLD"]["dt"] == pytest.approx(0.005)
     assert math.isclose(module["ROBOT"]["init_state"]["pos"][0], 0.0)
+
+
+@pytest.mark.skipif(physx_python() is None, reason="no PhysX interpreter (tests/consumers/run.sh builds one)")
+def test_physx_stands_two_copies_on_the_isaac_world_stage(tmp_path: Path) -> None:
+    """The folder's world stage in PhysX: two copies in the folder's stance, one on the step's top,
+    stand 2 s where they were put (each settles a few millimetres onto its feet)."""
+    out = tmp_path / "quadruped"
+    robodesc.compile_for_isaac_sim(str(QUADRUPED), out, world=str(STEP), spawn=[(5.0, 0.0), (1.0, 0.0)])
+    spawns = runpy.run_path(str(out / "quadruped_isaaclab.py"))["WORLD"]["spawns"]
+    python = physx_python()
+    assert python is not None
+    done = subprocess.run(
+        [python, "-c", positions("ARTICULATION", "rootPosition"), str(out / "quadruped_world.usda"), "2.0"],
+        capture_output=True, text=True, timeout=600, check=False, env={**os.environ},
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr[-2000:]
+    roots = sorted(json.loads(done.stdout.strip().splitlines()[-1]))
+    for spawn, root in zip(sorted(spawns), roots, strict=True):
+        assert root[0] == pytest.approx(spawn[0], abs=0.02) and root[1] == pytest.approx(spawn[1], abs=0.02)
+        assert root[2] == pytest.approx(spawn[2], abs=0.02)  # standing: neither fallen nor sunk
+    assert roots[1][2] - roots[0][2] == pytest.approx(0.2, abs=0.005)
