@@ -1,24 +1,19 @@
 """Several copies of one robot in one world (``--spawn`` given more than once): each copy on the
 ground under its own feet, N copies weighing N times the robot, in MuJoCo (MJCF's <attach>), usd-core
-and PhysX (a payload per copy) and Drake (a model per copy)."""
+and PhysX (a payload per copy) and Drake (a model per copy). PhysX stands copies on the Isaac folder's world stage
+(test_isaac_world.py), the same payloads."""
 
 from __future__ import annotations
 
-import json
-import os
-import subprocess
 from pathlib import Path
 
 import mujoco
-import numpy as np
 import pytest
 from pxr import Usd, UsdPhysics
 
 from robodesc.api import compile_to_mjcf, compile_to_sdf, compile_to_usd
 from robodesc.cli import main
-from robodesc.validation.physx_python import physx_python
 from tests.conftest import EXAMPLES, WORLDS
-from tests.worlds.physx_scripts import positions
 
 QUADRUPED = EXAMPLES / "quadruped.yaml"
 STEP = WORLDS / "step_20cm" / "step_20cm.world"
@@ -28,8 +23,8 @@ MASS = 15.4  # kg, the example quadruped
 
 
 def test_mjcf_copies_stand_at_their_spawns(tmp_path: Path) -> None:
-    result = compile_to_mjcf(str(QUADRUPED), str(tmp_path / "robot.xml"), world=str(STEP), spawn=SPAWNS)
-    assert result.validation is not None and result.validation.ok
+    # Validated by MuJoCo in test_spawn_repeated_on_the_command_line; here the numbers.
+    compile_to_mjcf(str(QUADRUPED), str(tmp_path / "robot.xml"), world=str(STEP), spawn=SPAWNS, validate=False)
     model = mujoco.MjModel.from_xml_path(str(tmp_path / "scene.xml"))
     assert float(model.body_mass.sum()) == pytest.approx(3 * MASS)
     assert model.nu == 3 * 12 and model.nq == 3 * 19
@@ -37,7 +32,7 @@ def test_mjcf_copies_stand_at_their_spawns(tmp_path: Path) -> None:
     assert model.opt.cone == mujoco.mjtCone.mjCONE_ELLIPTIC and model.opt.impratio == 100.0
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home"))
-    for _ in range(int(1.0 / model.opt.timestep)):
+    for _ in range(int(0.5 / model.opt.timestep)):
         mujoco.mj_step(model, data)
     roots = [data.xpos[model.body(f"robot_{i}/trunk").id].copy() for i in range(3)]
     for (x, y), root in zip(SPAWNS, roots, strict=True):
@@ -82,25 +77,6 @@ def test_spawn_repeated_on_the_command_line(tmp_path: Path) -> None:
     assert main([*argv, "--spawn", "0,0", "--spawn", "1,0.5"]) == 0
     model = mujoco.MjModel.from_xml_path(str(tmp_path / "scene.xml"))
     assert float(model.body_mass.sum()) == pytest.approx(2 * MASS)
-
-
-@pytest.mark.skipif(physx_python() is None, reason="no PhysX interpreter (tests/consumers/run.sh builds one)")
-def test_physx_rests_every_copy(tmp_path: Path) -> None:
-    out = tmp_path / "quadruped.usda"
-    compile_to_usd(str(QUADRUPED), str(out), world=str(STEP), spawn=SPAWNS)
-    python = physx_python()
-    assert python is not None
-    done = subprocess.run(
-        [python, "-c", positions("ARTICULATION", "rootPosition"), str(tmp_path / "quadruped_world.usda"), "1.0"],
-        capture_output=True, text=True, timeout=600, check=False, env={**os.environ},
-    )  # fmt: skip
-    assert done.returncode == 0, done.stderr[-2000:]
-    roots = sorted(json.loads(done.stdout.strip().splitlines()[-1]))
-    assert len(roots) == 3
-    # Dropped in the zero pose, each lands on the ground under it: the step's copy 0.2 m higher.
-    for (x, y), root in zip(sorted(SPAWNS), roots, strict=True):
-        assert np.hypot(root[0] - x, root[1] - y) < 0.1, roots
-    assert roots[2][2] - roots[0][2] == pytest.approx(0.2, abs=0.02), roots
 
 
 def test_spawn_without_a_world_is_refused(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
