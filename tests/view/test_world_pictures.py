@@ -4,7 +4,6 @@ the browser tier)."""
 
 from __future__ import annotations
 
-import os
 import pathlib
 
 import numpy as np
@@ -16,19 +15,9 @@ from robodesc.view.page import scene_data
 from robodesc.view.png import decode_png
 from robodesc.view.source import load_for_view
 from tests.conftest import EXAMPLES, WORLDS
-from tests.view.cases import gl_backend
 
 QUADRUPED = EXAMPLES / "quadruped.yaml"
 STEP = WORLDS / "step_20cm" / "step_20cm.world"
-
-
-@pytest.fixture
-def gl() -> str:
-    name, why = gl_backend()
-    if name is None:
-        pytest.skip(f"no offscreen GL backend: {why}")
-    os.environ.setdefault("MUJOCO_GL", name)
-    return name
 
 
 def test_render_draws_the_terrain_under_the_robot(tmp_path: pathlib.Path, gl: str) -> None:
