@@ -64,3 +64,39 @@ def test_view_page_carries_the_terrain(tmp_path: pathlib.Path) -> None:
     plain = tmp_path / "plain.html"
     assert main(["view", str(QUADRUPED), "-o", str(plain)]) == 0
     assert '"world":null' in plain.read_text()
+
+
+def test_view_page_draws_a_height_image_as_its_grid(tmp_path: pathlib.Path) -> None:
+    """A height image has no mesh: the page draws its heightfield grid, at the image's heights."""
+    from PIL import Image
+
+    from robodesc.view.world import world_page_data
+
+    # A 16-bit ramp: black at -x, white at +x, 2 m by 1 m, white 0.5 m high.
+    ramp = np.tile(np.linspace(0, 65535, 21).round().astype(np.uint16), (11, 1))
+    image = tmp_path / "ramp.png"
+    Image.fromarray(ramp).save(image)
+    options = build_options({"terrain": str(image), "terrain_size": (2.0, 1.0, 0.5)})
+    loaded = load_for_view(str(QUADRUPED), options)
+    assert loaded.world is not None
+    data, meshes = world_page_data(loaded.world, 0)
+    (ground,) = data["ground"]
+    assert ground["kind"] == "mesh" and len(meshes) == 1
+    points = np.frombuffer(meshes[0].points, dtype=np.float32).reshape(-1, 3) + np.array(ground["xyz"])
+    assert len(meshes[0].face_vertex_indices) == 3 * 2 * 20 * 10  # two triangles per cell
+    assert points[:, 2] == pytest.approx((points[:, 0] + 1.0) / 2.0 * 0.5, abs=1e-4)
+
+
+def test_render_model_holds_every_copy_and_the_terrain() -> None:
+    """The picture's MuJoCo model (no GL needed): each copy's shapes at its spawn, the terrain's hfield."""
+    from robodesc.view.mjscene import VISUAL_GROUP, WORLD_GROUP, build_model
+
+    one = load_for_view(str(QUADRUPED), build_options({"world": str(STEP)}))
+    two = load_for_view(str(QUADRUPED), build_options({"world": str(STEP), "spawn": [(1.0, 0.0), (5.0, 0.0)]}))
+    assert one.world is not None and two.world is not None
+    single, double = build_model(one.robot, world=one.world), build_model(two.robot, world=two.world)
+    assert double.visuals == 2 * single.visuals
+    for built in (single, double):
+        assert built.model.nhfield == 1 and int((built.model.geom_group == WORLD_GROUP).sum()) == 1
+    centres = double.model.geom_pos[double.model.geom_group == VISUAL_GROUP]
+    assert centres[:, 0].min() < 2.0 and centres[:, 0].max() > 4.0  # one robot by x = 1 m, one by x = 5 m
