@@ -97,7 +97,9 @@ def compile_to(
     **options: Any,
 ) -> CompileResult:
     """Compile ``source`` to the target named ``target`` (``robodesc compile -t TARGET``). Options:
-    every input and pass option, and the target's own (its options class's fields)."""
+    every input and pass option, the target's own (its options class's fields) and the world's
+    (``world``, ``terrain``, ``spawn`` ...: docs/worlds.md). A world file as ``source`` compiles the
+    world alone (``result.world`` names it)."""
     from robodesc.plugins import load_plugins
 
     load_plugins(tuple(options.get("plugins", ())))
@@ -179,7 +181,10 @@ def compile_for_isaac_sim(
     ``collision_approximation``, ``solver_position_iterations``, ``solver_velocity_iterations``,
     ``contact_offset``, ``rest_offset``, ``init_pos``, ``init_joint_pos``, ``layered``,
     ``isaac_lab_version`` ("3", the default, or "2": the generated Isaac Lab module's target), and every
-    pass and input option.
+    pass and input option. The world options (``world``, ``terrain``, ``terrain_size``, ``spawn`` (a
+    point, or a list of points for copies), ``model_path``, ``cords``) add the world stage, the ground
+    for Isaac Lab's ``TerrainImporterCfg`` and the module's ``make_terrain_cfg``/``make_sim_cfg``
+    (docs/worlds.md, "The Isaac folder's world").
     """
     import tempfile
 

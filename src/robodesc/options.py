@@ -79,7 +79,11 @@ def build_options(values: Mapping[str, Any], *, extra_names: Mapping[str, str] |
     for name, value in values.items():
         if name in WORLD_NAMES and not (name == "world" and isinstance(value, bool)):
             # ``world=True`` is SDF's empty-world switch (a target option); a path is a world file.
-            if value is not None:
+            if name == "spawn" and value is not None and _several_points(value):
+                # Several points: a copy of the robot at each (docs/worlds.md, "Several robots").
+                opts.world.copies = tuple(_world_value(name, point) for point in value)
+                opts.world.spawn = opts.world.copies[0]
+            elif value is not None:
                 setattr(opts.world, WORLD_NAMES[name], _world_value(name, value))
                 if name == "model_path":
                     # An SDF model's includes resolve through the same folders as the world's.
@@ -142,6 +146,11 @@ WORLD_NAMES = {
     "model_path": "model_path",
     "cords": "cords",
 }
+
+
+def _several_points(value: Any) -> bool:
+    """``spawn=[(x, y), (x, y, z)]``: a list of points, not one point."""
+    return isinstance(value, list | tuple) and bool(value) and all(isinstance(v, list | tuple) for v in value)
 
 
 def _world_value(name: str, value: Any) -> Any:

@@ -67,6 +67,8 @@ class CompileResult:
     dynamics: Any = None
     # Welded or floating, and why (emit/common/base.py); None for a target without a base option.
     base: BaseChoice | None = None
+    # A world file compiled alone (no robot: ``robot`` is an empty stand-in): the world's name.
+    world: str | None = None
 
     @property
     def warnings(self) -> list[Finding]:
@@ -186,10 +188,18 @@ def compile_robot(
 ) -> CompileResult:
     load_plugins(options.plugins)
     spec = target_spec(target)
+    if isinstance(source, str) and _world_file(source):
+        return compile_world(source, spec, out, options, progress)
+    if options.world.spawn is not None and not options.world.given:
+        raise ConfigError(
+            "--spawn places the robot in a world: give the world with --world FILE, --terrain FILE or --cords FILE "
+            "(docs/worlds.md)",
+            element="--spawn",
+        )
     if options.world.given and not spec.worlds:
         raise UnsupportedError(
             f"-t {spec.name} describes the robot alone and cannot hold a world; a world (--world FILE, --terrain) "
-            "is written by -t mjcf, -t usd and -t sdf (docs/worlds.md)",
+            "is written by -t mjcf, -t usd, -t sdf and --isaac-sim (docs/worlds.md)",
             element="--world" if options.world.file is not None else "--terrain",
         )
     if out is not None:
@@ -251,6 +261,75 @@ def compile_robot(
     return result
 
 
+def _world_file(source: str) -> bool:
+    """A path to an SDF world (``<sdf>`` holding ``<world>``): compiled alone, with no robot."""
+    from robodesc.frontends.world import is_world_file
+
+    return "\n" not in source and "<" not in source and is_world_file(source)
+
+
+def compile_world(
+    source: str, spec: Target, out: str | None, options: CompileOptions, progress: Progress
+) -> CompileResult:
+    """A world file as the only input (docs/worlds.md, "A world alone"): its static models, cords
+    and physics in the target's terms, no robot. Staged, checked in the target's consumer, moved."""
+    from robodesc.emit.common.world import place_world
+    from robodesc.frontends.world import load_world
+
+    given = options.world
+    if spec.world_alone is None:
+        raise UnsupportedError(
+            f"-t {spec.name} cannot hold a world without a robot; a world file alone is written by -t mjcf, -t usd "
+            "and -t sdf (docs/worlds.md)",
+            element=source,
+        )
+    if given.file is not None or given.terrain is not None or given.spawn is not None:
+        raise ConfigError(
+            "the input is a world: --world, --terrain and --spawn place a robot in one (robodesc compile ROBOT "
+            "--world FILE)",
+            element=source,
+        )
+    if out is None:
+        raise ConfigError(f"a world alone is written to a file: give one with -o (e.g. {spec.output_name('world')})")
+    check_output(out, folder=False, source=source, suffixes=spec.suffixes if spec.suffix_required else ())
+    findings = Findings()
+    progress("reading the world")
+    world = load_world(dataclasses.replace(given, file=source), findings)
+    assert world is not None
+    placed = place_world(None, world, findings, resolution=given.terrain_resolution)
+    built = (
+        dataclass_from_mapping(
+            spec.options, {k: v for k, v in options.target_options.items() if k in _fields(spec.options)}, spec.name
+        )
+        if spec.options is not None
+        else None
+    )
+    stage = Staging(out, False)
+    try:
+        progress(f"writing {spec.name}")
+        assert stage.path is not None
+        files, report = spec.world_alone(placed, stage.path, built, findings, options.validate)
+        result = CompileResult(
+            robot=Robot(name=world.name), findings=[], target=spec.name, files=files, world=world.name
+        )
+        result.validation = report
+        result.findings = _unique(findings)
+        if options.strict:
+            refuse_warnings(result.findings, [])
+        if report is not None and not report.ok:
+            raise ValidationFailedError(result)
+        result.files = {role: stage.final_path(path) for role, path in files.items()}
+        stage.commit()
+    except BaseException:
+        stage.discard()
+        raise
+    return result
+
+
+def _fields(cls: type[Any]) -> set[str]:
+    return {f.name for f in dataclasses.fields(cls)}
+
+
 def _world(robot: Robot, options: CompileOptions, findings: Findings, progress: Progress) -> PlacedWorld | None:
     """The world, read and placed once for whichever target writes it (emit/common/world.py)."""
     if not options.world.given:
@@ -264,7 +343,9 @@ def _world(robot: Robot, options: CompileOptions, findings: Findings, progress: 
         return None
     progress("placing the robot in the world")
     given = options.world
-    return place_world(robot, world, findings, resolution=given.terrain_resolution, spawn=given.spawn)
+    return place_world(
+        robot, world, findings, resolution=given.terrain_resolution, spawn=given.spawn, copies=given.copies
+    )
 
 
 def _emit(

@@ -150,3 +150,25 @@ def test_toggles_and_repairs(browser: Browser, tmp_path: pathlib.Path) -> None:
     repair = json.loads(json.dumps(browser.eval("window.robodesc.data.repairs[0]")))
     assert browser.eval("window.robodesc.highlighted") == repair["link"]
     assert browser.console_errors == []
+
+
+def test_world_ground_is_drawn_under_the_robot(browser: Browser, tmp_path: pathlib.Path) -> None:
+    """``view --world``: the terrain drawn under the robot (docs/worlds.md, "Pictures")."""
+    from tests.conftest import WORLDS
+
+    pages = {}
+    for name, extra in (("alone", {}), ("world", {"world": str(WORLDS / "step_20cm" / "step_20cm.world")})):
+        page = tmp_path / f"{name}.html"
+        write_view_html(QUADRUPED, str(page), options=build_options(extra))
+        open_page(browser, page)
+        assert browser.console_errors == [] and browser.eval("window.robodesc.errors") == []
+        pages[name] = (
+            browser.eval("window.robodesc.groundShapes || 0"),
+            browser.eval("window.robodesc.project('trunk')"),
+        )
+        size = browser.eval("(() => { const c = document.querySelector('#view canvas'); return c.clientHeight; })()")
+        pages[name] += (pixels(browser, pages[name][1]["x"], size - 50, 30),)
+    assert pages["alone"][0] == 0 and pages["world"][0] == 1
+    # The robot framed alike; under it, the page's background grid against the terrain.
+    assert pages["world"][1]["x"] == pytest.approx(pages["alone"][1]["x"], abs=2)
+    assert difference(pages["alone"][2], pages["world"][2]) > 20

@@ -37,6 +37,10 @@ def test_world_stage(tmp_path: Path) -> None:
     assert UsdPhysics.MeshCollisionAPI(terrain).GetApproximationAttr().Get() == "none"
     assert not terrain.HasAPI(UsdPhysics.RigidBodyAPI)  # static: no body of its own
     assert len(UsdGeom.Mesh(terrain).GetFaceVertexCountsAttr().Get()) == 20  # every triangle of the STL
+    # One flat normal per triangle, as the robot's meshes get (emit/usd/geometry.author_mesh).
+    normals = UsdGeom.Mesh(terrain).GetNormalsAttr().Get()
+    assert len(normals) == 20 and UsdGeom.Mesh(terrain).GetNormalsInterpolation() == "uniform"
+    assert max(n[2] for n in normals) == pytest.approx(1.0)  # the tops face up
     # The robot is composed in under /World, placed at the spawn point.
     robot = stage.GetDefaultPrim().GetChild(result.robot.name)
     assert robot.IsValid() and any(p.HasAPI(UsdPhysics.RigidBodyAPI) for p in Usd.PrimRange(robot))

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from robodesc.ir.diagnostics import ConfigError
-from robodesc.options import CompileOptions, build_options
+from robodesc.options import WORLD_NAMES, CompileOptions, build_options
 from robodesc.targets import TARGETS, target_spec
 
 # Outcomes of a job. Only the first two wrote their outputs (and only those are ever skipped later).
@@ -143,7 +143,13 @@ def with_overrides(base: CompileOptions, target: str, values: Mapping[str, Any],
         raise ConfigError(f"{where}: {err.message}") from None
     for name in rest:
         bucket = extra.get(name)
-        if bucket is not None:
+        if name in WORLD_NAMES and (name != "world" or isinstance(rest[name], str)):
+            # A job's own world (a manifest's ``world:``, ``spawn:`` ...) over the command line's.
+            field_name = WORLD_NAMES[name]
+            setattr(opts.world, field_name, getattr(parsed.world, field_name))
+            if name == "spawn":
+                opts.world.copies = parsed.world.copies
+        elif bucket is not None:
             getattr(opts, bucket)[name] = getattr(parsed, bucket)[name]
         elif hasattr(parsed.load, name):
             setattr(opts.load, name, getattr(parsed.load, name))

@@ -94,7 +94,9 @@ def output_stamp(path: str) -> str:
 
 
 def _dependencies(opened: tuple[set[str], set[str]], job: Job, robot: Any) -> dict[str, str]:
-    explicit = {os.path.abspath(job.path)}  # the input and the IR's meshes always count
+    explicit = {os.path.abspath(job.path)}  # the input, the world's files and the IR's meshes always count
+    world = job.options.world
+    explicit.update(os.path.abspath(p) for p in (world.file, world.terrain, world.cords) if p is not None)
     if robot is not None:
         for link in robot.links:
             for item in (*link.visuals, *link.collisions):

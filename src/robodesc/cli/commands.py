@@ -52,8 +52,11 @@ def world_options(args: argparse.Namespace) -> dict[str, Any]:
         out["terrain_size"] = _numbers(args.terrain_size, "--terrain-size", (3,))
     if getattr(args, "terrain_resolution", None) is not None:
         out["terrain_resolution"] = args.terrain_resolution
-    if getattr(args, "spawn", None):
-        out["spawn"] = _numbers(args.spawn, "--spawn", (2, 3))
+    spawn = getattr(args, "spawn", None)
+    if spawn:
+        # --spawn may be given several times: a copy of the robot at each point.
+        points = [_numbers(text, "--spawn", (2, 3)) for text in ([spawn] if isinstance(spawn, str) else spawn)]
+        out["spawn"] = points[0] if len(points) == 1 else points
     if getattr(args, "contact_sensors", None) is not None:
         out["contact_sensors"] = args.contact_sensors
     return out
@@ -95,8 +98,11 @@ def _accepted(target: str) -> set[str]:
 def compile_options(args: argparse.Namespace) -> CompileOptions:
     """The compile flags as options (every target's: each target keeps its own). ``batch`` runs
     many targets from one command line, so it takes them all."""
-    opts = build_options({**_input_options(args), "mesh_paths": args.mesh_paths, "preset": args.preset})
-    opts.target_options = target_options(args)
+    opts = build_options(
+        {**_input_options(args), **world_options(args), "mesh_paths": args.mesh_paths, "preset": args.preset}
+    )
+    # Every robot of a batch in the same world (--world FILE ...); a bare --world is SDF's own.
+    opts.target_options = {**target_options(args), **_bare_world(args)}
     opts.passes = _pass_options(args)
     opts.validate = args.validate
     return opts
@@ -355,7 +361,8 @@ def cmd_inspect(args: argparse.Namespace) -> int:
 
 
 def _view_options(args: argparse.Namespace) -> CompileOptions:
-    return build_options({**_input_options(args), "preset": getattr(args, "preset", None)})
+    # The world the picture shows the robot in (--world, --terrain, --spawn ...).
+    return build_options({**_input_options(args), **world_options(args), "preset": getattr(args, "preset", None)})
 
 
 def cmd_view(args: argparse.Namespace) -> int:

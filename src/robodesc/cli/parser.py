@@ -239,16 +239,18 @@ def _compile_parser(
     return comp
 
 
-def add_world_options(p: argparse.ArgumentParser) -> None:
-    """The world around the robot (docs/worlds.md): read once, written by every target that can."""
-    g = p.add_argument_group("world (docs/worlds.md)")
+def add_world_options(p: argparse.ArgumentParser, picture: bool = False) -> None:
+    """The world around the robot (docs/worlds.md): read once, written by every target that can.
+    ``picture``: the options ``view`` and ``render`` draw (the ground and where the robot stands)."""
+    g = p.add_argument_group("world (docs/worlds.md)" + (": the robot drawn standing on its ground" if picture else ""))
     g.add_argument(
         "--world",
         nargs="?",
         const=True,
         metavar="FILE",
         help="put the robot in an SDF world (.world, .sdf): its terrain, static models and physics "
-        "(-t mjcf). Bare, with -t sdf: wrap the model in an empty world with a ground plane, physics and light",
+        "(-t mjcf, usd, sdf, --isaac-sim). Bare, with -t sdf: wrap the model in an empty world with a ground "
+        "plane, physics and light. A world file as the INPUT instead compiles the world alone",
     )
     g.add_argument(
         "--terrain",
@@ -268,9 +270,13 @@ def add_world_options(p: argparse.ArgumentParser) -> None:
     g.add_argument(
         "--spawn",
         metavar="X,Y[,Z]",
+        action="append",
         help="where the robot stands in the world (default: the world's include of it, else the origin); "
-        "without Z its height comes from the ground under its feet",
+        "without Z its height comes from the ground under its feet. Given several times: a copy of the robot "
+        "at each point (MJCF, USD, SDF), each on the ground under its own feet",
     )
+    if picture:
+        return
     g.add_argument(
         "--cords",
         metavar="FILE.yaml",
@@ -492,6 +498,7 @@ def _view_parsers(sub: Any) -> list[argparse.ArgumentParser]:
                 "640x480, rounded down to multiples of 16)",
             )
         add_input_options(p)
+        add_world_options(p, picture=True)
         made.append(p)
     sub.choices["inspect"].add_argument(
         "--html", metavar="FILE.html", help="also write the viewer page (robodesc view) to FILE.html"

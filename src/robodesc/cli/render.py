@@ -127,6 +127,8 @@ def error_dicts(err: BaseException) -> list[dict[str, object]]:
 def summary_line(result: CompileResult, target: str, out: str | None) -> str:
     robot = result.robot
     where = display_path(out) if out else "standard output"
+    if result.world is not None:
+        return f"robodesc: {target} {where}: the world {result.world!r} alone (no robot); {verdict(result)}"
     mass = robot.total_mass()
     head = (
         f"robodesc: {target} {where}: {len(robot.links)} links, {len(robot.joints)} joints, "

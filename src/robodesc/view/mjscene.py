@@ -9,7 +9,7 @@ MJCF is written. Visuals are geom group 1, colliders group 3: the renderer picks
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -20,9 +20,16 @@ from robodesc.meshes.buffers import MeshReadError
 from robodesc.meshes.data import MeshCache
 from robodesc.view.scene import COLLIDER_RGBA, DEFAULT_RGBA, home
 
+if TYPE_CHECKING:
+    from robodesc.emit.common.world import TerrainGrid
+    from robodesc.view.world import ViewWorld
+
 VISUAL_GROUP = 1
 COLLISION_GROUP = 3
 FLOOR_GROUP = 0  # the clips' floor (build_posable)
+WORLD_GROUP = 0  # the world's ground, drawn with either
+WORLD_RGBA = (0.55, 0.6, 0.5, 1.0)
+PLANE_HALF = 20.0  # m: a picture's stand-in for an infinite plane
 
 
 @dataclass(slots=True)
@@ -122,18 +129,21 @@ class _Builder:
         return True
 
 
-def build_model(robot: Robot, size: tuple[int, int] = (640, 480), collision: bool = False) -> BuiltModel:
+def build_model(
+    robot: Robot, size: tuple[int, int] = (640, 480), collision: bool = False, world: ViewWorld | None = None
+) -> BuiltModel:
     """The picture model of ``robot`` at its home pose (every joint at zero, or at the limit nearest
     zero; mimic joints follow), for an offscreen buffer of ``size`` (width, height): its visuals,
     or with ``collision`` (or when it has no visual that can be drawn) its colliders. Only the
-    shapes drawn are built: MuJoCo's mesh processing is most of a render's time."""
+    shapes drawn are built: MuJoCo's mesh processing is most of a render's time. With ``world``,
+    the robot stands on its ground (one robot per copy), drawn in group :data:`WORLD_GROUP`."""
     import mujoco
 
     if not collision:
-        built = _build(mujoco, robot, size, visual=True)
+        built = _build(mujoco, robot, size, visual=True, world=world)
         if built.visuals:
             return built
-    return _build(mujoco, robot, size, visual=False)
+    return _build(mujoco, robot, size, visual=False, world=world)
 
 
 def build_posable(
@@ -152,7 +162,13 @@ def build_posable(
 
 
 def _build(
-    mujoco: Any, robot: Robot, size: tuple[int, int], visual: bool, posable: bool = False, floor: float | None = None
+    mujoco: Any,
+    robot: Robot,
+    size: tuple[int, int],
+    visual: bool,
+    world: ViewWorld | None = None,
+    posable: bool = False,
+    floor: float | None = None,
 ) -> BuiltModel:
     builder = _Builder(mujoco, size)
     named = {m.name: m for m in robot.materials}
@@ -160,23 +176,29 @@ def _build(
     frames = link_frames(robot, q)
     visuals = collisions = 0
     bodies: dict[str, str] = {}
-    for link in robot.links:
-        frame = frames.get(link.name)
-        if frame is None:  # not reachable from a root: the verifier refused such robots already
-            continue
-        # Every geom on the world body at its home-pose frame: MuJoCo's mjSpec walks every body
-        # each time a geom is added (mjCModel::MakeTreeLists), so a body per link made a
-        # 50,000-link picture quadratic; the picture needs no bodies. A clip needs them, one
-        # mocap body per link with its geoms in the link's frame.
-        body = builder.spec.worldbody
-        if posable:
-            body = builder.spec.worldbody.add_body(name=f"link{len(bodies)}", mocap=True)
-            bodies[link.name] = body.name
-            frame = Frame()
-        for v in link.visuals if visual else ():
-            visuals += builder.geom(body, v.geometry, v.origin, _rgba(v.material, named), VISUAL_GROUP, frame)
-        for c in () if visual else link.collisions:
-            collisions += builder.geom(body, c.geometry, c.origin, [*COLLIDER_RGBA[:3], 1.0], COLLISION_GROUP, frame)
+    for root in world.roots if world is not None else [Frame()]:
+        for link in robot.links:
+            frame = frames.get(link.name)
+            if frame is None:  # not reachable from a root: the verifier refused such robots already
+                continue
+            frame = root @ frame
+            # Every geom on the world body at its home-pose frame: MuJoCo's mjSpec walks every body
+            # each time a geom is added (mjCModel::MakeTreeLists), so a body per link made a
+            # 50,000-link picture quadratic; the picture needs no bodies. A clip needs them, one
+            # mocap body per link with its geoms in the link's frame (clips draw no world).
+            body = builder.spec.worldbody
+            if posable:
+                body = builder.spec.worldbody.add_body(name=f"link{len(bodies)}", mocap=True)
+                bodies[link.name] = body.name
+                frame = Frame()
+            for v in link.visuals if visual else ():
+                visuals += builder.geom(body, v.geometry, v.origin, _rgba(v.material, named), VISUAL_GROUP, frame)
+            for c in () if visual else link.collisions:
+                collisions += builder.geom(
+                    body, c.geometry, c.origin, [*COLLIDER_RGBA[:3], 1.0], COLLISION_GROUP, frame
+                )
+    if world is not None:
+        _world(builder, world)
     if floor is not None:
         _add_floor(builder, floor)
     if posable:
@@ -208,6 +230,67 @@ def _add_floor(builder: _Builder, half: float) -> None:
         contype=0,
         conaffinity=0,
     )
+
+
+def _world(builder: _Builder, world: ViewWorld) -> None:
+    """The world's ground as MuJoCo draws it in scene.xml: each terrain's heightfield (a flat one a
+    slab), meshes without one as meshes, primitives and planes as themselves."""
+    from robodesc.ir.world import HeightImage, Plane
+
+    mj = builder.mj
+    g = mj.mjtGeom
+    placed = world.placed
+    body = builder.spec.worldbody
+    # A checker of 0.5 m squares (scene.xml's ground): slopes and steps read in a picture by its lines.
+    builder.spec.add_texture(
+        name="ground", type=mj.mjtTexture.mjTEXTURE_2D, builtin=mj.mjtBuiltin.mjBUILTIN_CHECKER,
+        rgb1=[0.45, 0.52, 0.42], rgb2=[0.38, 0.44, 0.36], mark=mj.mjtMark.mjMARK_EDGE, markrgb=[0.8, 0.8, 0.8],
+        width=64, height=64,
+    )  # fmt: skip
+    material = builder.spec.add_material(name="ground", texuniform=True, texrepeat=[2.0, 2.0])
+    material.textures[mj.mjtTextureRole.mjTEXROLE_RGB] = "ground"
+    for static in placed.world.bodies:
+        for collider in static.colliders:
+            base = {"material": "ground", "group": WORLD_GROUP, "contype": 0, "conaffinity": 0}
+            grid = placed.grid_of(collider)
+            frame = pose_frame(static.pose) @ pose_frame(collider.origin)
+            if grid is not None:
+                _heightfield(builder, body, grid, base)
+            elif isinstance(collider.shape, Plane):
+                body.add_geom(
+                    type=g.mjGEOM_PLANE, size=[PLANE_HALF, PLANE_HALF, 0.05], pos=list(frame.translation),
+                    quat=list(frame.quat()), **base,
+                )  # fmt: skip
+            elif not isinstance(collider.shape, HeightImage) and not builder.geom(
+                body, collider.shape, None, list(WORLD_RGBA), WORLD_GROUP, frame
+            ):
+                builder.skipped.append(f"the world's {static.name}/{collider.name}")
+
+
+def _heightfield(builder: _Builder, body: Any, grid: TerrainGrid, base: dict[str, Any]) -> None:
+    g = grid.grid
+    width, depth = g.size
+    low, high = float(g.z.min()), float(g.z.max())
+    centre = Frame(translation=(g.x0 + width / 2, g.y0 + depth / 2, low))
+    if high - low < 1e-9:  # flat: a slab whose top is the surface (an hfield needs a height range)
+        frame = grid.frame @ Frame(translation=(centre.translation[0], centre.translation[1], low - 0.05))
+        body.add_geom(
+            type=builder.mj.mjtGeom.mjGEOM_BOX, size=[width / 2, depth / 2, 0.05], pos=list(frame.translation),
+            quat=list(frame.quat()), **base,
+        )  # fmt: skip
+        return
+    rows, cols = g.shape
+    name = f"hfield{len(builder.spec.hfields)}"
+    # MuJoCo's first row is the +y edge (the grid's is -y); it scales the data to [0, size[2]].
+    builder.spec.add_hfield(
+        name=name, nrow=rows, ncol=cols, size=[width / 2, depth / 2, high - low, 0.1],
+        userdata=np.flipud(g.z - low).ravel().astype(np.float32),
+    )  # fmt: skip
+    frame = grid.frame @ centre
+    body.add_geom(
+        type=builder.mj.mjtGeom.mjGEOM_HFIELD, hfieldname=name, pos=list(frame.translation), quat=list(frame.quat()),
+        **base,
+    )  # fmt: skip
 
 
 def _compile(builder: _Builder) -> Any:

@@ -25,7 +25,7 @@ from robodesc.frontends.load import Source
 from robodesc.ir.diagnostics import Finding, Severity
 from robodesc.ir.geometry import Mesh
 from robodesc.ir.model import Robot
-from robodesc.meshes.buffers import MeshReadError
+from robodesc.meshes.buffers import MeshData, MeshReadError
 from robodesc.meshes.data import MeshCache
 from robodesc.meshes.roots import allowed_roots, outside_roots
 from robodesc.options import CompileOptions
@@ -33,6 +33,7 @@ from robodesc.view.glb import mesh_glb
 from robodesc.view.repairs import find_repairs
 from robodesc.view.scene import MeshTable, build_scene
 from robodesc.view.source import Loaded, load_for_view
+from robodesc.view.world import world_page_data
 
 THREE_VERSION = "0.187.0"
 
@@ -80,8 +81,12 @@ def embed_meshes(table: MeshTable, roots: list[str] | None = None) -> tuple[list
             continue
         # gzip first: mesh arrays shrink to about half, which keeps a big robot's page small; the
         # browser inflates them itself (DecompressionStream), still without any request.
-        out.append(base64.b64encode(gzip.compress(mesh_glb(data), compresslevel=1, mtime=0)).decode("ascii"))
+        out.append(_glb(data))
     return out, notes
+
+
+def _glb(data: MeshData) -> str:
+    return base64.b64encode(gzip.compress(mesh_glb(data), compresslevel=1, mtime=0)).decode("ascii")
 
 
 def scene_data(loaded: Loaded) -> dict[str, Any]:
@@ -91,6 +96,12 @@ def scene_data(loaded: Loaded) -> dict[str, Any]:
     findings = [*loaded.findings, *_not_read(loaded.robot, roots)]
     data = build_scene(loaded.robot, findings, table)
     data["meshes"], data["mesh_notes"] = embed_meshes(table, roots)
+    data["world"] = None
+    if loaded.world is not None:
+        # The world's meshes follow the robot's (the user named the world; its files resolved inside
+        # the model path's roots when it was read).
+        data["world"], ground = world_page_data(loaded.world, len(data["meshes"]))
+        data["meshes"] += [_glb(mesh) for mesh in ground]
     data["mesh_files"] = [os.path.basename(path) for path, _ in table.keys]
     data["mesh_encoding"] = "glb+gzip+base64"
     data["repairs"] = find_repairs(loaded.before, loaded.robot, loaded.findings) if loaded.before is not None else []

@@ -27,7 +27,7 @@ from robodesc.frontends.load import Source
 from robodesc.ir.diagnostics import RobodescError
 from robodesc.options import CompileOptions
 from robodesc.view.camera import corners, frame_camera
-from robodesc.view.mjscene import COLLISION_GROUP, VISUAL_GROUP, build_model
+from robodesc.view.mjscene import COLLISION_GROUP, VISUAL_GROUP, WORLD_GROUP, build_model
 from robodesc.view.png import Image, write_png
 from robodesc.view.source import Loaded, load_for_view
 from robodesc.view.views import VIEWS
@@ -94,7 +94,7 @@ def render_views(
     """One image per view of the loaded robot, each ``size`` (width, height)."""
     import mujoco
 
-    built = build_model(loaded.robot, size, collision)
+    built = build_model(loaded.robot, size, collision, loaded.world)
     model = built.model
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
@@ -103,6 +103,8 @@ def render_views(
     option = mujoco.MjvOption()
     option.geomgroup[:] = 0
     option.geomgroup[group] = 1
+    option.geomgroup[WORLD_GROUP] = 1
+    # The camera frames the robot (its copies), not the whole terrain: the ground is seen around it.
     points = corners(model, data, {group})
     renderer = new_renderer(model, size)
     try:
@@ -157,7 +159,7 @@ def render_png(
         return RenderResult(out, image.shape[1], image.shape[0], "", time.perf_counter() - start, skipped)
 
     def child(backend: str) -> RenderResult:
-        report = run_child("robodesc.view.render", (loaded.robot, views, tile, collision, out), backend)
+        report = run_child("robodesc.view.render", (loaded.robot, loaded.world, views, tile, collision, out), backend)
         return RenderResult(out, report["width"], report["height"], backend, 0.0, report["skipped"])
 
     result, backend = with_backend(draw, child)
@@ -241,8 +243,8 @@ def read_job(path: str) -> Any:
 
 
 def _child_main(job: str) -> int:
-    robot, views, tile, collision, out = read_job(job)
-    images, skipped = render_views(Loaded(robot=robot, findings=[]), views, tile, collision)
+    robot, world, views, tile, collision, out = read_job(job)
+    images, skipped = render_views(Loaded(robot=robot, findings=[], world=world), views, tile, collision)
     image = grid(images) if len(images) == 4 else images[0]
     write_png(out, image)
     print(json.dumps({"width": int(image.shape[1]), "height": int(image.shape[0]), "skipped": skipped}))

@@ -17,11 +17,13 @@ from dataclasses import dataclass, field
 
 from robodesc.frontends.load import Source, load_source
 from robodesc.frontends.options import MissingMesh
+from robodesc.frontends.world.options import WorldOptions
 from robodesc.ir.diagnostics import Finding, Findings
 from robodesc.ir.model import Robot
 from robodesc.options import CompileOptions
 from robodesc.pipeline import compile_robot, verify_source
 from robodesc.targets import target_spec
+from robodesc.view.world import ViewWorld, place_for_view
 
 
 @dataclass(slots=True)
@@ -35,6 +37,8 @@ class Loaded:
     before: Robot | None = None
     source_name: str = ""
     notes: list[str] = field(default_factory=list)
+    # The world the robot stands in (--world, --terrain, --spawn); None: the robot alone.
+    world: ViewWorld | None = None
 
 
 def _name(source: Source) -> str:
@@ -53,7 +57,8 @@ def load_for_view(source: Source, options: CompileOptions | None = None, target:
     repairing = target is not None and opts.invalid_inertia.value == "repair"
     verify_source(robot, opts, findings, repairing=repairing)
     if target is None:
-        return Loaded(robot=robot, findings=list(findings), source_name=_name(source))
+        world = place_for_view(robot, opts.world, findings)
+        return Loaded(robot=robot, findings=list(findings), source_name=_name(source), world=world)
     before = robot
     if opts.load.missing_mesh is not MissingMesh.WARN:
         # "Before" is the source as written: a mesh the options drop or replace is shown as a
@@ -66,6 +71,8 @@ def load_for_view(source: Source, options: CompileOptions | None = None, target:
     compiled_opts = copy.deepcopy(opts)
     compiled_opts.validate = False  # the picture needs the IR, not a second opinion on the file
     compiled_opts.load.strict = False
+    # The picture places the robot in the world itself (below): any target can be drawn in one.
+    compiled_opts.world = WorldOptions()
     with tempfile.TemporaryDirectory(prefix="robodesc-view-") as tmp:
         out = spec.output_name(os.path.join(tmp, "robot"))
         # The compile reads the source again: the passes change the robot they are given.
@@ -80,4 +87,5 @@ def load_for_view(source: Source, options: CompileOptions | None = None, target:
         target=target,
         before=before,
         source_name=_name(source),
+        world=place_for_view(result.robot, opts.world, findings),
     )

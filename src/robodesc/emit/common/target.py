@@ -85,6 +85,11 @@ FinishFunction = Callable[[Robot, str, list[Finding], ValidationReport | None], 
 # whole (a layered USD's payloads/ folder, an MJCF scene): the driver sets the earlier ones aside and
 # restores them if the run fails. Given the target's options and the final output path.
 OwnedFunction = Callable[[Any, str], tuple[str, ...]]
+# A world compiled alone (a world file as the input, no robot; docs/worlds.md): the files written by
+# role, and the consumer's report when validation is asked.
+WorldAlone = tuple[dict[str, str], ValidationReport | None]
+# (the placed world, the output path, the target's options, findings, validate) -> WorldAlone.
+WorldAloneFunction = Callable[["PlacedWorld", str, Any, Findings, bool], WorldAlone]
 
 
 @dataclass(slots=True, frozen=True)
@@ -124,6 +129,9 @@ class Target:
     # The files beside a file output that a world adds (the USD world stage): protected as ``owned``
     # is, only when a world is given.
     world_files: OwnedFunction | None = None
+    # Writes a world file given as the input alone (its static models and physics, no robot);
+    # None: the target holds no world without a robot.
+    world_alone: WorldAloneFunction | None = None
 
     def output_name(self, stem: str, suffix: str | None = None) -> str:
         """The output path for ``stem`` (a folder for folder targets), with ``suffix`` or the default."""

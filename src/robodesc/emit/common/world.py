@@ -50,8 +50,20 @@ class PlacedWorld:
     spawn: tuple[float, ...] = (0.0, 0.0)  # X, Y or X, Y, Z (m)
     yaw: float = 0.0  # rad, about the world's z
     spawn_source: str = "origin"
+    # Several copies of the robot (``--spawn`` given more than once): every copy's point, the first
+    # being ``spawn``. Empty: one robot, at ``spawn``.
+    copies: list[tuple[float, ...]] = field(default_factory=list)
     # Each cord field with its cords' anchor points (world frame), drawn once from its seed.
     cords: list[tuple[CordField, list[Vec3]]] = field(default_factory=list)
+
+    @property
+    def points(self) -> list[tuple[float, ...]]:
+        """Where each copy of the robot stands (one point for one robot)."""
+        return self.copies or [self.spawn]
+
+    def root_positions(self, robot: Robot, stance: Stance, floating: bool) -> list[Vec3]:
+        """:meth:`root_position` of every copy: each on the ground under its own feet."""
+        return [self.root_position(robot, stance, floating, at=point) for point in self.points]
 
     def grid_of(self, collider: WorldCollider) -> TerrainGrid | None:
         return next((g for g in self.grids if g.collider is collider), None)
@@ -92,12 +104,14 @@ class PlacedWorld:
                 return frame.translation[2] + hz
         return None
 
-    def root_position(self, robot: Robot, stance: Stance, floating: bool) -> Vec3:
-        """Where the root goes: at the spawn X, Y (turned by the yaw), and high enough that every
-        collider's lowest point clears the ground under it by CLEARANCE (a given Z wins)."""
-        x, y = self.spawn[0], self.spawn[1]
-        if len(self.spawn) == 3:
-            return (x, y, self.spawn[2])
+    def root_position(self, robot: Robot, stance: Stance, floating: bool, at: tuple[float, ...] | None = None) -> Vec3:
+        """Where the root goes: at the spawn X, Y (``at``, else the spawn; turned by the yaw), and
+        high enough that every collider's lowest point clears the ground under it by CLEARANCE (a
+        given Z wins)."""
+        point = self.spawn if at is None else at
+        x, y = point[0], point[1]
+        if len(point) == 3:
+            return (x, y, point[2])
         points = _low_points(robot, stance.positions)
         if not points:
             ground = self.ground_height(x, y)
@@ -116,14 +130,16 @@ class PlacedWorld:
 
 
 def place_world(
-    robot: Robot,
+    robot: Robot | None,
     world: World,
     findings: Findings,
     *,
     resolution: float | None = None,
     spawn: tuple[float, ...] | None = None,
+    copies: tuple[tuple[float, ...], ...] = (),
 ) -> PlacedWorld:
-    """Heightfields of the world's terrains (at ``resolution`` m, default 2 cm) and the spawn point."""
+    """Heightfields of the world's terrains (at ``resolution`` m, default 2 cm) and the spawn point
+    (``robot`` None: a world compiled alone, with no robot to place)."""
     placed = PlacedWorld(world)
     resolution = resolution or DEFAULT_RESOLUTION
     if not (resolution > 0 and math.isfinite(resolution)):
@@ -133,7 +149,10 @@ def place_world(
             grid = _grid(body, collider, resolution, findings)
             if grid is not None:
                 placed.grids.append(grid)
-    _spawn(robot, world, spawn, placed)
+    if robot is not None:
+        _spawn(robot, world, spawn or (copies[0] if copies else None), placed)
+    if len(copies) > 1:
+        placed.copies = [_point(point) for point in copies]
     for cords in world.cords:
         placed.cords.append((cords, _anchors(placed, cords)))
     return placed
@@ -224,10 +243,7 @@ def _mesh_grid(mesh: Mesh, resolution: float) -> HeightGrid:
 
 def _spawn(robot: Robot, world: World, spawn: tuple[float, ...] | None, placed: PlacedWorld) -> None:
     if spawn is not None:
-        values = tuple(float(v) for v in spawn)
-        if len(values) not in (2, 3) or not all(math.isfinite(v) for v in values):
-            raise ConfigError(f"--spawn {spawn}: X,Y or X,Y,Z, finite numbers of metres")
-        placed.spawn, placed.spawn_source = values, "--spawn"
+        placed.spawn, placed.spawn_source = _point(spawn), "--spawn"
         return
     for include in world.includes:
         stem = include.uri.rstrip("/").rsplit("/", 1)[-1]
@@ -236,6 +252,13 @@ def _spawn(robot: Robot, world: World, spawn: tuple[float, ...] | None, placed: 
             placed.yaw = include.pose.rpy[2]
             placed.spawn_source = f"the world's include of {include.uri!r}"
             return
+
+
+def _point(spawn: tuple[float, ...]) -> tuple[float, ...]:
+    values = tuple(float(v) for v in spawn)
+    if len(values) not in (2, 3) or not all(math.isfinite(v) for v in values):
+        raise ConfigError(f"--spawn {spawn}: X,Y or X,Y,Z, finite numbers of metres")
+    return values
 
 
 def _level(frame: Frame) -> bool:

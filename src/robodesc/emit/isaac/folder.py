@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
 from robodesc._files import staged_folder, write_files
 from robodesc._version import __version__
@@ -27,6 +28,10 @@ from robodesc.emit.urdf import UrdfOptions, emit_urdf, ros_equivalent
 from robodesc.emit.usd import UsdOptions, emit_usd
 from robodesc.ir.diagnostics import Finding, Findings, SourceLoc
 from robodesc.ir.model import Robot
+
+if TYPE_CHECKING:  # the world's placement reads meshes (numpy): imported only where a world is given
+    from robodesc.emit.common.world import PlacedWorld
+    from robodesc.emit.isaac.world import IsaacWorld
 
 
 def usd_options(settings: IsaacSettings, initial: Mapping[str, float] | None = None) -> UsdOptions:
@@ -64,6 +69,12 @@ def isaac_file_names(robot: Robot) -> dict[str, str]:
     }
 
 
+def world_file_names(robot: Robot) -> dict[str, str]:
+    """The files a world adds to the folder (emit/isaac/world.py)."""
+    stem = file_stem(robot)
+    return {"world": f"{stem}_world.usda", "terrain": f"{stem}_terrain.usda"}
+
+
 def write_isaac_folder(
     robot: Robot,
     out_dir: str,
@@ -71,11 +82,22 @@ def write_isaac_folder(
     findings: Findings,
     path_mode: PathMode,
     initial: Mapping[str, float] | None = None,
+    world: tuple[IsaacWorld, PlacedWorld] | None = None,
 ) -> dict[str, str]:
     """Write the folder atomically (staged beside ``out_dir``, then moved in place). ``initial``: the
-    joints' initial positions (the default pose), which the USD's joint state starts from."""
+    joints' initial positions (the default pose), which the USD's joint state starts from. ``world``:
+    the robot placed in a world (emit/isaac/world.py), whose files join the folder."""
     names = isaac_file_names(robot)
+    lab_world_data = None
+    if world is not None:
+        from robodesc.emit.isaac.world import lab_world, write_world_files
+
+        world_names = {**names, **world_file_names(robot)}
+        lab_world_data = lab_world(world[0], world_names)
     with staged_folder(out_dir) as staging:
+        if world is not None:
+            written = write_world_files(robot, staging, world_names, world[0], world[1], findings)
+            names = {**names, **{role: world_names[role] for role in written}}
         findings.extend(emit_usd(robot, os.path.join(staging, names["usd"]), usd_options(settings, initial)))
         # Relative mesh paths are computed against the final folder (a sibling of the staging one).
         # The URDF loads in urdfdom too: capsules and spherical joints lowered (emit/urdf/ros.py).
@@ -89,7 +111,9 @@ def write_isaac_folder(
             {
                 names["urdf"]: urdf,
                 names["importer_settings"]: importer_settings_json(robot, settings),
-                names["isaaclab"]: isaac_lab_module(robot, settings, names["usd"], findings, __version__).text,
+                names["isaaclab"]: isaac_lab_module(
+                    robot, settings, names["usd"], findings, __version__, lab_world_data
+                ).text,
                 names["physics_layer"]: importer_physics_layer(robot, settings, findings, initial),
             },
         )

@@ -12,9 +12,11 @@ SI; Isaac Lab writes them to the USD drives itself.
 
 from __future__ import annotations
 
+import math
 import pprint
 import re
 from dataclasses import dataclass
+from typing import Any
 
 from robodesc.emit.isaac.settings import IsaacSettings
 from robodesc.ir.diagnostics import ConfigError, Findings
@@ -143,6 +145,46 @@ except (ImportError, AttributeError):
 '''
 
 
+# Appended when the folder holds a world (--world, --terrain): Isaac Lab's terrain importer and the
+# simulation's step and gravity (isaaclab.terrains.TerrainImporterCfg, isaaclab.sim.SimulationCfg).
+_WORLD_TEMPLATE = '''
+
+# The world (robodesc --world): its ground for Isaac Lab's terrain importer, its physics for the
+# simulation. ``world_usd`` is the whole stage (ground, physics scene, robot) for Isaac Sim alone.
+WORLD: dict[str, Any] = {world}
+_HERE = os.path.dirname(os.path.abspath(__file__))
+TERRAIN_USD_PATH = os.path.join(_HERE, WORLD["terrain_usd"]) if WORLD["terrain_usd"] else None
+WORLD_USD_PATH = os.path.join(_HERE, WORLD["world_usd"])
+
+
+def make_terrain_cfg(prim_path: str = "/World/ground") -> Any:
+    """A ``TerrainImporterCfg``: the world's ground as a USD file, or Isaac Lab's plane for a level
+    plane at z = 0; raises ImportError without Isaac Lab. The terrain file carries its own friction
+    (combined by the minimum, as Gazebo does)."""
+    from isaaclab.terrains import TerrainImporterCfg
+
+    if WORLD["terrain_type"] == "usd":
+        return TerrainImporterCfg(prim_path=prim_path, terrain_type="usd", usd_path=TERRAIN_USD_PATH)
+    return TerrainImporterCfg(prim_path=prim_path, terrain_type="plane")
+
+
+def make_sim_cfg(**overrides: Any) -> Any:
+    """A ``SimulationCfg`` with the world's step and gravity (where it gives them); raises ImportError
+    without Isaac Lab."""
+    import isaaclab.sim as sim_utils
+
+    values = {{key: WORLD[key] for key in ("dt", "gravity") if WORLD[key] is not None}}
+    return sim_utils.SimulationCfg(**{{**values, **overrides}})
+
+
+try:
+    TERRAIN_CFG: Any = make_terrain_cfg()
+    SIM_CFG: Any = make_sim_cfg()
+except ImportError:
+    TERRAIN_CFG = SIM_CFG = None
+'''
+
+
 @dataclass(slots=True)
 class IsaacLabModule:
     text: str
@@ -222,8 +264,19 @@ def actuator_groups(robot: Robot, settings: IsaacSettings) -> dict[str, dict[str
     return groups
 
 
+def _yaw_rotation(version: str, yaw: float) -> tuple[float, float, float, float]:
+    """A turn about z in the module's quaternion order."""
+    w, z = math.cos(yaw / 2), math.sin(yaw / 2)
+    return (0.0, 0.0, z, w) if QUATERNION_ORDER[version] == "xyzw" else (w, 0.0, 0.0, z)
+
+
 def isaac_lab_module(
-    robot: Robot, settings: IsaacSettings, usd_file: str, findings: Findings, version: str
+    robot: Robot,
+    settings: IsaacSettings,
+    usd_file: str,
+    findings: Findings,
+    version: str,
+    world: dict[str, Any] | None = None,
 ) -> IsaacLabModule:
     if settings.isaac_lab_version not in LIMIT_KEYS:
         raise ConfigError(f"isaac_lab_version must be 3 or 2, got {settings.isaac_lab_version!r}")
@@ -235,7 +288,9 @@ def isaac_lab_module(
         "quaternion_order": QUATERNION_ORDER[settings.isaac_lab_version],
         "init_state": {
             "pos": tuple(float(x) for x in settings.init_pos),
-            "rot": IDENTITY[settings.isaac_lab_version],
+            "rot": IDENTITY[settings.isaac_lab_version]
+            if not world or not world["yaw"]
+            else _yaw_rotation(settings.isaac_lab_version, float(world["yaw"])),
             "joint_pos": joint_pos,
             # A robot with no moving joint (iris_simple: rotors on fixed joints) gets none: Isaac
             # Lab refuses a pattern that matches no joint ("Not all regular expressions are matched").
@@ -260,4 +315,6 @@ def isaac_lab_module(
         usd_file=usd_file,
         data=pprint.pformat(data, indent=4, width=100, sort_dicts=False),
     )
+    if world is not None:
+        text += _WORLD_TEMPLATE.format(world=pprint.pformat(world, indent=4, width=100, sort_dicts=False))
     return IsaacLabModule(text=text, data=data)

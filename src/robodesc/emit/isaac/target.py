@@ -23,7 +23,13 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     settings: IsaacSettings = request.options
     # The pose, spawn height and gains the user left out (emit/isaac/defaults.py).
     initial = apply_defaults(robot, settings, request.given, findings)
-    files = write_isaac_folder(robot, out, settings, findings, request.mesh_paths, initial)
+    world = None
+    if request.world is not None:
+        from robodesc.emit.isaac.world import place
+
+        # The spawn on the world's ground replaces the spawn height over z = 0 (a given --init-pos wins).
+        world = (place(robot, request.world, settings, initial, request.given, findings), request.world)
+    files = write_isaac_folder(robot, out, settings, findings, request.mesh_paths, initial, world)
     return Emitted(files=files, extra={"settings": settings})
 
 
@@ -51,5 +57,6 @@ TARGET = Target(
     check=check_isaac,
     finish=finish,
     derives_gains=True,
+    worlds=True,
     options_title="USD and Isaac Sim (-t usd, --isaac-sim; see docs/usd.md, docs/isaac.md)",
 )

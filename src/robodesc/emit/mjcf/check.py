@@ -28,9 +28,10 @@ def check_mjcf(robot: Robot, emitted: Emitted, request: CheckRequest) -> Validat
     fd, probe = tempfile.mkstemp(prefix=".robodesc-scene-", suffix=".xml", dir=os.path.dirname(scene))
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as handle:
-            handle.write(
-                re.sub(r'<include file="[^"]*"/>', f'<include file="{os.path.basename(robot_file)}"/>', text, count=1)
-            )
+            # One robot is included; several copies are attached from one <model> asset.
+            staged = os.path.basename(robot_file)
+            text = re.sub(r'<include file="[^"]*"/>', f'<include file="{staged}"/>', text, count=1)
+            handle.write(re.sub(r'(<model name="[^"]*" file=)"[^"]*"', rf'\1"{staged}"', text, count=1))
         report = validate_mjcf(robot, robot_file, probe, request.options, expected_drives=emitted.extra.get("drives"))
         report.rename(os.path.basename(probe), os.path.basename(scene))
     finally:

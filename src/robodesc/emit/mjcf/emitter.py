@@ -26,7 +26,7 @@ from robodesc.ir.rigid import Frame, link_frames, pose_frame
 
 if TYPE_CHECKING:
     from robodesc.emit.common.world import PlacedWorld
-    from robodesc.emit.mjcf.world import RobotSurface
+    from robodesc.emit.mjcf.world import Copies, RobotSurface
 
 # MuJoCo reads MJCF with tinyxml2, which refuses an element nested 500 deep
 # (XML_ELEMENT_DEPTH_EXCEEDED): <mujoco>, <worldbody>, the nested bodies and a body's <joint> or
@@ -141,13 +141,22 @@ def emit_mjcf(
         if world is not None:
             from robodesc.emit.mjcf.world import world_scene_text
 
-            data = world_scene_text(name, world, findings, _surface(robot, options)).encode()
+            data = world_scene_text(name, world, findings, _surface(robot, options), copies(text, options)).encode()
         else:
             data = scene_text(name, _scene_floor(robot, options, findings)).encode()
         if not (os.path.isfile(scene) and _read(scene) == data):
             write_atomic(scene, data)
         files["scene"] = scene
     return files
+
+
+def copies(robot_text: str, options: MjcfOptions) -> Copies | None:
+    """Several copies of the robot in the world scene: what each is attached with (emit/mjcf/world.py)."""
+    if len(options.copies) < 2:
+        return None
+    from robodesc.emit.mjcf.world import Copies
+
+    return Copies.of(robot_text, options.copies)
 
 
 def _surface(robot: Robot, options: MjcfOptions) -> RobotSurface:

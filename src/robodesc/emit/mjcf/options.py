@@ -69,6 +69,9 @@ class MjcfOptions:
     # Not a flag: the root height of a floating robot's home keyframe, set by the target from the
     # stance it chose (the body stays at its zero-pose height); None keeps the body's position.
     home_height: float | None = None
+    # Not a flag: several copies of the robot in a world (--spawn given more than once), each as
+    # (its root in the zero pose, its home keyframe's root height); the first is the robot's own.
+    copies: tuple[tuple[tuple[float, float, float], float], ...] = ()
     # Write scene.xml beside the robot (floor, light, sky).
     scene: bool = field(
         default=True, metadata=flag("write scene.xml beside the robot", name="--mjcf-scene", kind="switch")

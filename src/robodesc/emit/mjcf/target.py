@@ -4,9 +4,9 @@ its scene and converted meshes beside the file (docs/mjcf.md, Outputs)."""
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
-from robodesc.emit.common.target import EmitRequest, Emitted, Target
+from robodesc.emit.common.target import EmitRequest, Emitted, Target, WorldAlone
 from robodesc.emit.mjcf.actuators import FROM_TARGET, joint_kind
 from robodesc.emit.mjcf.check import check_mjcf
 from robodesc.emit.mjcf.options import MjcfOptions
@@ -17,6 +17,7 @@ from robodesc.ir.rules import lookup
 
 if TYPE_CHECKING:
     from robodesc.emit.common.stance import Stance
+    from robodesc.emit.common.world import PlacedWorld
 
 STAGE = "emit:mjcf"
 
@@ -83,9 +84,13 @@ def _place_in_world(robot: Robot, request: EmitRequest, stance: Stance) -> None:
         return
     floating = not options.fix_base and robot.root.name != "world"
     zero = _Stance(complete(robot, {}), "zeros")
-    options.init_pos = placed.root_position(robot, zero, floating)
+    roots = placed.root_positions(robot, zero, floating)
+    options.init_pos = roots[0]
+    homes = [r[2] for r in placed.root_positions(robot, stance, floating)] if floating else [r[2] for r in roots]
     if floating:
-        options.home_height = placed.root_position(robot, stance, floating)[2]
+        options.home_height = homes[0]
+    if len(roots) > 1:
+        options.copies = tuple(zip(roots, homes, strict=True))
 
 
 def _contact_defaults(robot: Robot, request: EmitRequest, stance: Stance, findings: Findings) -> None:
@@ -158,6 +163,13 @@ def _asked_drives(robot: Robot, request: EmitRequest) -> dict[str, tuple[float, 
     }
 
 
+def world_alone(placed: PlacedWorld, out: str, options: Any, findings: Findings, validate: bool) -> WorldAlone:
+    """A world file given as the input, written alone (robodesc.emit.mjcf.world.write_world_alone)."""
+    from robodesc.emit.mjcf.world import write_world_alone  # the writer loads when it writes
+
+    return write_world_alone(placed, out, options, findings, validate)
+
+
 # The "mjcf" preset (passes/presets.py): MuJoCo refuses an invalid inertia on a moving body, so
 # invalid ones are repaired from geometry, as the Isaac folder does, and each repair reported.
 TARGET = Target(
@@ -172,5 +184,6 @@ TARGET = Target(
     owned=lambda options, out: (scene_name(out),) if options.scene else (),
     derives_gains=True,
     worlds=True,
+    world_alone=world_alone,
     options_title="MJCF (-t mjcf; docs/mjcf.md)",
 )

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from robodesc.emit.common.numbers import fmt, fmt_vec
+from robodesc.emit.common.target import WorldAlone
 from robodesc.emit.common.world import PlacedWorld, TerrainGrid
 from robodesc.emit.mjcf.contact_params import ROLL, TORSION
 from robodesc.emit.mjcf.scene import SCENE
@@ -40,11 +41,67 @@ class RobotSurface:
     priority: int = 0
 
 
-def world_scene_text(robot_file: str, placed: PlacedWorld, findings: Findings, robot: RobotSurface) -> str:
-    """The scene with the world's ground instead of the plane floor, and its physics."""
-    base = os.path.basename(robot_file)
-    head = SCENE.format(stem=os.path.splitext(base)[0], robot=base, floor_pos="").partition("  <worldbody>")[0]
-    option = _option(placed)
+@dataclass(slots=True, frozen=True)
+class Copies:
+    """Several copies of robot.xml in one scene, each brought in by MuJoCo's ``<attach>`` under a
+    name prefix (``<stem>_<i>/``). ``<include>`` cannot prefix names, so it holds one robot only."""
+
+    option: dict[str, str]  # robot.xml's <option>: an attached model's options do not carry over
+    qpos: list[float]  # robot.xml's home keyframe
+    ctrl: list[float]
+    floating: bool  # robot.xml's root body has a free joint
+    roots: tuple[tuple[Vec3, float], ...]  # each copy's root in the zero pose, and its home height
+
+    @classmethod
+    def of(cls, robot_text: str, roots: tuple[tuple[Vec3, float], ...]) -> Copies:
+        root = ET.fromstring(robot_text)
+        option = root.find("option")
+        key = root.find("keyframe/key[@name='home']")
+        qpos = key.get("qpos", "") if key is not None else ""
+        ctrl = key.get("ctrl", "") if key is not None else ""
+        return cls(
+            option=dict(option.attrib) if option is not None else {},
+            qpos=[float(v) for v in qpos.split()],
+            ctrl=[float(v) for v in ctrl.split()],
+            floating=root.find("worldbody/body/freejoint") is not None,
+            roots=roots,
+        )
+
+    def home(self, cords: int) -> ET.Element:
+        """The scene's ``home`` keyframe: every copy in its stance at its own spawn, the cords
+        hanging (``cords`` ball joints). Each attached copy brings its own ``<prefix>home`` too, but
+        MuJoCo does not move an attached keyframe's free joint by the frame: those start every copy
+        at the first one's place."""
+        qpos: list[float] = []
+        for (x, y, _), height in self.roots:
+            qpos.extend([x, y, height, *self.qpos[3:]] if self.floating else self.qpos)
+        qpos.extend([1.0, 0.0, 0.0, 0.0] * cords)
+        keyframe = ET.Element("keyframe")
+        attrs = {"name": "home", "qpos": fmt_vec(qpos)}
+        if self.ctrl:
+            attrs["ctrl"] = fmt_vec(self.ctrl * len(self.roots))
+        ET.SubElement(keyframe, "key", attrs)
+        return keyframe
+
+
+def copy_prefix(stem: str, index: int) -> str:
+    return f"{stem}_{index}/"
+
+
+def world_scene_text(
+    robot_file: str | None,
+    placed: PlacedWorld,
+    findings: Findings,
+    robot: RobotSurface | None,
+    copies: Copies | None = None,
+) -> str:
+    """The scene with the world's ground instead of the plane floor, and its physics; with
+    ``copies``, the robot attached once per copy instead of included. ``robot_file`` None: the
+    world alone (a world file as the input), named ``placed.world.name``."""
+    base = os.path.basename(robot_file) if robot_file is not None else ""
+    stem = os.path.splitext(base)[0] if robot_file is not None else placed.world.name
+    head = SCENE.format(stem=stem, robot=base, floor_pos="").partition("  <worldbody>")[0]
+    option = _option(placed, copies.option if copies is not None else {})
     assets = ET.Element("asset")
     world = ET.Element("worldbody")
     ET.SubElement(world, "light", pos="0 0 3", dir="0 0 -1", directional="true")
@@ -54,18 +111,49 @@ def world_scene_text(robot_file: str, placed: PlacedWorld, findings: Findings, r
     for body in placed.world.bodies:
         for collider in body.colliders:
             _collider(placed, body, collider, assets, world, findings, robot)
+    tail = ""
+    if robot_file is None:
+        head = head.replace(f'  <include file="{base}"/>\n', "", 1).replace(f"{stem} scene", stem, 1)
+    if copies is not None:
+        head = head.replace(f'  <include file="{base}"/>\n', "", 1)
+        ET.SubElement(assets, "model", name=stem, file=base)
+        # robot.xml places the first copy; each frame moves a copy by its offset from the first.
+        first = copies.roots[0][0]
+        for i, ((x, y, z), _) in enumerate(copies.roots):
+            offset = (x - first[0], y - first[1], z - first[2])
+            frame = ET.SubElement(world, "frame", {"pos": fmt_vec(offset)} if any(offset) else {})
+            ET.SubElement(frame, "attach", model=stem, prefix=copy_prefix(stem, i))
+        tail = _indent(copies.home(sum(c.count * c.segments for c, _ in placed.cords)))
     for cords, anchors in placed.cords:
         _cords(world, cords, anchors)
     text = head.replace("  <asset>", (option + "\n" if option else "") + "  <asset>", 1)
     # The scene's own <asset> (sky, checker) stays; the terrain's hfields go in a second one.
     extra_assets = _indent(assets) if len(assets) else ""
     body_text = _indent(world)
-    return text + extra_assets + body_text + "</mujoco>\n"
+    return text + extra_assets + body_text + tail + "</mujoco>\n"
 
 
-def _option(placed: PlacedWorld) -> str:
+def write_world_alone(placed: PlacedWorld, out: str, options: object, findings: Findings, validate: bool) -> WorldAlone:
+    """``robodesc compile W.world -t mjcf -o world.xml``: the scene with no robot."""
+    from robodesc._files import write_atomic
+
+    text = world_scene_text(None, placed, findings, None)
+    write_atomic(out, text)
+    if not validate:
+        return {"mjcf": out}, None
+    from robodesc.validation.world import check_mjcf_world
+
+    # Every geom written directly in the world body (the ground's), as MuJoCo should count them.
+    body = ET.fromstring(text).find("worldbody")
+    geoms = len(body.findall("geom")) if body is not None else 0
+    return {"mjcf": out}, check_mjcf_world(out, placed.world.name, placed.world.physics, geoms)
+
+
+def _option(placed: PlacedWorld, robot: dict[str, str]) -> str:
+    """The world's step and gravity over ``robot`` (robot.xml's own options, which an attached
+    copy does not bring: the scene says them once for every copy)."""
     physics = placed.world.physics
-    attrs = {}
+    attrs = dict(robot)
     if physics.step is not None:
         attrs["timestep"] = fmt(physics.step)
     if physics.gravity is not None:
@@ -82,7 +170,7 @@ def _collider(
     assets: ET.Element,
     world: ET.Element,
     findings: Findings,
-    robot: RobotSurface,
+    robot: RobotSurface | None,
 ) -> None:
     frame = pose_frame(body.pose) @ pose_frame(collider.origin)
     name = f"{body.name}/{collider.name}"
@@ -90,7 +178,8 @@ def _collider(
     surface = collider.surface
     mu = surface.mu if surface is not None and surface.mu is not None else 1.0  # ODE's default
     attrs["friction"] = fmt_vec((mu, TORSION, ROLL))
-    attrs["priority"] = str(_priority(mu, robot, collider, body, findings))
+    if robot is not None:  # alone, a world has no robot whose friction to yield to or win over
+        attrs["priority"] = str(_priority(mu, robot, collider, body, findings))
     shape = collider.shape
     grid = placed.grid_of(collider)
     if grid is not None:

@@ -17,8 +17,14 @@ def check_sdf(robot: Robot, emitted: Emitted, request: CheckRequest) -> Validati
     if emitted.text is None:
         return None
     text = emitted.text
-    if robot.loop_joints:
-        text = build_sdf(robot, dataclasses.replace(emitted.extra["sdf_options"], loop_joints=False)).text
+    options = emitted.extra.get("sdf_options")
+    copies = options is not None and bool(options.copy_poses)
+    if robot.loop_joints or copies:
+        # Drake checks the tree, and one copy of the robot: its joints are looked up by name, which
+        # several copies share (the copies are the first one's elements, copied).
+        text = build_sdf(
+            robot, dataclasses.replace(emitted.extra["sdf_options"], loop_joints=False, copy_poses=[])
+        ).text
     report = validate_sdf(
         robot,
         text,

@@ -9,16 +9,19 @@ floating joints, transmissions ...) is reported as a finding, never dropped sile
 
 from __future__ import annotations
 
+from copy import deepcopy
 from dataclasses import dataclass, field, replace
 
 from lxml import etree
 
 from robodesc.emit.common.approximation import asked
+from robodesc.emit.common.numbers import fmt_vec
 from robodesc.emit.sdf.model import SdfModelEmitter
 from robodesc.emit.sdf.names import Namespace
 from robodesc.emit.sdf.options import PoseFrames, SdfFlavour, SdfOptions, SdfProp, version_at_least
 from robodesc.emit.sdf.world import GROUND_PLANE, world_element
 from robodesc.ir.diagnostics import Findings
+from robodesc.ir.geometry import Pose
 from robodesc.ir.model import Robot
 
 __all__ = ["PoseFrames", "SdfFlavour", "SdfOptions", "SdfProp", "SdfResult", "build_sdf", "emit_sdf"]
@@ -49,8 +52,11 @@ def build_sdf(robot: Robot, options: SdfOptions | None = None) -> SdfResult:
     else:
         parent = root
     main = SdfModelEmitter(robot, opts, findings, in_world=opts.world)
-    model_name = models.claim("model", robot.name, findings, loc=robot.src, label="robot")
+    first = f"{robot.name}_0" if opts.world and opts.copy_poses else robot.name
+    model_name = models.claim("model", first, findings, loc=robot.src, label="robot")
     main.model(parent, model_name, pose=opts.model_pose)
+    if opts.world and opts.copy_poses:
+        _copies(parent, model_name, robot.name, opts.copy_poses, models, findings)
     files: dict[str, str] = {}
     if opts.props and not opts.world:
         findings.warn(
@@ -79,6 +85,24 @@ def build_sdf(robot: Robot, options: SdfOptions | None = None) -> SdfResult:
     etree.indent(root, space="  ")
     text = '<?xml version="1.0" encoding="utf-8"?>\n' + etree.tostring(root, encoding="unicode") + "\n"
     return SdfResult(text, findings, model_name, main.names, files)
+
+
+def _copies(
+    parent: etree._Element, model_name: str, stem: str, poses: list[Pose], models: Namespace, findings: Findings
+) -> None:
+    """Copies of the robot's model, each a model of its own at its pose (Gazebo scopes names and
+    topics by model, so the copies' links and joints keep their names)."""
+    model = next(m for m in parent.findall("model") if m.get("name") == model_name)
+    for i, pose in enumerate(poses, start=1):
+        clone = deepcopy(model)
+        clone.set("name", models.claim("model", f"{stem}_{i}", findings, label="robot copy"))
+        at = clone.find("pose")
+        if at is None:
+            at = etree.Element("pose")
+            clone.insert(0, at)
+        at.text = fmt_vec((*pose.xyz, *pose.rpy))
+        model.addnext(clone)
+        model = clone
 
 
 def _approximation_notes(opts: SdfOptions, findings: Findings) -> None:

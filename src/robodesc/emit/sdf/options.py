@@ -87,6 +87,9 @@ class SdfOptions:
     loop_joints: bool = True
     # Where the model sits in the world (and the model's <pose> when a bare model is written).
     model_pose: Pose | None = None
+    # Several copies of the robot in a world (--spawn given more than once): the pose of every copy
+    # after the first (which is ``model_pose``); the models are named ``<robot>_<i>``.
+    copy_poses: list[Pose] = field(default_factory=list)
     # ---- world wrapper (a bare ``--world``; cli/parser.py declares the flag, which also takes a
     # world file: docs/worlds.md) -------------------------------------------------------------
     world: bool = False

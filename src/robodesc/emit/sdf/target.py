@@ -3,13 +3,17 @@
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING, Any
 
 from robodesc._files import write_atomic
-from robodesc.emit.common.target import EmitRequest, Emitted, Target
+from robodesc.emit.common.target import EmitRequest, Emitted, Target, WorldAlone
 from robodesc.emit.sdf.check import check_sdf
 from robodesc.emit.sdf.options import SdfOptions
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
+
+if TYPE_CHECKING:
+    from robodesc.emit.common.world import PlacedWorld
 
 
 def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
@@ -62,10 +66,18 @@ def _world(robot: Robot, request: EmitRequest, findings: Findings) -> None:
         options.step_size = physics.step
     if physics.gravity is not None:
         options.gravity = physics.gravity
+    floating = not options.fix_base and robot.root.name != "world"
+    roots = placed.root_positions(robot, Stance(complete(robot, {}), "zeros"), floating)
     if options.model_pose is None:
-        floating = not options.fix_base and robot.root.name != "world"
-        root = placed.root_position(robot, Stance(complete(robot, {}), "zeros"), floating)
-        options.model_pose = Pose(root, (0.0, 0.0, placed.yaw))
+        options.model_pose = Pose(roots[0], (0.0, 0.0, placed.yaw))
+    options.copy_poses = [Pose(root, (0.0, 0.0, placed.yaw)) for root in roots[1:]]
+
+
+def world_alone(placed: PlacedWorld, out: str, options: Any, findings: Findings, validate: bool) -> WorldAlone:
+    """A world file given as the input, written alone (robodesc.emit.sdf.world.write_world_alone)."""
+    from robodesc.emit.sdf.world import write_world_alone  # the writer loads when it writes
+
+    return write_world_alone(placed, out, options, findings, validate)
 
 
 TARGET = Target(
@@ -77,5 +89,6 @@ TARGET = Target(
     stdout=True,
     check=check_sdf,
     worlds=True,
+    world_alone=world_alone,
     options_title="SDF (-t sdf; docs/sdf.md)",
 )

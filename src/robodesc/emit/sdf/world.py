@@ -6,12 +6,19 @@ sensor systems must list physics, user commands and the scene broadcaster too.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from lxml import etree
 
 from robodesc.emit.common.numbers import fmt, fmt_vec
 from robodesc.emit.sdf.options import SdfFlavour, SdfOptions
 from robodesc.emit.sdf.sensors import GzSystem, required_systems, system_plugin
+from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
+
+if TYPE_CHECKING:
+    from robodesc.emit.common.target import WorldAlone
+    from robodesc.emit.common.world import PlacedWorld
 
 E = etree.SubElement
 
@@ -54,6 +61,36 @@ def world_element(parent: etree._Element, robots: list[Robot], options: SdfOptio
     if options.placed_world is None or not options.placed_world.world.bodies:
         _ground(world)  # a world of cords alone stands on robodesc's ground plane
     return world
+
+
+def write_world_alone(
+    placed: PlacedWorld, out: str, options: SdfOptions, findings: Findings, validate: bool
+) -> WorldAlone:
+    """``robodesc compile W.world -t sdf -o world.sdf``: the world's static models and physics, no robot."""
+    import os
+
+    from robodesc._files import write_atomic
+
+    options.world, options.placed_world = True, placed
+    options.out_dir = os.path.dirname(os.path.abspath(out))
+    physics = placed.world.physics
+    if physics.step is not None:
+        options.step_size = physics.step
+    if physics.gravity is not None:
+        options.gravity = physics.gravity
+    options.check()
+    root = etree.Element("sdf", version=options.resolved_version())
+    world_element(root, [], options)
+    etree.indent(root, space="  ")
+    text = '<?xml version="1.0" encoding="utf-8"?>\n' + etree.tostring(root, encoding="unicode") + "\n"
+    write_atomic(out, text)
+    if not validate:
+        return {"sdf": out}, None
+    from robodesc.validation.world import check_sdf_world
+
+    # One model per static body and per cord, and the ground plane of a world without bodies.
+    models = len(placed.world.bodies) + sum(c.count for c, _ in placed.cords) + (0 if placed.world.bodies else 1)
+    return {"sdf": out}, check_sdf_world(text, placed.world.name, models)
 
 
 def _sun(world: etree._Element) -> None:

@@ -25,13 +25,18 @@ from robodesc.emit.usd.target import TARGET
 
 if TYPE_CHECKING:
     from robodesc.emit.usd.emitter import PhysicsOpinions, emit_usd, physics_opinions
+    from robodesc.emit.usd.world import write_terrain, write_world
 
 _WRITER = ("emit_usd", "physics_opinions", "PhysicsOpinions")
+# The world stage and the ground alone (the Isaac folder writes both).
+_WORLD = ("write_world", "write_terrain")
 
 
 def __getattr__(name: str) -> Any:
     if name in _WRITER:
         return getattr(importlib.import_module("robodesc.emit.usd.emitter"), name)
+    if name in _WORLD:
+        return getattr(importlib.import_module("robodesc.emit.usd.world"), name)
     raise AttributeError(f"module 'robodesc.emit.usd' has no attribute {name!r}")
 
 
@@ -51,4 +56,6 @@ __all__ = [
     "UsdOptions",
     "emit_usd",
     "physics_opinions",
+    "write_terrain",
+    "write_world",
 ]

@@ -127,7 +127,7 @@ def _shape(ctx: UsdContext, path: str, item: Visual | Collision, label: str) -> 
         if data is None:
             return False
         prim = ctx.define(GEOMETRY, path, "Mesh")
-        _author_mesh(prim, data)
+        author_mesh(prim, data)
         set_pose(prim, origin)
     if isinstance(item, Collision):
         prim.attr("purpose", "token", "guide", uniform=True)
@@ -168,7 +168,8 @@ def _mesh_data(ctx: UsdContext, mesh: Mesh, label: str) -> MeshData | None:
     return data
 
 
-def _author_mesh(prim: Prim, data: MeshData) -> None:
+def author_mesh(prim: Prim, data: MeshData) -> None:
+    """A ``Mesh`` prim's triangles, normals, extent and UVs (the robot's meshes and the world's terrains)."""
     prim.attr("points", "point3f[]", data.points)
     prim.attr("faceVertexCounts", "int[]", data.face_vertex_counts)
     prim.attr("faceVertexIndices", "int[]", data.face_vertex_indices)

@@ -7,7 +7,7 @@ from robodesc.emit.common.target import EmitRequest, Emitted, Target
 from robodesc.emit.usd.check import check_usd
 from robodesc.emit.usd.layers import PAYLOAD_DIR
 from robodesc.emit.usd.options import UsdOptions
-from robodesc.emit.usd.world import world_file_name
+from robodesc.emit.usd.world import world_file_name, write_world_alone
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
 
@@ -37,10 +37,10 @@ def _write_world(robot: Robot, request: EmitRequest, out: str, findings: Finding
     assert placed is not None
     final = request.final or out
     floating = not request.options.fix_base and robot.root.name != "world"
-    root = placed.root_position(robot, Stance(complete(robot, {}), "zeros"), floating)
+    roots = placed.root_positions(robot, Stance(complete(robot, {}), "zeros"), floating)
     path = os.path.join(os.path.dirname(os.path.abspath(out)), world_file_name(final))
     contacts = any(s.type.value == "contact" for s in robot.sensors)
-    write_world(path, final, robot.name, placed, root, findings, contacts=contacts)
+    write_world(path, final, robot.name, placed, roots, findings, contacts=contacts)
     return path
 
 
@@ -58,5 +58,6 @@ TARGET = Target(
     owned=lambda options, out: (PAYLOAD_DIR,) if options.layered else (),
     worlds=True,
     world_files=lambda options, out: (world_file_name(out),),
+    world_alone=write_world_alone,
     options_title="USD and Isaac Sim (-t usd, --isaac-sim; see docs/usd.md, docs/isaac.md)",
 )

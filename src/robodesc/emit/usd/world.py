@@ -17,17 +17,19 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from robodesc.emit.usd.context import set_pose
 from robodesc.emit.usd.layers import encode, stage_metadata
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.geometry import Box, Cylinder, Mesh, Sphere, Vec3
-from robodesc.ir.rigid import Frame, pose_frame
+from robodesc.ir.rigid import Frame, pose_frame, rpy_rotation
 from robodesc.ir.world import CordField, HeightImage, Plane, StaticBody, WorldCollider
 from robodesc.usdfile.spec import Layer, Payload, Prim
 
 if TYPE_CHECKING:  # the placement reads meshes (numpy); a plain USD compile must not import it
+    from robodesc.emit.common.target import WorldAlone
     from robodesc.emit.common.world import PlacedWorld
 
 STAGE = "emit:usd"
@@ -40,24 +42,57 @@ def world_file_name(robot_file: str) -> str:
     return f"{stem}_world{ext}"
 
 
+def copy_names(robot_prim: str, count: int) -> list[str]:
+    """The prim of each copy of the robot: its own name alone, ``<name>_0`` ... for several."""
+    return [robot_prim] if count == 1 else [f"{robot_prim}_{i}" for i in range(count)]
+
+
 def write_world(
     path: str,
-    robot_file: str,
+    robot_file: str | None,
     robot_prim: str,
     placed: PlacedWorld,
-    root: Vec3,
+    roots: Sequence[Vec3],
     findings: Findings,
     *,
     contacts: bool = False,
-) -> None:
-    """Write the world stage to ``path``; ``robot_file`` is the robot's final file name beside it."""
+) -> int:
+    """Write the world stage to ``path``; ``robot_file`` is the robot's final file name beside it,
+    brought in once per root (several copies: one payload each, ``/World/<robot>_<i>``). No
+    ``roots``: the world alone (a world file as the input). Returns the static colliders written."""
     from robodesc._files import write_atomic
 
+    layer, world, count = _ground(placed, findings)
+    _scene(world, placed, contacts)
+    for cords, anchors in placed.cords:
+        _cords(world, cords, anchors)
+    turn = rpy_rotation((0.0, 0.0, placed.yaw))
+    for name, root in zip(copy_names(robot_prim, len(roots)) if roots else [], roots, strict=True):
+        assert robot_file is not None
+        robot = world.child(name, "Xform")
+        robot.payloads.append(Payload(f"./{os.path.basename(robot_file)}", f"/{robot_prim}"))
+        set_pose(robot, Frame(translation=root, rotation=turn))
+    write_atomic(path, encode(layer, os.path.splitext(path)[1].lower()))
+    return count
+
+
+def write_terrain(path: str, placed: PlacedWorld, findings: Findings) -> None:
+    """The world's ground alone (static bodies and their friction; no scene, robot or cords): what
+    Isaac Lab's ``TerrainImporterCfg(terrain_type="usd")`` references under its own prim, beside the
+    ``PhysicsScene`` its ``SimulationCfg`` makes."""
+    from robodesc._files import write_atomic
+
+    layer, _, _ = _ground(placed, findings)
+    write_atomic(path, encode(layer, os.path.splitext(path)[1].lower()))
+
+
+def _ground(placed: PlacedWorld, findings: Findings) -> tuple[Layer, Prim, int]:
+    """A layer whose default prim ``/World`` holds the world's static bodies and their materials,
+    and the number of colliders it holds."""
     layer = Layer()
     stage_metadata(layer, WORLD)
     world = layer.prim(f"/{WORLD}", "Xform")
     world.kind = "assembly"
-    _scene(world, placed, contacts)
     material = _terrain_material(world, placed)
     if not placed.world.bodies:  # a world of cords alone: a ground plane under them
         ground = world.child("ground", "Plane")
@@ -65,17 +100,13 @@ def write_world(
         ground.attr("length", "double", PLANE_SIZE)
         ground.attr("axis", "token", "Z", uniform=True)
         ground.apply("PhysicsCollisionAPI")
+    count = 0 if placed.world.bodies else 1
     for body in placed.world.bodies:
         body_prim = world.child(_name(body.name), "Xform")
         set_pose(body_prim, pose_frame(body.pose))
         for collider in body.colliders:
-            _collider(body_prim, body, collider, material, findings)
-    for cords, anchors in placed.cords:
-        _cords(world, cords, anchors)
-    robot = world.child(robot_prim, "Xform")
-    robot.payloads.append(Payload(f"./{os.path.basename(robot_file)}", f"/{robot_prim}"))
-    set_pose(robot, Frame(translation=root))
-    write_atomic(path, encode(layer, os.path.splitext(path)[1].lower()))
+            count += _collider(body_prim, body, collider, material, findings)
+    return layer, world, count
 
 
 def _scene(world: Prim, placed: PlacedWorld, contacts: bool) -> None:
@@ -126,14 +157,15 @@ def _terrain_material(world: Prim, placed: PlacedWorld) -> dict[float, str]:
 
 def _collider(
     body_prim: Prim, body: StaticBody, collider: WorldCollider, materials: dict[float, str], findings: Findings
-) -> None:
+) -> bool:
+    """Write one collider; False when it has no USD form (it is left out, with a warning)."""
     shape = collider.shape
     name = _name(collider.name)
     if isinstance(shape, Mesh):
         prim = body_prim.child(name, "Mesh")
         if not _mesh(prim, shape, collider, body, findings):
             del body_prim.children[name]
-            return
+            return False
         prim.apply("PhysicsMeshCollisionAPI")
         prim.attr("physics:approximation", "token", "none", uniform=True)
     elif isinstance(shape, HeightImage):
@@ -144,7 +176,7 @@ def _collider(
             loc=collider.src,
             stage=STAGE,
         )
-        return
+        return False
     elif isinstance(shape, Box):
         prim = body_prim.child(name, "Cube")
         prim.attr("size", "double", 1.0)
@@ -164,7 +196,7 @@ def _collider(
         prim.attr("length", "double", PLANE_SIZE)
         prim.attr("axis", "token", "Z", uniform=True)
     else:  # pragma: no cover - the world IR has no other shape
-        return
+        return False
     if not isinstance(shape, Box):
         set_pose(prim, pose_frame(collider.origin))
     prim.apply("PhysicsCollisionAPI")
@@ -172,6 +204,17 @@ def _collider(
     if surface is not None and surface.mu is not None:
         prim.apply("MaterialBindingAPI")
         prim.rel("material:binding:physics", [materials[surface.mu]])
+    return True
+
+
+def write_world_alone(placed: PlacedWorld, out: str, options: object, findings: Findings, validate: bool) -> WorldAlone:
+    """``robodesc compile W.world -t usd``: the world stage, with no robot, at ``out``."""
+    count = write_world(out, None, "", placed, [], findings)
+    if not validate:
+        return {"usd": out}, None
+    from robodesc.validation.world import check_usd_world
+
+    return {"usd": out}, check_usd_world(out, placed.world.name, placed.world.physics, count)
 
 
 def _cords(world: Prim, cords: CordField, anchors: list[Vec3]) -> None:
@@ -233,6 +276,7 @@ def _cords(world: Prim, cords: CordField, anchors: list[Vec3]) -> None:
 
 
 def _mesh(prim: Prim, shape: Mesh, collider: WorldCollider, body: StaticBody, findings: Findings) -> bool:
+    from robodesc.emit.usd.geometry import author_mesh  # the robot's mesh writer: normals and UVs too
     from robodesc.meshes.buffers import MeshReadError
     from robodesc.meshes.data import build_mesh
 
@@ -248,11 +292,7 @@ def _mesh(prim: Prim, shape: Mesh, collider: WorldCollider, body: StaticBody, fi
             stage=STAGE,
         )
         return False
-    prim.attr("points", "point3f[]", data.points)
-    prim.attr("faceVertexCounts", "int[]", data.face_vertex_counts)
-    prim.attr("faceVertexIndices", "int[]", data.face_vertex_indices)
-    prim.attr("subdivisionScheme", "token", "none", uniform=True)
-    prim.attr("extent", "float3[]", data.extent)
+    author_mesh(prim, data)
     return True
 
 

@@ -18,6 +18,9 @@ class WorldOptions:
     # Where the robot stands: X, Y (its height from the terrain under its feet) or X, Y, Z; None: the
     # world's own include pose, else the origin.
     spawn: tuple[float, ...] | None = None
+    # Several copies of the robot (``--spawn`` given more than once): every copy's point, ``spawn``
+    # the first. Empty: one robot.
+    copies: tuple[tuple[float, ...], ...] = ()
     # Folders searched for model:// URIs before the Gazebo environment variables.
     model_path: tuple[str, ...] = ()
     # A YAML file of cord fields (frontends/world/cords.py), added to the world (or to an empty one).

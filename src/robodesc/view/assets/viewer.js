@@ -164,6 +164,18 @@
     for (const r of data.roots) robotRoot.add(links[r].group);
   }
 
+  // The world the robot stands in (--world, --terrain): its ground, and the robot at its spawn
+  // (the first copy; the page's sliders move one robot).
+  function buildWorld(geometries) {
+    if (!data.world) return;
+    const ground = new THREE.Group();
+    ground.name = 'world';
+    for (const s of data.world.ground) ground.add(shapeMesh(s, geometries, false));
+    scene.add(ground);
+    api.groundShapes = ground.children.length;
+    if (data.world.robots.length) setPose(robotRoot, data.world.robots[0]);
+  }
+
   // Frames, axes, centres of mass and inertia boxes are sized from the robot's own size.
   function buildHelpers(size) {
     const s = Math.max(size, 1e-3);
@@ -452,6 +464,7 @@
 
   Promise.all(data.meshes.map(parseGlb)).then((geometries) => {
     buildRobot(geometries);
+    buildWorld(geometries);
     buildSliders();
     buildTree();
     buildFindings();
@@ -460,10 +473,12 @@
     const b = bounds();
     robotSize = b.getSize(new THREE.Vector3()).length();
     buildHelpers(robotSize);
-    const grid = new THREE.GridHelper(robotSize * 2, 20, 0xb0b4bc, 0xd4d7dd);
-    grid.rotation.x = Math.PI / 2; // three's grid lies in XZ; the ground is XY here
-    grid.position.set(0, 0, b.min.z);
-    scene.add(grid);
+    if (!data.world) { // a world draws its own ground
+      const grid = new THREE.GridHelper(robotSize * 2, 20, 0xb0b4bc, 0xd4d7dd);
+      grid.rotation.x = Math.PI / 2; // three's grid lies in XZ; the ground is XY here
+      grid.position.set(0, 0, b.min.z);
+      scene.add(grid);
+    }
     bindToggles();
     resize();
     frame();
