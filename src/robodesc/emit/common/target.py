@@ -124,6 +124,11 @@ class Target:
     # The files beside a file output that a world adds (the USD world stage): protected as ``owned``
     # is, only when a world is given.
     world_files: OwnedFunction | None = None
+    # What ``--copy-meshes`` copies under ``meshes/`` beside the output: the files the output refers to
+    # and no other, so that the flag means one thing for every target (the output names no file
+    # outside its folder). USD embeds mesh geometry and refers only to textures; MJCF's writer places
+    # every mesh in its folder itself and writes no texture, so the flag changes nothing there.
+    copies: frozenset[str] = frozenset({"meshes", "textures"})
 
     def output_name(self, stem: str, suffix: str | None = None) -> str:
         """The output path for ``stem`` (a folder for folder targets), with ``suffix`` or the default."""

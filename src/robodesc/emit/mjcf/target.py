@@ -172,5 +172,7 @@ TARGET = Target(
     owned=lambda options, out: (scene_name(out),) if options.scene else (),
     derives_gains=True,
     worlds=True,
+    # The writer copies or converts every mesh into the folder by default and writes no texture.
+    copies=frozenset(),
     options_title="MJCF (-t mjcf; docs/mjcf.md)",
 )
