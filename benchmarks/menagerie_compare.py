@@ -215,7 +215,7 @@ def measure(scene: str, vlimits: dict[str, float], key_name: str = "home") -> di
     limited = model.actuator_ctrllimited.astype(bool)
     lo[~limited], hi[~limited] = -1.0, 1.0
     redraw = max(1, int(0.1 / model.opt.timestep))
-    fastest, fastest_joint, ratio = 0.0, "", 0.0
+    fastest, fastest_joint, ratio, ratio_joint = 0.0, "", 0.0, ""
     unstable = False
     for i in range(int(RANDOM_SECONDS / model.opt.timestep)):
         if i % redraw == 0:
@@ -227,11 +227,17 @@ def measure(scene: str, vlimits: dict[str, float], key_name: str = "home") -> di
         for name, _, dof in hinges:
             speed = abs(float(data.qvel[dof]))
             limit = vlimits.get(name)
-            if limit:
-                ratio = max(ratio, speed / limit)
+            if limit and speed / limit > ratio:
+                ratio, ratio_joint = speed / limit, name
             if speed > fastest:
                 fastest, fastest_joint = speed, name
-    row.update(random_stable=not unstable, fastest=fastest, fastest_joint=fastest_joint, speed_over_limit=ratio)
+    row.update(
+        random_stable=not unstable,
+        fastest=fastest,
+        fastest_joint=fastest_joint,
+        speed_over_limit=ratio,
+        speed_over_limit_joint=ratio_joint,
+    )
     # Speed.
     # The best of five runs of this process's CPU time: the machine is shared (load 19 on 2 cores
     # while measured), and wall time measured the neighbours.
@@ -280,7 +286,11 @@ def table(results: dict[str, dict[str, Any]]) -> str:
                 lines.append(f"| {robot} | {side} | {row['error'][:80]} | | | | | |")
                 continue
             stands = f"{_fmt(row, 'stands', '')}, {row['drift']:.3f} m" if row.get("floating") else "welded"
-            over = f"×{row['speed_over_limit']:.2f}" if row["speed_over_limit"] else "no URDF limit"
+            over = (
+                f"×{row['speed_over_limit']:.2f} ({row['speed_over_limit_joint']})"
+                if row["speed_over_limit"]
+                else "no URDF limit"
+            )
             rnd = f"{'yes' if row['random_stable'] else 'NO'}, {row['fastest_joint']} {row['fastest']:.3g}, {over}"
             lines.append(
                 f"| {robot} | {side} | {_fmt(row, 'hold_max', '.3g')} | {_fmt(row, 'sag', '.3g')} | {stands} | {rnd} "
