@@ -371,14 +371,18 @@ def main(argv: list[str] | None = None) -> int:
                     sides["menagerie"] = {"error": f"{type(exc).__name__}: {exc}"}
             results[name] = sides
             print(name, json.dumps(sides, default=str)[:400], flush=True)
-    os.makedirs(os.path.dirname(args.out), exist_ok=True)
-    with open(args.out + ".json", "w") as handle:
+    write_results(args.out, results, table(results))
+    return 0
+
+
+def write_results(out: str, results: dict[str, Any], text: str) -> None:
+    """``out``.json (the numbers) and ``out``.md (the table), and the table on standard output."""
+    os.makedirs(os.path.dirname(out), exist_ok=True)
+    with open(out + ".json", "w") as handle:
         json.dump(results, handle, indent=1, default=str)
-    text = table(results)
-    with open(args.out + ".md", "w") as handle:
+    with open(out + ".md", "w") as handle:
         handle.write(text)
     print(text)
-    return 0
 
 
 if __name__ == "__main__":

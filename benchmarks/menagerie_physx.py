@@ -19,7 +19,7 @@ from typing import Any
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from menagerie_compare import ROBOTS  # noqa: E402
+from menagerie_compare import ROBOTS, write_results  # noqa: E402
 
 OUT = os.path.join(HERE, "results", "menagerie_physx")
 
@@ -94,12 +94,7 @@ def main(argv: list[str] | None = None) -> int:
         assert rel is not None
         results[name] = run(os.path.join(erd, "robots", rel), erd)
         print(name, json.dumps(results[name])[:300], flush=True)
-    with open(args.out + ".json", "w") as handle:
-        json.dump(results, handle, indent=1)
-    text = table(results)
-    with open(args.out + ".md", "w") as handle:
-        handle.write(text)
-    print(text)
+    write_results(args.out, results, table(results))
     return 0
 
 
