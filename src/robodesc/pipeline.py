@@ -366,11 +366,19 @@ def _emit(
         out_dir = stage.path if spec.folder else os.path.dirname(os.path.abspath(stage.final))
         assert out_dir is not None
         shown = os.path.join(stage.final if spec.folder else out_dir, "meshes")
-        progress(f"copying meshes to {shown}")
-        ctx = PassContext(resolved)
-        copy_meshes(robot, out_dir, ctx)
-        findings.extend(ctx.findings)
-        if spec.folder:
+        if spec.copies:
+            progress(f"copying meshes to {shown}")
+            ctx = PassContext(resolved)
+            copy_meshes(robot, out_dir, ctx, spec.copies)
+            findings.extend(ctx.findings)
+        else:
+            findings.info(
+                "copy-meshes-default",
+                f"-t {spec.name} writes every mesh it uses under {shown} without --copy-meshes; the flag changes nothing",
+                element=f"robot {robot.name!r}",
+                stage="copy_meshes",
+            )
+        if spec.folder and spec.copies:
             kept_meshes = stage.set_aside("meshes")
     progress(f"writing {spec.name}")
     emitted = spec.emit(robot, request, findings)

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import runpy
 import traceback
@@ -26,21 +27,31 @@ THROUGH_GROUND = -0.25  # m: a floating robot's root below this fell through the
 _LAUNCHED: list[object] = []
 
 
-def _sim_cfg() -> Any:
+def _sim_cfg(sim: str = "check", module: dict[str, Any] | None = None) -> Any:
+    """``check``: MJWarp ``implicitfast``, Isaac Lab's defaults otherwise (pyramidal cone, impratio 1,
+    one substep); ``lab``: Isaac Lab 3's defaults alone (Euler); ``module``: the module's
+    ``make_sim_cfg`` (its recommended settings). Contact buffers as large in each."""
     from isaaclab.sim import SimulationCfg
     from isaaclab_newton.physics import MJWarpSolverCfg, NewtonCfg
 
+    if sim == "module":
+        assert module is not None
+        cfg = module["make_sim_cfg"]("cpu")
+        cfg.physics.solver_cfg.njmax, cfg.physics.solver_cfg.nconmax = 600, 300
+        return cfg
+    extra = {"integrator": "implicitfast"} if sim == "check" else {}
     return SimulationCfg(
         dt=1 / 200,
         device="cpu",
-        physics=NewtonCfg(solver_cfg=MJWarpSolverCfg(njmax=600, nconmax=300, integrator="implicitfast")),
+        physics=NewtonCfg(solver_cfg=MJWarpSolverCfg(njmax=600, nconmax=300, **extra)),
     )
 
 
-def run(folder: str, steps: int, module_spawn: bool = False) -> dict[str, object]:
+def run(folder: str, steps: int, module_spawn: bool = False, sim: str = "check") -> dict[str, object]:
     from isaaclab.test.utils import launch_test_simulation
 
-    sim_cfg = _sim_cfg()
+    module_path = next(os.path.join(folder, n) for n in os.listdir(folder) if n.endswith("_isaaclab.py"))
+    sim_cfg = _sim_cfg(sim, runpy.run_path(module_path) if sim == "module" else None)
     if not _LAUNCHED:  # once per process: the corpus tier runs many robots in one
         # A Newton physics config selects the kit-less runtime (no Isaac Sim, no GPU).
         launch_test_simulation(sim_cfg, device="cpu")
@@ -53,7 +64,6 @@ def run(folder: str, steps: int, module_spawn: bool = False) -> dict[str, object
     from isaaclab.sim import build_simulation_context
     from isaaclab.utils import replace
 
-    module_path = next(os.path.join(folder, n) for n in os.listdir(folder) if n.endswith("_isaaclab.py"))
     module = runpy.run_path(module_path)
     cfg = module["ROBOT_CFG"]
     data = module["ROBOT"]
@@ -95,6 +105,7 @@ def run(folder: str, steps: int, module_spawn: bool = False) -> dict[str, object
             warnings.simplefilter("ignore", DeprecationWarning)
             robot.set_joint_position_target_index(target=default)
         start_q = _torch(robot.data.joint_pos)[0].clone()
+        start_xy = [float(v) for v in _torch(robot.data.root_pos_w)[0][:2]]
         lowest_up, drift = 1.0, 0.0
         for _ in range(steps):
             robot.write_data_to_sim()
@@ -111,6 +122,9 @@ def run(folder: str, steps: int, module_spawn: bool = False) -> dict[str, object
         checks["lowest_up_z"] = lowest_up
         checks["joint_drift"] = drift
         checks["root_pos"] = [float(v) for v in _torch(robot.data.root_pos_w)[0]]
+        # How far the root crept on the ground standing still (m).
+        checks["creep"] = math.hypot(checks["root_pos"][0] - start_xy[0], checks["root_pos"][1] - start_xy[1])
+        checks["sim"] = sim
         checks["finite"] = bool(torch.isfinite(_torch(robot.data.joint_pos)).all())
         names = list(robot.joint_names)
         stiffness = _torch(robot.data.joint_stiffness)[0]
@@ -165,6 +179,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument(
         "--module-spawn", action="store_true", help="spawn at the module's init_state.pos (the default spawn)"
     )
+    ap.add_argument("--sim", choices=("check", "lab", "module"), default="check", help="the simulation settings")
     ap.add_argument("--out", required=True)
     args = ap.parse_args(argv)
     cases = [{"name": "robot", "folder": args.folder}]
@@ -174,7 +189,7 @@ def main(argv: list[str] | None = None) -> int:
     results: dict[str, Any] = {}
     for case in cases:
         try:
-            result = run(os.path.abspath(case["folder"]), args.steps, args.module_spawn)
+            result = run(os.path.abspath(case["folder"]), args.steps, args.module_spawn, args.sim)
         except Exception as exc:  # the failure is the result
             result = {
                 "status": f"fail: {type(exc).__name__}: {str(exc)[:300]}",

@@ -116,6 +116,10 @@ print(json.dumps({
     "joint_effort_limit": group.joint_effort_limit,
     "effort_limit_sim": group.effort_limit_sim,
     "type": type(group).__name__,
+    "sim": (lambda c: {
+        "dt": c.dt, "num_substeps": c.physics.num_substeps, "cone": c.physics.solver_cfg.cone,
+        "impratio": c.physics.solver_cfg.impratio, "integrator": c.physics.solver_cfg.integrator,
+    })(module["make_sim_cfg"]("cpu")),
 }))
 """
 
@@ -143,6 +147,14 @@ def test_isaac_lab_module_builds_real_classes(version: str, tmp_path: Path) -> N
     assert seen["type"] == "ImplicitActuatorCfg"
     assert seen["rot"] == seen["default_rot"] == [0.0, 0.0, 0.0, 1.0]
     assert seen["joint_effort_limit"] is not None and seen["effort_limit_sim"] is None
+    # The recommended simulation settings build Isaac Lab 3's Newton MJWarp config (a welded arm: one substep).
+    assert seen["sim"] == {
+        "dt": 0.005,
+        "num_substeps": 1,
+        "cone": "elliptic",
+        "impratio": 100.0,
+        "integrator": "implicitfast",
+    }
 
 
 def test_python_is_the_projects() -> None:

@@ -135,6 +135,13 @@ def test_spirit_settings_are_quad_sdks(folders: dict[str, robodesc.CompileResult
     assert module["articulation"]["solver_position_iteration_count"] == 64
     assert module["articulation"]["solver_velocity_iteration_count"] == 16
     assert module["fix_base"] is False and module["init_state"]["pos"] == (0.0, 0.0, 0.3)
+    # A floating robot's recommended simulation settings (make_sim_cfg): Isaac Lab 3's MJWarp defaults
+    # (pyramidal, impratio 1, one substep) let quadrupeds creep 0.14-0.64 m in 3 s (issue 35).
+    assert module["sim"] == {
+        "dt": 0.005,
+        "num_substeps": 2,
+        "mjwarp": {"integrator": "implicitfast", "cone": "elliptic", "impratio": 100.0},
+    }
     knees = next(g for g in module["actuators"].values() if "j_knee_0" in g["joint_names_expr"])
     assert knees["armature"] == pytest.approx(1.77264e-2) and knees["stiffness"] == 0.0
     settings = json.loads(Path(result.files["importer_settings"]).read_text())

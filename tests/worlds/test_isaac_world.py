@@ -67,6 +67,10 @@ def _run_module(path: str, monkeypatch: pytest.MonkeyPatch) -> dict[str, Any]:
         "isaaclab.actuators": types.SimpleNamespace(ImplicitActuatorCfg=lambda **kw: kw),
         "isaaclab.assets": types.SimpleNamespace(ArticulationCfg=ArticulationCfg),
         "isaaclab.terrains": types.SimpleNamespace(TerrainImporterCfg=recorder("terrain")),
+        "isaaclab_newton": types.ModuleType("isaaclab_newton"),
+        "isaaclab_newton.physics": types.SimpleNamespace(
+            MJWarpSolverCfg=recorder("mjwarp"), NewtonCfg=recorder("newton")
+        ),
     }
     for name, module in fakes.items():
         monkeypatch.setitem(sys.modules, name, module)
@@ -109,6 +113,8 @@ def test_isaac_lab_module_world(folder: robodesc.CompileResult, monkeypatch: pyt
     # The world's physics: Quad-SDK's 1 ms step and Earth's gravity.
     assert made["sim"]["dt"] == pytest.approx(0.001)
     assert made["sim"]["gravity"] == pytest.approx((0.0, 0.0, -9.81))
+    # ... on the robot's recommended solver settings (issue 35: the elliptic cone that stands it still).
+    assert made["mjwarp"]["cone"] == "elliptic" and made["newton"]["num_substeps"] == 2
     # The robot's init_state is its spawn on the terrain, as the world stage places it.
     pos = made["init_state"]["pos"]
     assert pos == pytest.approx(plain["WORLD"]["spawns"][0])

@@ -351,7 +351,11 @@ def _add_pass_flags(comp: argparse.ArgumentParser) -> None:
         "respected). Default: on for -t mjcf, off elsewhere; --no-merge-fixed keeps them as bodies",
     )
     ps.add_argument(
-        "--copy-meshes", action="store_true", default=None, help="copy meshes into a meshes/ folder next to the output"
+        "--copy-meshes",
+        action="store_true",
+        default=None,
+        help="copy the meshes and textures the output refers to into meshes/ next to it (-t usd: textures only, "
+        "mesh geometry is embedded; -t mjcf: its folder holds its meshes without the flag)",
     )
 
 

@@ -162,7 +162,10 @@ def _umask() -> int:
     return mask
 
 
-def copy_meshes(robot: Robot, out_dir: str, ctx: PassContext) -> Robot:
+def copy_meshes(
+    robot: Robot, out_dir: str, ctx: PassContext, kinds: frozenset[str] = frozenset({"meshes", "textures"})
+) -> Robot:
+    """Copy the ``kinds`` of file (``meshes``, ``textures``) the output will refer to (``Target.copies``)."""
     copier = _Copier(out_dir, ctx)
     copied = 0
     roots = allowed_roots(robot)
@@ -175,6 +178,8 @@ def copy_meshes(robot: Robot, out_dir: str, ctx: PassContext) -> Robot:
 
     def mesh(m: Mesh, element: str) -> None:
         nonlocal copied
+        if "meshes" not in kinds:
+            return
         if m.path is None or not os.path.isfile(m.path):
             ctx.warn("mesh-not-copied", f"mesh {m.uri!r} has no file to copy", element=element, stage=NAME)
             return
@@ -189,6 +194,8 @@ def copy_meshes(robot: Robot, out_dir: str, ctx: PassContext) -> Robot:
 
     def texture(mat: Material, element: str) -> None:
         nonlocal copied
+        if "textures" not in kinds:
+            return
         if mat.texture_path is None or not os.path.isfile(mat.texture_path):
             return
         if not allowed(mat.texture_path, element, texture=True):

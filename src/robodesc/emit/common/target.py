@@ -132,6 +132,11 @@ class Target:
     # Writes a world file given as the input alone (its static models and physics, no robot);
     # None: the target holds no world without a robot.
     world_alone: WorldAloneFunction | None = None
+    # What ``--copy-meshes`` copies under ``meshes/`` beside the output: the files the output refers to
+    # and no other, so that the flag means one thing for every target (the output names no file
+    # outside its folder). USD embeds mesh geometry and refers only to textures; MJCF's writer places
+    # every mesh in its folder itself and writes no texture, so the flag changes nothing there.
+    copies: frozenset[str] = frozenset({"meshes", "textures"})
 
     def output_name(self, stem: str, suffix: str | None = None) -> str:
         """The output path for ``stem`` (a folder for folder targets), with ``suffix`` or the default."""

@@ -122,6 +122,23 @@ try:
     ROBOT_CFG: Any = make_articulation_cfg()
 except ImportError:
     ROBOT_CFG = None
+
+
+def make_sim_cfg(device: str = "cuda:0", **overrides: Any) -> Any:
+    """The recommended ``SimulationCfg`` (``ROBOT["sim"]``: Newton's MJWarp solver), with the world's
+    step and gravity where the folder holds a world that gives them (``WORLD``); raises ImportError
+    without Isaac Lab 3's Newton backend."""
+    from isaaclab.sim import SimulationCfg
+    from isaaclab_newton.physics import MJWarpSolverCfg, NewtonCfg
+
+    sim = ROBOT["sim"]
+    solver = _fit(MJWarpSolverCfg, sim["mjwarp"], {{}})
+    physics = NewtonCfg(solver_cfg=solver, num_substeps=sim["num_substeps"])
+    values: dict[str, Any] = {{"dt": sim["dt"], "device": device, "physics": physics}}
+    world = globals().get("WORLD")
+    if world:
+        values.update({{key: world[key] for key in ("dt", "gravity") if world[key] is not None}})
+    return SimulationCfg(**{{**values, **overrides}})
 '''
 
 # Appended when the robot carries contact sensors (--contact-sensors): the links whose USD prims
@@ -146,7 +163,7 @@ except (ImportError, AttributeError):
 
 
 # Appended when the folder holds a world (--world, --terrain): Isaac Lab's terrain importer and the
-# simulation's step and gravity (isaaclab.terrains.TerrainImporterCfg, isaaclab.sim.SimulationCfg).
+# simulation's step and gravity (isaaclab.terrains.TerrainImporterCfg; make_sim_cfg reads WORLD).
 _WORLD_TEMPLATE = '''
 
 # The world (robodesc --world): its ground for Isaac Lab's terrain importer, its physics for the
@@ -166,15 +183,6 @@ def make_terrain_cfg(prim_path: str = "/World/ground") -> Any:
     if WORLD["terrain_type"] == "usd":
         return TerrainImporterCfg(prim_path=prim_path, terrain_type="usd", usd_path=TERRAIN_USD_PATH)
     return TerrainImporterCfg(prim_path=prim_path, terrain_type="plane")
-
-
-def make_sim_cfg(**overrides: Any) -> Any:
-    """A ``SimulationCfg`` with the world's step and gravity (where it gives them); raises ImportError
-    without Isaac Lab."""
-    import isaaclab.sim as sim_utils
-
-    values = {{key: WORLD[key] for key in ("dt", "gravity") if WORLD[key] is not None}}
-    return sim_utils.SimulationCfg(**{{**values, **overrides}})
 
 
 try:
@@ -270,6 +278,24 @@ def _yaw_rotation(version: str, yaw: float) -> tuple[float, float, float, float]
     return (0.0, 0.0, z, w) if QUATERNION_ORDER[version] == "xyzw" else (w, 0.0, 0.0, z)
 
 
+# The simulation settings the module recommends (``make_sim_cfg``), Isaac Lab 3's Newton MJWarp
+# solver. Its defaults (pyramidal friction cone, impratio 1, one substep, Euler) let the quadrupeds
+# creep 0.14-0.64 m in 3 s standing still (issue 35): an elliptic cone with impratio 100 (as
+# mujoco_menagerie's Go1, A1, ANYmal C and the MJCF target's legged defaults) keeps a standing foot
+# from slipping, two substeps halve the contact step, and implicitfast integrates the derived drives'
+# damping (kd reaches 10^4 N·m·s/rad on heavy joints) stably. A welded robot touches nothing it
+# stands on: one substep. docs/isaac.md has the measurements.
+SIM_DT = 1.0 / 200.0
+
+
+def sim_settings(fix_base: bool) -> dict[str, object]:
+    return {
+        "dt": SIM_DT,
+        "num_substeps": 1 if fix_base else 2,
+        "mjwarp": {"integrator": "implicitfast", "cone": "elliptic", "impratio": 100.0},
+    }
+
+
 def isaac_lab_module(
     robot: Robot,
     settings: IsaacSettings,
@@ -303,6 +329,7 @@ def isaac_lab_module(
             "fix_root_link": settings.fix_base,
         },
         "actuators": actuator_groups(robot, settings),
+        "sim": sim_settings(settings.fix_base),
     }
     contact = [s.parent for s in robot.sensors if s.type.value == "contact"]
     if contact:

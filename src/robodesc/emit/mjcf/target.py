@@ -185,5 +185,7 @@ TARGET = Target(
     derives_gains=True,
     worlds=True,
     world_alone=world_alone,
+    # The writer copies or converts every mesh into the folder by default and writes no texture.
+    copies=frozenset(),
     options_title="MJCF (-t mjcf; docs/mjcf.md)",
 )

@@ -59,5 +59,8 @@ TARGET = Target(
     worlds=True,
     world_files=lambda options, out: (world_file_name(out),),
     world_alone=write_world_alone,
+    # Mesh geometry is embedded (a copied mesh would be an unused file, and outside the roots the
+    # writer reads from); textures stay files the layer refers to.
+    copies=frozenset({"textures"}),
     options_title="USD and Isaac Sim (-t usd, --isaac-sim; see docs/usd.md, docs/isaac.md)",
 )

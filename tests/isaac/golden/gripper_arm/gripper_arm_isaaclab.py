@@ -64,7 +64,10 @@ ROBOT: dict[str, Any] = {   'name': 'gripper_arm',
                                               'joint_effort_limit': 10.0,
                                               'joint_velocity_limit': 0.2,
                                               'armature': None,
-                                              'friction': None}}}
+                                              'friction': None}},
+    'sim': {   'dt': 0.005,
+               'num_substeps': 1,
+               'mjwarp': {'integrator': 'implicitfast', 'cone': 'elliptic', 'impratio': 100.0}}}
 # The identity rotation in ROBOT's quaternion order (written for Isaac Lab 3.x).
 ROBOT_IDENTITY = (0.0, 0.0, 0.0, 1.0)
 
@@ -138,3 +141,20 @@ try:
     ROBOT_CFG: Any = make_articulation_cfg()
 except ImportError:
     ROBOT_CFG = None
+
+
+def make_sim_cfg(device: str = "cuda:0", **overrides: Any) -> Any:
+    """The recommended ``SimulationCfg`` (``ROBOT["sim"]``: Newton's MJWarp solver), with the world's
+    step and gravity where the folder holds a world that gives them (``WORLD``); raises ImportError
+    without Isaac Lab 3's Newton backend."""
+    from isaaclab.sim import SimulationCfg
+    from isaaclab_newton.physics import MJWarpSolverCfg, NewtonCfg
+
+    sim = ROBOT["sim"]
+    solver = _fit(MJWarpSolverCfg, sim["mjwarp"], {})
+    physics = NewtonCfg(solver_cfg=solver, num_substeps=sim["num_substeps"])
+    values: dict[str, Any] = {"dt": sim["dt"], "device": device, "physics": physics}
+    world = globals().get("WORLD")
+    if world:
+        values.update({key: world[key] for key in ("dt", "gravity") if world[key] is not None})
+    return SimulationCfg(**{**values, **overrides})
