@@ -83,9 +83,10 @@ def _place_in_world(robot: Robot, request: EmitRequest, stance: Stance) -> None:
         return
     floating = not options.fix_base and robot.root.name != "world"
     zero = _Stance(complete(robot, {}), "zeros")
-    options.init_pos = placed.root_position(robot, zero, floating)
+    # On the heightfield scene.xml writes, not the mesh it was made from (they differ by the grid's error).
+    options.init_pos = placed.root_position(robot, zero, floating, grid=True)
     if floating:
-        options.home_height = placed.root_position(robot, stance, floating)[2]
+        options.home_height = placed.root_position(robot, stance, floating, grid=True)[2]
 
 
 def _contact_defaults(robot: Robot, request: EmitRequest, stance: Stance, findings: Findings) -> None:
