@@ -101,6 +101,27 @@ class PlacedWorld:
     def grid_of(self, collider: WorldCollider) -> TerrainGrid | None:
         return next((g for g in self.grids if g.collider is collider), None)
 
+    def probes(self, count: int = 16, *, grid: bool = False) -> list[Vec3]:
+        """Points (x, y, ground z) for a reader to find the ground at: the spawn, and ``count``
+        points drawn (seed 0) over each terrain, a cell inside its edges."""
+        rng = np.random.default_rng(0)
+        xs, ys = [self.spawn[0]], [self.spawn[1]]
+        for terrain in self.terrains:
+            made = self.grid_of(terrain.collider) if grid else None
+            g = made.grid if made is not None else terrain.image
+            if g is not None:
+                w, h = g.size
+                lo, hi = np.array([g.x0, g.y0]) + g.step, np.array([g.x0 + w, g.y0 + h]) - g.step
+            else:
+                assert terrain.points is not None
+                lo, hi = terrain.points[:, :2].min(axis=0) + 0.01, terrain.points[:, :2].max(axis=0) - 0.01
+            local = rng.uniform(lo, hi, size=(count, 2))
+            r, t = terrain.frame.rotation, terrain.frame.translation
+            xs += (r[0][0] * local[:, 0] + r[0][1] * local[:, 1] + t[0]).tolist()
+            ys += (r[1][0] * local[:, 0] + r[1][1] * local[:, 1] + t[1]).tolist()
+        z = self.ground_heights(np.array(xs), np.array(ys), grid=grid)
+        return [(x, y, float(h)) for x, y, h in zip(xs, ys, z.tolist(), strict=True) if math.isfinite(h)]
+
     def ground_height(self, x: float, y: float, *, grid: bool = False) -> float | None:
         """The highest static surface under (x, y): terrains (their mesh, or with ``grid`` the
         heightfield a target writes), level boxes and level planes."""

@@ -42,7 +42,10 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
         final_name=os.path.basename(request.final or out),
         world=request.world,
     )
-    return Emitted(files=files, extra={"mjcf_options": request.options, "drives": _asked_drives(robot, request)})
+    extra = {"mjcf_options": request.options, "drives": _asked_drives(robot, request)}
+    if request.world is not None:
+        extra["world_probes"] = request.world.probes(grid=True)  # where check.py asks MuJoCo for the ground
+    return Emitted(files=files, extra=extra)
 
 
 def _default_pose(robot: Robot, request: EmitRequest, findings: Findings) -> Stance:

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 import os
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from robodesc.emit.usd.context import set_pose
 from robodesc.emit.usd.layers import encode, stage_metadata
@@ -49,8 +49,9 @@ def write_world(
     findings: Findings,
     *,
     contacts: bool = False,
-) -> None:
-    """Write the world stage to ``path``; ``robot_file`` is the robot's final file name beside it."""
+) -> dict[str, Any]:
+    """Write the world stage to ``path``; ``robot_file`` is the robot's final file name beside it.
+    Returns what a reader must find in it (validation/world_check.py)."""
     from robodesc._files import write_atomic
 
     layer = Layer()
@@ -65,17 +66,28 @@ def write_world(
         ground.attr("length", "double", PLANE_SIZE)
         ground.attr("axis", "token", "Z", uniform=True)
         ground.apply("PhysicsCollisionAPI")
+    terrains: dict[str, int] = {}
     for body in placed.world.bodies:
         body_prim = world.child(_name(body.name), "Xform")
         set_pose(body_prim, pose_frame(body.pose))
         for collider in body.colliders:
-            _collider(body_prim, body, collider, material, findings)
+            count = _collider(body_prim, body, collider, material, findings)
+            if count:
+                terrains[f"/{WORLD}/{_name(body.name)}/{_name(collider.name)}"] = count
     for cords, anchors in placed.cords:
         _cords(world, cords, anchors)
     robot = world.child(robot_prim, "Xform")
     robot.payloads.append(Payload(f"./{os.path.basename(robot_file)}", f"/{robot_prim}"))
     set_pose(robot, Frame(translation=root))
     write_atomic(path, encode(layer, os.path.splitext(path)[1].lower()))
+    gravity = placed.world.physics.gravity or (0.0, 0.0, -9.81)
+    return {
+        "gravity": math.sqrt(sum(g * g for g in gravity)),
+        "terrains": terrains,
+        "robot": f"/{WORLD}/{robot_prim}",
+        "payload_prim": f"/{robot_prim}",
+        "root": tuple(root),
+    }
 
 
 def _scene(world: Prim, placed: PlacedWorld, contacts: bool) -> None:
@@ -126,14 +138,17 @@ def _terrain_material(world: Prim, placed: PlacedWorld) -> dict[float, str]:
 
 def _collider(
     body_prim: Prim, body: StaticBody, collider: WorldCollider, materials: dict[float, str], findings: Findings
-) -> None:
+) -> int:
+    """Write one collider; returns a terrain mesh's triangle count (0 for any other shape)."""
     shape = collider.shape
     name = _name(collider.name)
+    triangles = 0
     if isinstance(shape, Mesh):
         prim = body_prim.child(name, "Mesh")
-        if not _mesh(prim, shape, collider, body, findings):
+        triangles = _mesh(prim, shape, collider, body, findings)
+        if not triangles:
             del body_prim.children[name]
-            return
+            return 0
         prim.apply("PhysicsMeshCollisionAPI")
         prim.attr("physics:approximation", "token", "none", uniform=True)
     elif isinstance(shape, HeightImage):
@@ -144,7 +159,7 @@ def _collider(
             loc=collider.src,
             stage=STAGE,
         )
-        return
+        return 0
     elif isinstance(shape, Box):
         prim = body_prim.child(name, "Cube")
         prim.attr("size", "double", 1.0)
@@ -164,7 +179,7 @@ def _collider(
         prim.attr("length", "double", PLANE_SIZE)
         prim.attr("axis", "token", "Z", uniform=True)
     else:  # pragma: no cover - the world IR has no other shape
-        return
+        return 0
     if not isinstance(shape, Box):
         set_pose(prim, pose_frame(collider.origin))
     prim.apply("PhysicsCollisionAPI")
@@ -172,6 +187,7 @@ def _collider(
     if surface is not None and surface.mu is not None:
         prim.apply("MaterialBindingAPI")
         prim.rel("material:binding:physics", [materials[surface.mu]])
+    return triangles
 
 
 def _cords(world: Prim, cords: CordField, anchors: list[Vec3]) -> None:
@@ -232,7 +248,8 @@ def _cords(world: Prim, cords: CordField, anchors: list[Vec3]) -> None:
             previous = f"/{WORLD}/{cords.name}_{i}/s{k}"
 
 
-def _mesh(prim: Prim, shape: Mesh, collider: WorldCollider, body: StaticBody, findings: Findings) -> bool:
+def _mesh(prim: Prim, shape: Mesh, collider: WorldCollider, body: StaticBody, findings: Findings) -> int:
+    """The mesh's points and triangles on ``prim``; returns the triangle count (0: unreadable)."""
     from robodesc.meshes.buffers import MeshReadError
     from robodesc.meshes.data import build_mesh
 
@@ -247,13 +264,13 @@ def _mesh(prim: Prim, shape: Mesh, collider: WorldCollider, body: StaticBody, fi
             loc=collider.src,
             stage=STAGE,
         )
-        return False
+        return 0
     prim.attr("points", "point3f[]", data.points)
     prim.attr("faceVertexCounts", "int[]", data.face_vertex_counts)
     prim.attr("faceVertexIndices", "int[]", data.face_vertex_indices)
     prim.attr("subdivisionScheme", "token", "none", uniform=True)
     prim.attr("extent", "float3[]", data.extent)
-    return True
+    return len(data.face_vertex_counts)
 
 
 def _name(text: str) -> str:
