@@ -61,9 +61,15 @@ def run_for(
     opts: DynamicsOptions,
     options: Mapping[str, Any],
     compile_to: Callable[..., Any],
+    compiled: Any = None,
 ) -> DynamicsReport:
-    """``compile_to`` is the API's (passed in: the API imports this module, not the other way)."""
+    """``compile_to`` is the API's (passed in: the API imports this module, not the other way);
+    ``compiled`` the checked target's CompileResult (its files: the world it wrote)."""
     files: dict[str, str] = {}
+    world = _has_world(options)
+    worlds: dict[str, str] = {}
+    if world and compiled is not None:
+        _world_file(target, compiled, worlds)
     if target in READERS:
         files[target] = out
     elif target_spec(target).folder:
@@ -80,18 +86,54 @@ def run_for(
     for engine in engines:
         if any(engine in READERS.get(kind, ()) for kind in files):
             continue
-        name = next((t for t in TARGETS if engine in READERS.get(t, ()) and not target_spec(t).folder), None)
+        # With a world, the target that can hold it (MuJoCo: MJCF's scene.xml, not URDF).
+        name = next(
+            (
+                t
+                for t in TARGETS
+                if engine in READERS.get(t, ()) and not target_spec(t).folder and (target_spec(t).worlds or not world)
+            ),
+            None,
+        )
         if name is None:
             continue
-        path = target_spec(name).output_name(os.path.join(folder, "dynamics-robot"))
+        path = target_spec(name).output_name(os.path.join(folder, f"dynamics-{name}", "dynamics-robot"))
+        os.makedirs(os.path.dirname(path), exist_ok=True)  # each its own folder: MJCF's scene.xml beside it
         try:
             side = {**_options_for(target, name, options), **_gains_for(name, opts, options)}
-            compile_to(source, name, path, **side, validate=False)
+            result = compile_to(source, name, path, **side, validate=False)
         except RobodescError:
             continue  # the checked target's validation reports what is wrong with the robot
         files[name] = path
+        if world:
+            _world_file(name, result, worlds)
     opts = dataclasses.replace(opts, engines=engines)
+    if world:
+        from robodesc.check_world import world_stand
+
+        sensors = _sensor_links(compiled)
+        opts.world = world_stand(robot, opts, options, worlds, sensors, folder)
     return run_dynamics(robot, files, opts, source_urdf=_source_file(source, robot, folder, options))
+
+
+def _has_world(options: Mapping[str, Any]) -> bool:
+    return isinstance(options.get("world"), str | os.PathLike) or bool(options.get("terrain"))
+
+
+def _world_file(kind: str, result: Any, worlds: dict[str, str]) -> None:
+    """The world a compile wrote, by the kind of file an engine reads: USD's world stage, MJCF's
+    scene (SDF's world is its one file, which no engine here stands a robot on)."""
+    files = getattr(result, "files", {}) or {}
+    path = files.get("world") or (files.get("scene") if kind == "mjcf" else None)
+    if path and kind in READERS:
+        worlds[kind] = path
+
+
+def _sensor_links(compiled: Any) -> tuple[str, ...]:
+    robot = getattr(compiled, "robot", None)
+    if robot is None:
+        return ()
+    return tuple(s.parent for s in robot.sensors if s.type.value == "contact")
 
 
 def default_stance(robot: Robot, opts: DynamicsOptions) -> DynamicsOptions:

@@ -43,7 +43,14 @@ def _write_world(robot: Robot, request: EmitRequest, out: str, findings: Finding
     root = placed.root_position(robot, Stance(complete(robot, {}), "zeros"), floating)
     path = os.path.join(os.path.dirname(os.path.abspath(out)), world_file_name(final))
     contacts = any(s.type.value == "contact" for s in robot.sensors)
-    expect = write_world(path, final, robot.name, placed, root, findings, contacts=contacts)
+    given = [
+        contact.mu
+        for link in robot.links
+        for c in link.collisions
+        if (contact := link.collision_contact(c)) is not None and contact.mu is not None
+    ]
+    robot_mu = max([1.0, *given])  # 1: ODE's and Newton's default where the robot gives none
+    expect = write_world(path, final, robot.name, placed, root, findings, contacts=contacts, robot_mu=robot_mu)
     return path, expect
 
 

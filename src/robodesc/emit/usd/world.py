@@ -49,6 +49,7 @@ def write_world(
     findings: Findings,
     *,
     contacts: bool = False,
+    robot_mu: float = 1.0,
 ) -> dict[str, Any]:
     """Write the world stage to ``path``; ``robot_file`` is the robot's final file name beside it.
     Returns what a reader must find in it (validation/world_check.py)."""
@@ -59,7 +60,7 @@ def write_world(
     world = layer.prim(f"/{WORLD}", "Xform")
     world.kind = "assembly"
     _scene(world, placed, contacts)
-    material = _terrain_material(world, placed)
+    material = _terrain_material(world, placed, robot_mu, findings)
     if not placed.world.bodies:  # a world of cords alone: a ground plane under them
         ground = world.child("ground", "Plane")
         ground.attr("width", "double", PLANE_SIZE)
@@ -73,7 +74,7 @@ def write_world(
         for collider in body.colliders:
             count = _collider(body_prim, body, collider, material, findings)
             if count:
-                terrains[f"/{WORLD}/{_name(body.name)}/{_name(collider.name)}"] = count
+                terrains[terrain_prim(body.name, collider.name)] = count
     for cords, anchors in placed.cords:
         _cords(world, cords, anchors)
     robot = world.child(robot_prim, "Xform")
@@ -111,8 +112,14 @@ def _scene(world: Prim, placed: PlacedWorld, contacts: bool) -> None:
         scene.attr("newton:timeStepsPerSecond", "int", steps)
 
 
-def _terrain_material(world: Prim, placed: PlacedWorld) -> dict[float, str]:
-    """One physics material per distinct world friction, combining by the minimum (ODE's rule)."""
+def _terrain_material(world: Prim, placed: PlacedWorld, robot_mu: float, findings: Findings) -> dict[float, str]:
+    """One physics material per distinct world friction, combining by the minimum (ODE's rule).
+
+    A world friction above the robot's highest (``robot_mu``: its colliders' largest given one, at
+    least 1) is written as that: PhysX's minimum gives every robot collider its own friction either
+    way, and Newton, which reads no combine mode and hands both to MuJoCo's maximum, gets the robot's
+    friction instead of Quad-SDK's 100, at which its soft contacts let the robot sink through the
+    terrain (measured: a robot and two boxes fell through gap_40cm's slab)."""
     out: dict[float, str] = {}
     values = sorted(
         {
@@ -126,10 +133,19 @@ def _terrain_material(world: Prim, placed: PlacedWorld) -> dict[float, str]:
         return out
     scope = world.child("PhysicsMaterials", "Scope")
     for i, mu in enumerate(values):
+        written = min(mu, robot_mu)
+        if written < mu:
+            findings.info(
+                "usd-world-friction",
+                f"the world's mu {mu:g} is written as {written:g}, the robot's highest: PhysX combines by the minimum "
+                f"either way, and Newton (MuJoCo's maximum) gets the robot's friction, not {mu:g}",
+                element=f"material surface_{i}",
+                stage=STAGE,
+            )
         material = scope.child(f"surface_{i}", "Material")
         material.apply("PhysicsMaterialAPI")
-        material.attr("physics:staticFriction", "float", mu)
-        material.attr("physics:dynamicFriction", "float", mu)
+        material.attr("physics:staticFriction", "float", written)
+        material.attr("physics:dynamicFriction", "float", written)
         material.apply("PhysxMaterialAPI")
         material.attr("physxMaterial:frictionCombineMode", "token", "min", uniform=True)
         out[mu] = f"/{WORLD}/PhysicsMaterials/surface_{i}"
@@ -271,6 +287,11 @@ def _mesh(prim: Prim, shape: Mesh, collider: WorldCollider, body: StaticBody, fi
     prim.attr("subdivisionScheme", "token", "none", uniform=True)
     prim.attr("extent", "float3[]", data.extent)
     return len(data.face_vertex_counts)
+
+
+def terrain_prim(body: str, collider: str) -> str:
+    """The path of a world collider's prim in the world stage."""
+    return f"/{WORLD}/{_name(body)}/{_name(collider)}"
 
 
 def _name(text: str) -> str:

@@ -274,7 +274,65 @@ def run_file(
     robot: Robot, path: str, kind: str, setup: Setup, options: Any, scenarios: tuple[str, ...]
 ) -> list[Run] | str:
     """The runner contract of :mod:`.run`: the runs, or why the file could not be loaded."""
+    if scenarios == ("stand",):
+        return [stand_scene(path, kind, setup)]
     spec, why = load_spec(robot, path, "mjcf" if kind == "mjcf" else "urdf", dict(options.package_paths))
     if spec is None:
         return f"MuJoCo cannot load it: {why}"
     return run_all(robot, spec, kind, setup, scenarios)
+
+
+# s: the contact sensors are averaged over the stand's last quarter second (a robot on drives sways).
+SENSOR_WINDOW = 0.25
+
+
+def stand_scene(path: str, kind: str, setup: Setup) -> Run:
+    """The stand on a world: MJCF's scene.xml (the terrain's hfield, the robot included) from its
+    ``home`` keyframe (the stance at the spawn point, drive targets at the stance), run for the
+    world's duration; the feet's poses at the start and the end, and the touch sensors, summed."""
+    started = time.perf_counter()
+    run = Run(ENGINE, kind, "stand")
+    world = setup.world
+    assert world is not None
+    try:
+        model = mujoco.MjModel.from_xml_path(path)
+    except ValueError as exc:
+        run.ok, run.error = False, f"MuJoCo cannot load {os.path.basename(path)}: {str(exc).strip()[:200]}"
+        return run
+    data = mujoco.MjData(model)
+    key = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home")
+    mujoco.mj_resetDataKeyframe(model, data, max(key, 0))
+    mujoco.mj_forward(model, data)
+    root = _free_root(model)
+    if root is None:
+        run.ok, run.error = False, "no free root body in the scene"
+        return run
+    body = int(model.jnt_bodyid[root])
+    feet = {n: i for n in world.soles if (i := mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, n)) >= 0}
+    touch = [
+        int(model.sensor_adr[i]) for i in range(model.nsensor) if model.sensor_type[i] == mujoco.mjtSensor.mjSENS_TOUCH
+    ]
+    run.feet_start = {n: _pose(data, i) for n, i in feet.items()}
+    steps = max(1, round(world.duration / model.opt.timestep))
+    window = max(1, round(SENSOR_WINDOW / model.opt.timestep))
+    sensed = 0.0
+    with captured_warnings([]):
+        for step in range(steps):
+            mujoco.mj_step(model, data)
+            if not np.all(np.isfinite(data.qpos)):
+                run.ok, run.error = False, f"state not finite after {(step + 1) * model.opt.timestep:.3g} s"
+                return run
+            if step >= steps - window and touch:
+                sensed += float(sum(data.sensordata[a] for a in touch))
+    run.feet_end = {n: _pose(data, i) for n, i in feet.items()}
+    run.height = float(data.xpos[body][2])
+    run.tilt = math.acos(max(-1.0, min(1.0, float(data.xmat[body][8]))))
+    run.mass = float(model.body_mass.sum())
+    run.weight = run.mass * float(np.linalg.norm(model.opt.gravity))
+    run.contact_sum = sensed / window if touch else None
+    run.seconds = time.perf_counter() - started
+    return run
+
+
+def _pose(data: Any, body: int) -> list[float]:
+    return [*(float(v) for v in data.xpos[body]), *(float(v) for v in data.xquat[body])]

@@ -9,7 +9,7 @@ they read the same numbers from the same kind of file (an output against its sou
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -78,6 +78,36 @@ class DynamicsOptions:
     # What chose the pose and gains when the caller gave none (``validate --dynamics`` fills them
     # with the Isaac folder's defaults, robodesc.check_dynamics.default_stance); shown in the report.
     defaults: str | None = None
+    # A world to stand the robot in (``validate --dynamics --world``): the "stand" scenario.
+    world: WorldStand | None = None
+
+
+@dataclass(slots=True)
+class WorldStand:
+    """The stand on a world (``validate --dynamics --world``), placed once by the driver: the world
+    files each engine reads (kind -> path: MJCF's scene.xml, USD's world stage), where the root
+    starts (x, y, z at the home pose, yaw), each foot's sole (its lowest point at the home pose, in
+    the foot link's frame), the links with contact sensors, and the ground's height at any x, y
+    (NaN over none; the terrain as USD and SDF keep it). ``heightfields``: each terrain as a grid
+    file (.npz: z, x0, y0, step, the frame's x, y, z, yaw) and the USD prim it replaces, for Newton,
+    whose MuJoCo solver collides a triangle mesh as its convex hull."""
+
+    files: dict[str, str]
+    spawn: tuple[float, float, float, float]
+    soles: dict[str, tuple[float, float, float]]
+    ground: Callable[[NDArray[np.float64], NDArray[np.float64]], NDArray[np.float64]]
+    sensors: tuple[str, ...] = ()
+    heightfields: list[dict[str, Any]] = field(default_factory=list)
+    duration: float = 2.0  # s: a dropped robot settles on its feet within 1 s, the sensors are read after
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "spawn": list(self.spawn),
+            "feet": list(self.soles),
+            "sensors": list(self.sensors),
+            "heightfields": self.heightfields,
+            "duration": self.duration,
+        }
 
 
 @dataclass(slots=True)
@@ -104,9 +134,11 @@ class Setup:
     duration: float = 1.0
     timestep: float = 0.001
     drop_clearance: float = 0.05
+    world: WorldStand | None = None
 
     def as_dict(self) -> dict[str, Any]:
         return {
+            "world": self.world.as_dict() if self.world is not None else None,
             "pose": self.pose,
             "gains": {k: list(v) for k, v in self.gains.items()},
             "stand_height": self.stand_height,
@@ -276,4 +308,5 @@ def make_setup(robot: Robot, options: DynamicsOptions) -> Setup:
         duration=options.duration,
         timestep=options.timestep,
         drop_clearance=options.drop_clearance,
+        world=options.world,
     )
