@@ -124,7 +124,7 @@ def _world_file(kind: str, result: Any, worlds: dict[str, str]) -> None:
     """The world a compile wrote, by the kind of file an engine reads: USD's world stage, MJCF's
     scene (SDF's world is its one file, which no engine here stands a robot on)."""
     files = getattr(result, "files", {}) or {}
-    path = files.get("world") or (files.get("scene") if kind == "mjcf" else None)
+    path = files.get("world") or files.get("scene")
     if path and kind in READERS:
         worlds[kind] = path
 

@@ -81,14 +81,13 @@ def _soles(robot: Robot, q: Mapping[str, float]) -> dict[str, tuple[float, float
 
 
 def _heightfields(placed: PlacedWorld, folder: str) -> list[dict[str, Any]]:
-    """Each terrain's heightfield as an .npz for Newton's worker, with the USD prim it stands for."""
-    from robodesc.emit.usd.world import terrain_prim
-
+    """Each terrain's heightfield as an .npz for Newton's worker (which puts them in place of every
+    static triangle mesh of the world stage: the robot's own shapes all belong to its bodies)."""
     out = []
     for i, grid in enumerate(placed.grids):
         path = os.path.join(folder, f"terrain_{i}.npz")
         g, frame = grid.grid, grid.frame
         yaw = float(np.arctan2(frame.rotation[1][0], frame.rotation[0][0]))
         np.savez(path, z=g.z, x0=g.x0, y0=g.y0, step=g.step, frame=np.array([*frame.translation, yaw]))
-        out.append({"npz": path, "prim": terrain_prim(grid.body.name, grid.collider.name)})
+        out.append({"npz": path, "label": grid.label})
     return out
