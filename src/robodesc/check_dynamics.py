@@ -28,7 +28,7 @@ from robodesc.ir.diagnostics import Finding, Findings, RobodescError, Severity
 from robodesc.ir.model import Robot
 from robodesc.targets import TARGETS, target_spec
 from robodesc.validation.dynamics import READERS, DynamicsOptions, DynamicsReport, run_dynamics
-from robodesc.validation.dynamics.run import folder_files, joining
+from robodesc.validation.dynamics.run import STANDS_ON_WORLD, folder_files, joining
 from robodesc.validation.dynamics.source import write_source
 from robodesc.validation.report import Status
 
@@ -101,6 +101,10 @@ def run_for(
         os.makedirs(os.path.dirname(path), exist_ok=True)  # each its own folder: MJCF's scene.xml beside it
         try:
             side = {**_options_for(target, name, options), **_gains_for(name, opts, options)}
+            if world and engine not in STANDS_ON_WORLD:
+                # Drake stands on no world (its hold, drop and slide take the robot alone: an SDF
+                # world's static terrain link would weigh in its total mass).
+                side = {k: v for k, v in side.items() if k not in _WORLD_OPTIONS}
             result = compile_to(source, name, path, **side, validate=False)
         except RobodescError:
             continue  # the checked target's validation reports what is wrong with the robot
@@ -114,6 +118,9 @@ def run_for(
         sensors = _sensor_links(compiled)
         opts.world = world_stand(robot, opts, options, worlds, sensors, folder)
     return run_dynamics(robot, files, opts, source_urdf=_source_file(source, robot, folder, options))
+
+
+_WORLD_OPTIONS = ("world", "terrain", "terrain_size", "terrain_resolution", "spawn", "cords", "contact_sensors")
 
 
 def _has_world(options: Mapping[str, Any]) -> bool:

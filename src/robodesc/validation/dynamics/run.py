@@ -115,6 +115,7 @@ def run_dynamics(
 
 # The world file each engine stands the robot on (WorldStand.files is keyed by file kind).
 _WORLD_KIND = {"mujoco": "mjcf", "newton": "usd", "physx": "usd"}
+STANDS_ON_WORLD = tuple(_WORLD_KIND)  # the engines given a world file (Drake: none, DRAKE_NO_TERRAIN)
 DRAKE_NO_TERRAIN = (
     "not run: Drake has no heightfield, and its point contact collides a mesh as its convex hull "
     "(a concave terrain only as a rigid hydroelastic mesh against compliant robot colliders, which "
