@@ -308,11 +308,11 @@ def stand_scene(path: str, kind: str, setup: Setup) -> Run:
         run.ok, run.error = False, "no free root body in the scene"
         return run
     body = int(model.jnt_bodyid[root])
-    feet = {n: i for n in world.soles if (i := mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, n)) >= 0}
+    feet = _foot_frames(model, world.soles)
     touch = [
         int(model.sensor_adr[i]) for i in range(model.nsensor) if model.sensor_type[i] == mujoco.mjtSensor.mjSENS_TOUCH
     ]
-    run.feet_start = {n: _pose(data, i) for n, i in feet.items()}
+    run.feet_start = {n: _pose(data, f) for n, f in feet.items()}
     steps = max(1, round(world.duration / model.opt.timestep))
     window = max(1, round(SENSOR_WINDOW / model.opt.timestep))
     sensed = 0.0
@@ -324,7 +324,7 @@ def stand_scene(path: str, kind: str, setup: Setup) -> Run:
                 return run
             if step >= steps - window and touch:
                 sensed += float(sum(data.sensordata[a] for a in touch))
-    run.feet_end = {n: _pose(data, i) for n, i in feet.items()}
+    run.feet_end = {n: _pose(data, f) for n, f in feet.items()}
     run.height = float(data.xpos[body][2])
     run.tilt = math.acos(max(-1.0, min(1.0, float(data.xmat[body][8]))))
     run.mass = float(model.body_mass.sum())
@@ -334,5 +334,24 @@ def stand_scene(path: str, kind: str, setup: Setup) -> Run:
     return run
 
 
-def _pose(data: Any, body: int) -> list[float]:
-    return [*(float(v) for v in data.xpos[body]), *(float(v) for v in data.xquat[body])]
+def _foot_frames(model: Any, names: Any) -> dict[str, tuple[str, int]]:
+    """Each foot link's frame in the scene: its body, or the site a merged fixed link became
+    (``--merge-fixed``, on for MJCF: Spirit's toes are sites of its lower legs)."""
+    out = {}
+    for name in names:
+        body = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, name)
+        site = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, name)
+        if body >= 0:
+            out[name] = ("body", body)
+        elif site >= 0:
+            out[name] = ("site", site)
+    return out
+
+
+def _pose(data: Any, frame: tuple[str, int]) -> list[float]:
+    kind, i = frame
+    if kind == "body":
+        return [*(float(v) for v in data.xpos[i]), *(float(v) for v in data.xquat[i])]
+    quat = np.zeros(4)
+    mujoco.mju_mat2Quat(quat, data.site_xmat[i])
+    return [*(float(v) for v in data.site_xpos[i]), *(float(v) for v in quat)]
