@@ -281,12 +281,34 @@ def _mesh(prim: Prim, shape: Mesh, collider: WorldCollider, body: StaticBody, fi
             stage=STAGE,
         )
         return 0
+    _newton_hull(data.points, data.face_vertex_indices, collider, body, findings)
     prim.attr("points", "point3f[]", data.points)
     prim.attr("faceVertexCounts", "int[]", data.face_vertex_counts)
     prim.attr("faceVertexIndices", "int[]", data.face_vertex_indices)
     prim.attr("subdivisionScheme", "token", "none", uniform=True)
     prim.attr("extent", "float3[]", data.extent)
     return len(data.face_vertex_counts)
+
+
+def _newton_hull(points: Any, indices: Any, collider: WorldCollider, body: StaticBody, findings: Findings) -> None:
+    """A concave terrain mesh: Newton's MuJoCo solver collides it as its convex hull (docs/worlds.md,
+    "Newton and the USD terrain"); PhysX honours every triangle."""
+    import numpy as np
+    import trimesh
+
+    v = np.frombuffer(points, dtype=np.float32).reshape(-1, 3)
+    f = np.frombuffer(indices, dtype=np.int32).reshape(-1, 3)
+    if trimesh.Trimesh(v, f, process=True).is_convex:
+        return
+    findings.warn(
+        "usd-world-newton-hull",
+        "the terrain is concave: Newton's MuJoCo solver (SolverMuJoCo) collides a mesh as its convex hull, so in "
+        "Newton it fills gaps and steps (PhysX and Isaac Sim honour every triangle). Give Newton the terrain as a "
+        "heightfield (ModelBuilder.add_shape_heightfield), as validate --dynamics does (docs/worlds.md)",
+        element=f"collision {collider.name!r} of {body.name!r}",
+        loc=collider.src,
+        stage=STAGE,
+    )
 
 
 def terrain_prim(body: str, collider: str) -> str:
