@@ -251,14 +251,18 @@ def _terrain(body: StaticBody, collider: WorldCollider, findings: Findings) -> T
         points, triangles = _mesh_arrays(shape)
         return Terrain(body, collider, frame, TerrainSurface(points, triangles), None, points, triangles)
     except HeightfieldError as exc:
-        findings.warn(
-            "world-terrain-unreadable",
-            f"no heightfield: {exc}; MJCF collides its convex hull, USD and SDF keep the mesh",
-            element=element,
-            loc=collider.src,
-            stage=STAGE,
-        )
+        _unreadable(exc, element, collider, findings)
         return None
+
+
+def _unreadable(exc: HeightfieldError, element: str, collider: WorldCollider, findings: Findings) -> None:
+    findings.warn(
+        "world-terrain-unreadable",
+        f"no heightfield: {exc}; MJCF collides its convex hull, USD and SDF keep the mesh",
+        element=element,
+        loc=collider.src,
+        stage=STAGE,
+    )
 
 
 def _grid(terrain: Terrain, resolution: float, findings: Findings) -> TerrainGrid | None:
@@ -271,13 +275,7 @@ def _grid(terrain: Terrain, resolution: float, findings: Findings) -> TerrainGri
             assert terrain.points is not None and terrain.triangles is not None
             grid = rasterize(terrain.points, terrain.triangles, resolution)
     except HeightfieldError as exc:
-        findings.warn(
-            "world-terrain-unreadable",
-            f"no heightfield: {exc}; MJCF collides its convex hull, USD and SDF keep the mesh",
-            element=element,
-            loc=collider.src,
-            stage=STAGE,
-        )
+        _unreadable(exc, element, collider, findings)
         return None
     rows, cols = grid.shape
     note = (

@@ -94,13 +94,7 @@ def _run_robot(req, scenario):
         # The free root's coordinates come first: px py pz qx qy qz qw.
         q[2] = setup["stand_height"] + setup["drop_clearance"]
         q[3:7] = [0.0, 0.0, 0.0, 1.0]
-    state0.joint_q.assign(q)
-    newton.eval_fk(model, state0.joint_q, state0.joint_qd, state0)
-    if control.joint_target_q is not None:
-        target = control.joint_target_q.numpy().copy()
-        for n, v in pose.items():
-            target[names[n][0]] = v
-        control.joint_target_q.assign(target)
+    _start(model, state0, control, q, pose, names)
     solver = newton.solvers.SolverMuJoCo(model, use_mujoco_cpu=True, disable_contacts=not floor)
     dt = setup["timestep"]
     steps = max(1, round(setup["duration"] / dt))
@@ -135,6 +129,19 @@ def _run_robot(req, scenario):
         qx, qy = float(bq[3]), float(bq[4])
         run.update(height=float(bq[2]), tilt=math.acos(max(-1.0, min(1.0, 1.0 - 2.0 * (qx * qx + qy * qy)))))
     return run
+
+
+def _start(model, state, control, q, pose, names):
+    """The state at coordinates ``q`` (bodies by forward kinematics), drive targets at ``pose``."""
+    import newton
+
+    state.joint_q.assign(q)
+    newton.eval_fk(model, state.joint_q, state.joint_qd, state)
+    if control.joint_target_q is not None:
+        target = control.joint_target_q.numpy().copy()
+        for n, v in pose.items():
+            target[names[n][0]] = v
+        control.joint_target_q.assign(target)
 
 
 def _drives(model, control, names, pose):
@@ -268,13 +275,7 @@ def _stand(req):
     x, y, z, yaw = world["spawn"]
     q[start : start + 7] = [x, y, z, 0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)]
     state0, state1, control = model.state(), model.state(), model.control()
-    state0.joint_q.assign(q)
-    newton.eval_fk(model, state0.joint_q, state0.joint_qd, state0)
-    if control.joint_target_q is not None:
-        target = control.joint_target_q.numpy().copy()
-        for n, v in pose.items():
-            target[names[n][0]] = v
-        control.joint_target_q.assign(target)
+    _start(model, state0, control, q, pose, names)
     feet = {n: labels.index(n) for n in world["feet"] if n in labels}
 
     def poses():
