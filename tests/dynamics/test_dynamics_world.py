@@ -128,3 +128,49 @@ def test_newton_drops_a_box_into_the_gap(tmp_path: Path) -> None:
     assert gap_on_mesh == pytest.approx(0.095, abs=0.01)  # held up by the hull
     assert gap_on_field < -0.5  # in the gap
     assert slab_on_mesh == pytest.approx(0.1, abs=0.01) and slab_on_field == pytest.approx(0.1, abs=0.01)
+
+
+def test_a_sole_in_the_world_and_the_measures() -> None:
+    """measure_stand on a hand-made run: a foot link turned 90° about z at (1, 2, 0.3), its sole 0.3 m
+    below and 0.1 m ahead in its own frame, over ground at z = 0.05 (0.05 m up: the sole's gap)."""
+    import math
+
+    import numpy as np
+
+    from robodesc.validation.dynamics.result import Run
+    from robodesc.validation.dynamics.run import _sole, measure_stand
+    from robodesc.validation.dynamics.scenarios import Setup, WorldStand
+
+    c = math.cos(math.pi / 4)
+    assert _sole((0.1, 0.0, -0.3), [1.0, 2.0, 0.3, c, 0.0, 0.0, c]) == pytest.approx((1.0, 2.1, 0.0))
+    world = WorldStand({}, (0.0, 0.0, 0.4, 0.0), {"foot": (0.1, 0.0, -0.3)}, lambda x, y: np.full(np.shape(x), -0.05))
+    setup = Setup(pose={}, gains={}, floating=True, stand_height=0.4, friction=None, world=world)
+    run = Run("mujoco", "mjcf", "stand", height=0.5, mass=10.0)
+    run.feet_start = {"foot": [1.0, 2.0, 0.3, 1.0, 0.0, 0.0, 0.0]}
+    run.feet_end = {"foot": [1.0, 2.0, 0.3, c, 0.0, 0.0, c]}
+    measure_stand(run, setup)
+    assert run.feet_height == {"foot": pytest.approx(0.55)}
+    assert run.sole_gap == pytest.approx(0.05)
+    assert run.slip == pytest.approx(math.hypot(0.1, 0.1))  # (1.1, 2.0) -> (1.0, 2.1)
+    assert run.weight == pytest.approx(98.1)
+
+
+def test_drake_is_a_skip_row() -> None:
+    import numpy as np
+
+    from robodesc.frontends.load import load_source
+    from robodesc.ir.diagnostics import Findings
+    from robodesc.options import build_options
+    from robodesc.validation.dynamics import DynamicsOptions
+    from robodesc.validation.dynamics.result import DynamicsReport
+    from robodesc.validation.dynamics.run import _stand
+    from robodesc.validation.dynamics.scenarios import WorldStand, make_setup
+
+    robot = load_source(QUADRUPED, build_options({}).load, Findings())
+    opts = DynamicsOptions(engines=("drake",))
+    opts.world = WorldStand({}, (0.0, 0.0, 0.4, 0.0), {}, lambda x, y: np.zeros(np.shape(x)))
+    report = DynamicsReport(robot=robot.name)
+    _stand(robot, make_setup(robot, opts), opts, report, {"drake"})
+    (row,) = report.checks
+    assert (row.name, row.status, row.element) == ("stand", Status.SKIP, "drake") and "no heightfield" in row.message
+    assert not report.runs
