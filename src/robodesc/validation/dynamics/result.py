@@ -118,7 +118,9 @@ class DynamicsReport:
         """Per scenario: "agree", "differ" or "n/a" (fewer than two engines ran it), for the corpus
         report's column."""
         out: dict[str, str] = {}
-        for scenario in ("hold-fixed", "drop", "slide", "stand"):
+        # The stand only when there was a world: the corpus report's columns stay the three.
+        stand = ("stand",) if any(r.scenario == "stand" for r in self.runs) else ()
+        for scenario in ("hold-fixed", "drop", "slide", *stand):
             names = [c for c in self.checks if c.name == f"agree:{scenario}"]
             if not names:
                 out[scenario] = "n/a"
