@@ -105,12 +105,17 @@ def run_for(
                 # Drake stands on no world (its hold, drop and slide take the robot alone: an SDF
                 # world's static terrain link would weigh in its total mass).
                 side = {k: v for k, v in side.items() if k not in _WORLD_OPTIONS}
+            elif world:
+                # The world even when the checked target declares ``world`` as its own option (SDF's).
+                side.update({k: v for k, v in options.items() if k in _WORLD_OPTIONS})
             result = compile_to(source, name, path, **side, validate=False)
         except RobodescError:
             continue  # the checked target's validation reports what is wrong with the robot
         files[name] = path
         if world:
             _world_file(name, result, worlds)
+    if world:
+        _robot_alone(source, target, files, folder, options, compile_to)
     opts = dataclasses.replace(opts, engines=engines)
     if world:
         from robodesc.check_world import world_stand
@@ -121,6 +126,29 @@ def run_for(
 
 
 _WORLD_OPTIONS = ("world", "terrain", "terrain_size", "terrain_resolution", "spawn", "cords", "contact_sensors")
+
+
+def _robot_alone(
+    source: Any,
+    target: str,
+    files: dict[str, str],
+    folder: str,
+    options: Mapping[str, Any],
+    compile_to: Callable[..., Any],
+) -> None:
+    """A checked file with a world that only engines standing on none read (an SDF world, Drake):
+    its hold, drop and slide take the robot compiled alone (the world's static links would weigh
+    in its total mass and stand under its drop)."""
+    if target not in files or any(e in STANDS_ON_WORLD for e in READERS.get(target, ())):
+        return
+    path = target_spec(target).output_name(os.path.join(folder, "dynamics-alone", "dynamics-robot"))
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    alone = {k: v for k, v in options.items() if k not in _WORLD_OPTIONS}
+    try:
+        compile_to(source, target, path, **alone, validate=False)
+    except RobodescError:
+        return
+    files[target] = path
 
 
 def _has_world(options: Mapping[str, Any]) -> bool:

@@ -174,3 +174,14 @@ def test_drake_is_a_skip_row() -> None:
     (row,) = report.checks
     assert (row.name, row.status, row.element) == ("stand", Status.SKIP, "drake") and "no heightfield" in row.message
     assert not report.runs
+
+
+def test_an_sdf_world_checked_with_drake() -> None:
+    """-t sdf --world: Drake's hold, drop and slide take the robot compiled alone (the world's static
+    terrain link weighed 1 kg in its total mass), MuJoCo stands on the world all the same."""
+    result = robodesc.check(QUADRUPED, "sdf", world=STEPS, dynamics={"engines": ("mujoco", "drake")})
+    dyn = result.dynamics
+    assert dyn is not None and dyn.ok, dyn.to_text()
+    assert all(c.status is Status.PASS for c in _rows(dyn, "mass")), dyn.to_text()
+    (run,) = [r for r in dyn.runs if r.scenario == "stand"]
+    assert all(v == pytest.approx(0.35, abs=0.01) for v in run.feet_height.values()), dyn.to_text()
