@@ -33,7 +33,8 @@ from robodesc.options import build_options
 from robodesc.validation.dynamics import DynamicsOptions
 from robodesc.validation.dynamics.result import DynamicsReport
 from robodesc.validation.dynamics.run import _stand
-from robodesc.validation.dynamics.scenarios import make_setup
+from robodesc.validation.dynamics.scenarios import Thresholds, make_setup
+from robodesc.validation.dynamics.verdict import judge
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 QUADSDK = os.path.join(HERE, "..", "..", "shared", "corpus", "quadsdk")
@@ -73,6 +74,7 @@ def measure(robot_key: str, world: str, engines: tuple[str, ...]) -> dict[str, A
         setup = make_setup(robot, opts)
         report = DynamicsReport(robot=robot.name)
         _stand(robot, setup, opts, report, set(engines))
+        judge(report, setup, opts.thresholds)
         for run in report.runs:
             row[run.engine] = {
                 "ok": run.ok,
@@ -111,15 +113,36 @@ def main() -> None:
     parser.add_argument("--engines", default="mujoco,physx,newton")
     parser.add_argument("--json", default=os.path.join(HERE, "results", "worlds.json"))
     parser.add_argument("--md", default=os.path.join(HERE, "results", "worlds.md"))
+    parser.add_argument("--md-only", action="store_true", help="write the table from the --json file, run nothing")
     args = parser.parse_args()
     engines = tuple(args.engines.split(","))
     rows: list[dict[str, Any]] = []
-    for robot in args.robots.split(","):
-        for world in args.worlds.split(","):
-            rows.append(measure(robot, world, engines))
-            print(json.dumps(rows[-1]), flush=True)
-    with open(args.json, "w") as handle:
-        json.dump(rows, handle, indent=2)
+    if args.md_only:
+        with open(args.json) as handle:
+            rows = json.load(handle)
+    else:
+        for robot in args.robots.split(","):
+            for world in args.worlds.split(","):
+                rows.append(measure(robot, world, engines))
+                print(json.dumps(rows[-1]), flush=True)
+        with open(args.json, "w") as handle:
+            json.dump(rows, handle, indent=2)
+    write_table(rows, engines, args.md)
+
+
+def agree(row: dict[str, Any], engines: tuple[str, ...]) -> str:
+    """Every pair of engines within agree:stand's thresholds (mean height over the ground, tilt)."""
+    th = Thresholds()
+    runs = [row[e] for e in engines if row.get(e) and row[e]["ok"] and row[e]["height"] is not None]
+    if len(runs) < 2:
+        return "-"
+    worst_h = max(abs(a["height"] - b["height"]) for a in runs for b in runs)
+    worst_t = max(abs(a["tilt_deg"] - b["tilt_deg"]) for a in runs for b in runs)
+    ok = worst_h <= th.drop_height_agree and math.radians(worst_t) <= th.drop_tilt_agree
+    return f"{'yes' if ok else 'no'} ({worst_h * 1000:.0f} mm, {worst_t:.1f}°)"
+
+
+def write_table(rows: list[dict[str, Any]], engines: tuple[str, ...], md: str) -> None:
     lines = [
         "# Quad-SDK's worlds (benchmarks/worlds.py)",
         "",
@@ -128,12 +151,13 @@ def main() -> None:
         "the feet's contact sensors (MuJoCo touch, PhysX contact report) against the weight. Drake: not run (no",
         "heightfield). Compile times measured while other jobs shared the machine's two cores: upper bounds.",
         "",
-        "| robot | world | mjcf s | usd s | sdf s | spawn | " + " | ".join(engines) + " | engines agree |",
+        "| robot | world | mjcf s | usd s | sdf s | spawn | "
+        + " | ".join(engines)
+        + " | engines agree (largest difference) |",
         "|---|---|---|---|---|---|" + "---|" * len(engines) + "---|",
     ]
     for r in rows:
-        agree = [c for c in r["checks"] if c["name"] == "agree:stand"]
-        verdict = "yes" if agree and all(c["status"] == "pass" for c in agree) else "no" if agree else "-"
+        verdict = agree(r, engines)
         cells = " | ".join(_cell(r.get(e)) for e in engines)
         lines.append(
             f"| {r['robot']} | {r['world']} | {r['mjcf_s']} | {r['usd_s']} | {r['sdf_s']} | "
@@ -145,7 +169,26 @@ def main() -> None:
             lines.append(f"- {r['robot']} on {r['world']}: {r['spawn_note']}")
     for r in rows:
         lines.append(f"- {r['robot']} on {r['world']}: {r['heightfield']}")
-    with open(args.md, "w") as handle:
+    before = os.path.join(os.path.dirname(md), "worlds_before.json")
+    if os.path.isfile(before):
+        with open(before) as handle:
+            old = json.load(handle)
+        lines += [
+            "",
+            "## Before (commit d957372: every target rasterized every terrain; no level spawn)",
+            "",
+            "The same machine, an hour earlier, under the same kind of load; MuJoCo ran scene.xml from `home`",
+            "for 3 s at the origin (the robot's derived gains), no other engine.",
+            "",
+            "| robot | world | mjcf s | usd s | sdf s | MuJoCo: base over the ground under it, tilt, slip |",
+            "|---|---|---|---|---|---|",
+        ]
+        for r in old:
+            lines.append(
+                f"| {r['robot']} | {r['world']} | {r['mjcf_s']} | {r['usd_s']} | {r['sdf_s']} | "
+                f"{r['height']:.3f} m, {r['tilt_deg']:.1f}°, {r['slip'] * 100:.1f} cm |"
+            )
+    with open(md, "w") as handle:
         handle.write("\n".join(lines) + "\n")
 
 
