@@ -71,7 +71,7 @@ def test_an_overhang_is_counted() -> None:
 
 def test_float32_edges_stay_on_the_grid() -> None:
     # STL stores float32: the far edge of a slab at 5.4 m reads 5.4000001.
-    v, f = merged(slab(0, 5, 0, 1, 0.1), slab(np.float32(5.4), 9, 0, 1, 0.1))
+    v, f = merged(slab(0, 5, 0, 1, 0.1), slab(float(np.float32(5.4)), 9, 0, 1, 0.1))
     grid = rasterize(v.astype(np.float32).astype(np.float64), f, resolution=0.02)
     assert grid.max_error == pytest.approx(0.0, abs=1e-6)
     assert grid.gap_points == 19 * grid.shape[0]
