@@ -176,6 +176,7 @@ def test_drake_is_a_skip_row() -> None:
     assert not report.runs
 
 
+@TIER
 def test_an_sdf_world_checked_with_drake() -> None:
     """-t sdf --world: Drake's hold, drop and slide take the robot compiled alone (the world's static
     terrain link weighed 1 kg in its total mass), MuJoCo stands on the world all the same."""
