@@ -242,6 +242,10 @@ def check(source: Source, target: str = DEFAULT_TARGET, *, dynamics: Any = False
 
     load_plugins(tuple(options.get("plugins", ())))
     spec = target_spec(target)
+    on_world = isinstance(options.get("world"), str | os.PathLike) or bool(options.get("terrain"))
+    if dynamics is not False and dynamics is not None and on_world and "contact_sensors" not in options:
+        # The stand on a world reads the feet's force (docs/dynamics.md, "On a world").
+        options = {**options, "contact_sensors": True}
     with tempfile.TemporaryDirectory(prefix="robodesc-validate-") as tmp:
         out = spec.output_name(os.path.join(tmp, "robot"))
         try:
@@ -252,7 +256,7 @@ def check(source: Source, target: str = DEFAULT_TARGET, *, dynamics: Any = False
             from robodesc.check_dynamics import carry_source_refusals, dynamics_options, run_for
 
             opts = dynamics_options(dynamics, options)
-            result.dynamics = run_for(source, result.robot, target, out, tmp, opts, options, compile_to)
+            result.dynamics = run_for(source, result.robot, target, out, tmp, opts, options, compile_to, result)
             carry_source_refusals(result.dynamics, result.findings)
         return result
 

@@ -28,7 +28,7 @@ from robodesc.ir.diagnostics import Finding, Findings, RobodescError, Severity
 from robodesc.ir.model import Robot
 from robodesc.targets import TARGETS, target_spec
 from robodesc.validation.dynamics import READERS, DynamicsOptions, DynamicsReport, run_dynamics
-from robodesc.validation.dynamics.run import folder_files, joining
+from robodesc.validation.dynamics.run import STANDS_ON_WORLD, folder_files, joining
 from robodesc.validation.dynamics.source import write_source
 from robodesc.validation.report import Status
 
@@ -61,9 +61,15 @@ def run_for(
     opts: DynamicsOptions,
     options: Mapping[str, Any],
     compile_to: Callable[..., Any],
+    compiled: Any = None,
 ) -> DynamicsReport:
-    """``compile_to`` is the API's (passed in: the API imports this module, not the other way)."""
+    """``compile_to`` is the API's (passed in: the API imports this module, not the other way);
+    ``compiled`` the checked target's CompileResult (its files: the world it wrote)."""
     files: dict[str, str] = {}
+    world = _has_world(options)
+    worlds: dict[str, str] = {}
+    if world and compiled is not None:
+        _world_file(target, compiled, worlds)
     if target in READERS:
         files[target] = out
     elif target_spec(target).folder:
@@ -80,18 +86,89 @@ def run_for(
     for engine in engines:
         if any(engine in READERS.get(kind, ()) for kind in files):
             continue
-        name = next((t for t in TARGETS if engine in READERS.get(t, ()) and not target_spec(t).folder), None)
+        # With a world, the target that can hold it (MuJoCo: MJCF's scene.xml, not URDF).
+        name = next(
+            (
+                t
+                for t in TARGETS
+                if engine in READERS.get(t, ()) and not target_spec(t).folder and (target_spec(t).worlds or not world)
+            ),
+            None,
+        )
         if name is None:
             continue
-        path = target_spec(name).output_name(os.path.join(folder, "dynamics-robot"))
+        path = target_spec(name).output_name(os.path.join(folder, f"dynamics-{name}", "dynamics-robot"))
+        os.makedirs(os.path.dirname(path), exist_ok=True)  # each its own folder: MJCF's scene.xml beside it
         try:
             side = {**_options_for(target, name, options), **_gains_for(name, opts, options)}
-            compile_to(source, name, path, **side, validate=False)
+            if world and engine not in STANDS_ON_WORLD:
+                # Drake stands on no world (its hold, drop and slide take the robot alone: an SDF
+                # world's static terrain link would weigh in its total mass).
+                side = {k: v for k, v in side.items() if k not in _WORLD_OPTIONS}
+            elif world:
+                # The world even when the checked target declares ``world`` as its own option (SDF's).
+                side.update({k: v for k, v in options.items() if k in _WORLD_OPTIONS})
+            result = compile_to(source, name, path, **side, validate=False)
         except RobodescError:
             continue  # the checked target's validation reports what is wrong with the robot
         files[name] = path
+        if world:
+            _world_file(name, result, worlds)
+    if world:
+        _robot_alone(source, target, files, folder, options, compile_to)
     opts = dataclasses.replace(opts, engines=engines)
+    if world:
+        from robodesc.check_world import world_stand
+
+        sensors = _sensor_links(compiled)
+        opts.world = world_stand(robot, opts, options, worlds, sensors, folder)
     return run_dynamics(robot, files, opts, source_urdf=_source_file(source, robot, folder, options))
+
+
+_WORLD_OPTIONS = ("world", "terrain", "terrain_size", "terrain_resolution", "spawn", "cords", "contact_sensors")
+
+
+def _robot_alone(
+    source: Any,
+    target: str,
+    files: dict[str, str],
+    folder: str,
+    options: Mapping[str, Any],
+    compile_to: Callable[..., Any],
+) -> None:
+    """A checked file with a world that only engines standing on none read (an SDF world, Drake):
+    its hold, drop and slide take the robot compiled alone (the world's static links would weigh
+    in its total mass and stand under its drop)."""
+    if target not in files or any(e in STANDS_ON_WORLD for e in READERS.get(target, ())):
+        return
+    path = target_spec(target).output_name(os.path.join(folder, "dynamics-alone", "dynamics-robot"))
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    alone = {k: v for k, v in options.items() if k not in _WORLD_OPTIONS}
+    try:
+        compile_to(source, target, path, **alone, validate=False)
+    except RobodescError:
+        return
+    files[target] = path
+
+
+def _has_world(options: Mapping[str, Any]) -> bool:
+    return isinstance(options.get("world"), str | os.PathLike) or bool(options.get("terrain"))
+
+
+def _world_file(kind: str, result: Any, worlds: dict[str, str]) -> None:
+    """The world a compile wrote, by the kind of file an engine reads: USD's world stage, MJCF's
+    scene (SDF's world is its one file, which no engine here stands a robot on)."""
+    files = getattr(result, "files", {}) or {}
+    path = files.get("world") or files.get("scene")
+    if path and kind in READERS:
+        worlds[kind] = path
+
+
+def _sensor_links(compiled: Any) -> tuple[str, ...]:
+    robot = getattr(compiled, "robot", None)
+    if robot is None:
+        return ()
+    return tuple(s.parent for s in robot.sensors if s.type.value == "contact")
 
 
 def default_stance(robot: Robot, opts: DynamicsOptions) -> DynamicsOptions:

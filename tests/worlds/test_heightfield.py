@@ -71,7 +71,7 @@ def test_an_overhang_is_counted() -> None:
 
 def test_float32_edges_stay_on_the_grid() -> None:
     # STL stores float32: the far edge of a slab at 5.4 m reads 5.4000001.
-    v, f = merged(slab(0, 5, 0, 1, 0.1), slab(np.float32(5.4), 9, 0, 1, 0.1))
+    v, f = merged(slab(0, 5, 0, 1, 0.1), slab(float(np.float32(5.4)), 9, 0, 1, 0.1))
     grid = rasterize(v.astype(np.float32).astype(np.float64), f, resolution=0.02)
     assert grid.max_error == pytest.approx(0.0, abs=1e-6)
     assert grid.gap_points == 19 * grid.shape[0]
@@ -85,3 +85,22 @@ def test_refusals() -> None:
         rasterize(v, f[2:4], resolution=0.1)  # the bottom only
     with pytest.raises(HeightfieldError, match="exceeds"):
         rasterize(v * 1e4, f, resolution=1e-3)
+
+
+def test_the_surface_is_the_mesh_exactly() -> None:
+    """TerrainSurface (what the spawn reads, no grid): each tread's own height, the higher one on the
+    wall's line (a grid would ramp across a cell), NaN over the gap and off the terrain."""
+    from robodesc.meshes.heightfield import TerrainSurface
+
+    v, f = merged(slab(0, 1, 0, 1, 0.1), slab(1, 2, 0, 1, 0.3), slab(2.5, 3, 0, 1, 0.2))
+    surface = TerrainSurface(v, f)
+    x = np.array([0.5, 0.999, 1.0, 1.001, 1.5, 2.2, 2.7, 3.5])
+    z = surface.height_at(x, np.full(len(x), 0.5))
+    assert z[:2] == pytest.approx([0.1, 0.1], abs=1e-12)
+    assert z[2:5] == pytest.approx([0.3, 0.3, 0.3], abs=1e-12)
+    assert np.isnan(z[5]) and z[6] == pytest.approx(0.2, abs=1e-12) and np.isnan(z[7])
+    # Where the grid meets the mesh's vertices, it and the surface agree.
+    grid = rasterize(v, f, resolution=0.1)
+    xs, ys = np.meshgrid(np.arange(0, 2.01, 0.1), np.arange(0, 1.01, 0.1))
+    inside = (xs < 0.95) | (xs > 1.05)  # not the cell a wall ramps across
+    assert np.max(np.abs(surface.height_at(xs, ys) - grid.height_at(xs, ys))[inside]) < 1e-9

@@ -65,3 +65,24 @@ def test_physx_rests_the_robot_on_the_terrain(tmp_path: Path) -> None:
     # It lands on the terrain's top (z = 0 at the origin: Quad-SDK's pose -0.1 and a 0.1 slab),
     # neither through it nor floating above it.
     assert 0.0 < root[2] < 0.6 and abs(root[0]) < 0.05, root
+
+
+def test_a_concave_terrain_warns_of_newtons_hull(tmp_path: Path) -> None:
+    """examples/worlds/steps.world's step is concave: Newton's MuJoCo solver would collide its hull
+    (docs/worlds.md, "Newton and the USD terrain"); the warning names the terrain. Its friction (1) is
+    the robot's highest, so it is written as given."""
+    steps = EXAMPLES / "worlds" / "steps.world"
+    result = compile_to_usd(str(QUADRUPED), str(tmp_path / "q.usda"), world=str(steps), validate=False)
+    (hull,) = [f for f in result.findings if f.code == "usd-world-newton-hull"]
+    assert hull.element == "collision 'collision' of 'terrain'"
+    assert not [f for f in result.findings if f.code == "usd-world-friction"]
+
+
+def test_a_world_friction_of_100_is_written_as_the_robots(tmp_path: Path) -> None:
+    world = WORLDS / "flat" / "flat.world"
+    result = compile_to_usd(str(QUADRUPED), str(tmp_path / "q.usda"), world=str(world), validate=False)
+    assert [f.code for f in result.findings if f.code == "usd-world-newton-hull"] == []  # a box: convex
+    stage = Usd.Stage.Open(str(tmp_path / "q_world.usda"))
+    material = UsdPhysics.MaterialAPI(stage.GetPrimAtPath("/World/PhysicsMaterials/surface_0"))
+    assert material.GetDynamicFrictionAttr().Get() == pytest.approx(1.0)  # Quad-SDK's 100, for PhysX's min
+    assert [f.code for f in result.findings if f.code == "usd-world-friction"] == ["usd-world-friction"]

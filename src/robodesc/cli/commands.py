@@ -222,6 +222,10 @@ def cmd_validate(args: argparse.Namespace) -> int:
         check_output(args.report, folder=False, source=args.input, what="--report")
     args.json_target = args.target
     dynamics, options = _dynamics_options(args), _input_options(args)
+    # The world goes in the compile, and with it into what every engine runs (docs/worlds.md).
+    options.update(
+        {**{k: v for k, v in _bare_world(args).items() if k in _accepted(args.target)}, **world_options(args)}
+    )
     if isinstance(dynamics, dict):
         _place_gains(args, dynamics, options)
     elif args.stiffness or args.damping:

@@ -394,6 +394,7 @@ def _validate_parser(sub: Any) -> argparse.ArgumentParser:
         help=f"the target to check (default {DEFAULT_TARGET})",
     )
     add_input_options(valp)
+    add_world_options(valp)
     valp.add_argument("--report", metavar="FILE.md", help="write the report as Markdown")
     valp.add_argument("--json", action="store_true", help="print the report as JSON")
     dyn = valp.add_argument_group("dynamics (docs/dynamics.md)")

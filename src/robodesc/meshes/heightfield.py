@@ -163,3 +163,75 @@ def _interpolate(grid: HeightGrid, x: Array, y: Array) -> Array:
         ),
         dtype=np.float64,
     )
+
+
+class TerrainSurface:
+    """The exact height of a terrain mesh's upward surface at any x, y: the highest upward triangle
+    over the point, NaN where there is none (a gap, or off the terrain). What a target that keeps the
+    mesh (USD, SDF) collides with; the spawn needs only a few such heights, so no grid is made for it.
+
+    Triangles are bucketed by their x, y box into square cells about twice a typical triangle's
+    size, so a query tests only the triangles of its own cell (rough_25cm: ~60 of 10,900)."""
+
+    _SPREAD = 256  # a triangle over more cells than this (a 10 m flat quad) is tested everywhere
+
+    def __init__(self, vertices: Array, triangles: NDArray[np.int64]) -> None:
+        v = np.asarray(vertices, dtype=np.float64).reshape(-1, 3)
+        t = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+        corners = v[t]
+        normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+        up = normals[:, 2] > UP * np.maximum(np.linalg.norm(normals, axis=1), 1e-300)
+        if not up.any():
+            raise HeightfieldError("the mesh has no upward-facing triangle: it is not a terrain")
+        self.triangles = corners[up]
+        lo = self.triangles[:, :, :2].min(axis=1)
+        hi = self.triangles[:, :, :2].max(axis=1)
+        self.cell = max(2.0 * float(np.median((hi - lo).max(axis=1))), 1e-3)
+        self.origin = lo.min(axis=0)
+        first = np.floor((lo - self.origin) / self.cell).astype(np.int64)
+        last = np.floor((hi - self.origin) / self.cell).astype(np.int64)
+        buckets: dict[tuple[int, int], list[int]] = {}
+        everywhere: list[int] = []
+        for i, (a, b) in enumerate(zip(first.tolist(), last.tolist(), strict=True)):
+            if (b[0] - a[0] + 1) * (b[1] - a[1] + 1) > self._SPREAD:
+                everywhere.append(i)
+                continue
+            for cx in range(a[0], b[0] + 1):
+                for cy in range(a[1], b[1] + 1):
+                    buckets.setdefault((cx, cy), []).append(i)
+        self._buckets = {k: np.array(ids + everywhere, dtype=np.int64) for k, ids in buckets.items()}
+        self._everywhere = np.array(everywhere, dtype=np.int64)
+
+    def height_at(self, x: Array, y: Array) -> Array:
+        """Heights at the points (arrays of one shape); NaN where no upward triangle lies over them."""
+        px, py = np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64)
+        shape = np.broadcast(px, py).shape
+        px, py = np.broadcast_to(px, shape).ravel(), np.broadcast_to(py, shape).ravel()
+        out = np.full(px.shape, np.nan)
+        cells = np.floor((np.stack([px, py], axis=1) - self.origin) / self.cell).astype(np.int64)
+        keys, inverse = np.unique(cells, axis=0, return_inverse=True)
+        for k, key in enumerate(keys.tolist()):
+            ids = self._buckets.get((key[0], key[1]), self._everywhere)
+            if not len(ids):
+                continue
+            at = np.flatnonzero(inverse.ravel() == k)
+            out[at] = _highest(self.triangles[ids], px[at], py[at])
+        return out.reshape(shape)
+
+
+def _highest(tris: Array, x: Array, y: Array) -> Array:
+    """For each point, the highest of ``tris`` (n, 3, 3) over it, NaN where none is (barycentric
+    test with the rasterizer's tolerance, so an edge shared by two triangles belongs to both)."""
+    x0, y0, z0 = tris[:, 0, 0], tris[:, 0, 1], tris[:, 0, 2]
+    x1, y1, z1 = tris[:, 1, 0], tris[:, 1, 1], tris[:, 1, 2]
+    x2, y2, z2 = tris[:, 2, 0], tris[:, 2, 1], tris[:, 2, 2]
+    det = (y1 - y2) * (x0 - x2) + (x2 - x1) * (y0 - y2)
+    gx, gy = x[:, None], y[:, None]
+    w0 = ((y1 - y2) * (gx - x2) + (x2 - x1) * (gy - y2)) / det
+    w1 = ((y2 - y0) * (gx - x2) + (x0 - x2) * (gy - y2)) / det
+    w2 = 1.0 - w0 - w1
+    eps = 1e-5
+    inside = (w0 >= -eps) & (w1 >= -eps) & (w2 >= -eps)
+    z = np.where(inside, w0 * z0 + w1 * z1 + w2 * z2, -np.inf)
+    best = z.max(axis=1)
+    return np.where(np.isfinite(best), best, np.nan)

@@ -1,10 +1,12 @@
 """The world as every target writes it: read once, placed once (docs/worlds.md).
 
-:func:`place_world` runs before the emitters. It turns every terrain collider (a mesh or a height
-image) into a heightfield grid (meshes/heightfield.py), reports what the grid loses, and fixes where
-the robot stands: ``--spawn X,Y[,Z]``, else the world's include of the robot, else the origin. The
-height of a robot's root follows from the ground under its feet in the pose each target starts it
-in (:meth:`PlacedWorld.root_position`), so every target puts it on the same ground.
+:func:`place_world` runs before the emitters. It reads every terrain collider (a mesh's exact
+surface, or a height image) and fixes where the robot stands: ``--spawn X,Y[,Z]``, else the world's
+include of the robot, else the origin, moved to the nearest spot where the ground under the feet is
+level (emit/common/spawn_spot.py). The height of a robot's root follows from the ground under its
+feet in the pose each target starts it in (:meth:`PlacedWorld.root_position`), so every target puts
+it on the same ground. A terrain becomes a heightfield grid (meshes/heightfield.py, with a finding
+of what the grid loses) only when a target asks for one (MJCF): USD and SDF keep the mesh.
 """
 
 from __future__ import annotations
@@ -14,16 +16,19 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import NDArray
 
+from robodesc.emit.common.spawn_spot import level_spot
 from robodesc.emit.common.stance import CLEARANCE, Stance
 from robodesc.ir.diagnostics import ConfigError, Findings
 from robodesc.ir.geometry import Box, Mesh, Vec3
 from robodesc.ir.model import Robot
-from robodesc.ir.rigid import Frame, apply, link_frames, pose_frame, transpose
+from robodesc.ir.rigid import Frame, link_frames, pose_frame
 from robodesc.ir.world import CordField, HeightImage, Plane, StaticBody, World, WorldCollider
-from robodesc.meshes.heightfield import DEFAULT_RESOLUTION, HeightfieldError, HeightGrid, rasterize
+from robodesc.meshes.heightfield import DEFAULT_RESOLUTION, HeightfieldError, HeightGrid, TerrainSurface, rasterize
 
 STAGE = "world"
+Array = NDArray[np.float64]
 # A terrain frame whose z axis is this close to the world's is level: its grid holds heights.
 _LEVEL = 1e-9
 
@@ -44,9 +49,37 @@ class TerrainGrid:
 
 
 @dataclass(slots=True)
+class Terrain:
+    """A level terrain collider as read: the mesh's exact surface (``surface``: what USD and SDF
+    collide with), or a height image's grid (``image``: a heightfield already). ``points`` and
+    ``triangles`` are the mesh, kept for the heightfield a target may ask for."""
+
+    body: StaticBody
+    collider: WorldCollider
+    frame: Frame
+    surface: TerrainSurface | None = None
+    image: HeightGrid | None = None
+    points: NDArray[np.float64] | None = None
+    triangles: NDArray[np.int64] | None = None
+
+    def heights(self, x: Array, y: Array, grid: HeightGrid | None) -> Array:
+        """The terrain's heights at world points (NaN off it): on ``grid`` when given, else on its
+        own surface."""
+        lx, ly = _local_xy(self.frame, x, y)
+        g = grid or self.image
+        if g is not None:
+            w, h = g.size
+            inside = (lx >= g.x0 - 1e-9) & (lx <= g.x0 + w + 1e-9) & (ly >= g.y0 - 1e-9) & (ly <= g.y0 + h + 1e-9)
+            z = g.height_at(lx, ly)
+            return np.where(inside, self.frame.translation[2] + z, np.nan)
+        assert self.surface is not None
+        return self.frame.translation[2] + self.surface.height_at(lx, ly)
+
+
+@dataclass(slots=True)
 class PlacedWorld:
     world: World
-    grids: list[TerrainGrid] = field(default_factory=list)
+    terrains: list[Terrain] = field(default_factory=list)
     spawn: tuple[float, ...] = (0.0, 0.0)  # X, Y or X, Y, Z (m)
     yaw: float = 0.0  # rad, about the world's z
     spawn_source: str = "origin"
@@ -55,72 +88,108 @@ class PlacedWorld:
     copies: list[tuple[float, ...]] = field(default_factory=list)
     # Each cord field with its cords' anchor points (world frame), drawn once from its seed.
     cords: list[tuple[CordField, list[Vec3]]] = field(default_factory=list)
+    resolution: float = DEFAULT_RESOLUTION
+    # Where the heightfields' findings go: the grids are made only when a target asks (MJCF).
+    findings: Findings = field(default_factory=Findings)
+    _grids: list[TerrainGrid] | None = None
+
+    @property
+    def grids(self) -> list[TerrainGrid]:
+        """The heightfield of every terrain, made on first use: only a target that writes heightfields
+        (MJCF) pays for them (rough_25cm: 10,900 triangles, about 1 s); USD and SDF keep the mesh."""
+        if self._grids is None:
+            self._grids = [g for t in self.terrains if (g := _grid(t, self.resolution, self.findings)) is not None]
+        return self._grids
 
     @property
     def points(self) -> list[tuple[float, ...]]:
         """Where each copy of the robot stands (one point for one robot)."""
         return self.copies or [self.spawn]
 
-    def root_positions(self, robot: Robot, stance: Stance, floating: bool) -> list[Vec3]:
+    def root_positions(self, robot: Robot, stance: Stance, floating: bool, *, grid: bool = False) -> list[Vec3]:
         """:meth:`root_position` of every copy: each on the ground under its own feet."""
-        return [self.root_position(robot, stance, floating, at=point) for point in self.points]
+        return [self.root_position(robot, stance, floating, at=point, grid=grid) for point in self.points]
 
     def grid_of(self, collider: WorldCollider) -> TerrainGrid | None:
         return next((g for g in self.grids if g.collider is collider), None)
 
-    def ground_height(self, x: float, y: float) -> float | None:
-        """The highest static surface under (x, y): terrains, level boxes and level planes."""
-        best: float | None = None
+    def probes(self, count: int = 16, *, grid: bool = False) -> list[Vec3]:
+        """Points (x, y, ground z) for a reader to find the ground at: the spawn, and ``count``
+        points drawn (seed 0) over each terrain, a cell inside its edges."""
+        rng = np.random.default_rng(0)
+        xs, ys = [self.spawn[0]], [self.spawn[1]]
+        for terrain in self.terrains:
+            made = self.grid_of(terrain.collider) if grid else None
+            g = made.grid if made is not None else terrain.image
+            if g is not None:
+                w, h = g.size
+                lo, hi = np.array([g.x0, g.y0]) + g.step, np.array([g.x0 + w, g.y0 + h]) - g.step
+            else:
+                assert terrain.points is not None
+                lo, hi = terrain.points[:, :2].min(axis=0) + 0.01, terrain.points[:, :2].max(axis=0) - 0.01
+            local = rng.uniform(lo, hi, size=(count, 2))
+            r, t = terrain.frame.rotation, terrain.frame.translation
+            xs += (r[0][0] * local[:, 0] + r[0][1] * local[:, 1] + t[0]).tolist()
+            ys += (r[1][0] * local[:, 0] + r[1][1] * local[:, 1] + t[1]).tolist()
+        z = self.ground_heights(np.array(xs), np.array(ys), grid=grid)
+        return [(x, y, float(h)) for x, y, h in zip(xs, ys, z.tolist(), strict=True) if math.isfinite(h)]
+
+    def ground_height(self, x: float, y: float, *, grid: bool = False) -> float | None:
+        """The highest static surface under (x, y): terrains (their mesh, or with ``grid`` the
+        heightfield a target writes), level boxes and level planes."""
+        z = float(self.ground_heights(np.array([x]), np.array([y]), grid=grid)[0])
+        return None if math.isnan(z) else z
+
+    def ground_heights(self, x: Array, y: Array, *, grid: bool = False) -> Array:
+        """:meth:`ground_height` at many points at once (NaN where there is no ground)."""
+        x, y = np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64)
+        best = np.full(np.broadcast(x, y).shape, -np.inf)
         for body in self.world.bodies:
             for collider in body.colliders:
-                z = self._surface(body, collider, x, y)
-                if z is not None and (best is None or z > best):
-                    best = z
-        return best
+                z = self._surface(body, collider, x, y, grid)
+                if z is not None:
+                    best = np.fmax(best, z)
+        return np.where(np.isfinite(best), best, np.nan)
 
-    def _surface(self, body: StaticBody, collider: WorldCollider, x: float, y: float) -> float | None:
+    def _surface(self, body: StaticBody, collider: WorldCollider, x: Array, y: Array, grid: bool) -> Array | None:
+        terrain = next((t for t in self.terrains if t.collider is collider), None)
+        if terrain is not None:
+            made = self.grid_of(collider) if grid else None
+            return terrain.heights(x, y, made.grid if made is not None else None)
         frame = pose_frame(body.pose) @ pose_frame(collider.origin)
-        local = _to_local(frame, (x, y, 0.0))
-        grid = self.grid_of(collider)
-        if grid is not None:
-            g = grid.grid
-            w, h = g.size
-            if not (g.x0 - 1e-9 <= local[0] <= g.x0 + w + 1e-9 and g.y0 - 1e-9 <= local[1] <= g.y0 + h + 1e-9):
-                return None
-            z = float(g.height_at(np.array([local[0]]), np.array([local[1]]))[0])
-            return frame.translation[2] + z
         if not _level(frame):
             return None
         shape = collider.shape
+        top = frame.translation[2]
         if isinstance(shape, Plane):
-            return (
-                frame.translation[2]
-                if shape.normal[2] > 0 and abs(shape.normal[0]) + abs(shape.normal[1]) < 1e-12
-                else None
-            )
+            if shape.normal[2] > 0 and abs(shape.normal[0]) + abs(shape.normal[1]) < 1e-12:
+                return np.full(np.broadcast(x, y).shape, top)
+            return None
         if isinstance(shape, Box):
             hx, hy, hz = (s / 2 for s in shape.size)
-            if abs(local[0]) <= hx and abs(local[1]) <= hy:
-                return frame.translation[2] + hz
+            lx, ly = _local_xy(frame, x, y)
+            return np.where((np.abs(lx) <= hx) & (np.abs(ly) <= hy), top + hz, np.nan)
         return None
 
-    def root_position(self, robot: Robot, stance: Stance, floating: bool, at: tuple[float, ...] | None = None) -> Vec3:
+    def root_position(
+        self, robot: Robot, stance: Stance, floating: bool, at: tuple[float, ...] | None = None, *, grid: bool = False
+    ) -> Vec3:
         """Where the root goes: at the spawn X, Y (``at``, else the spawn; turned by the yaw), and
         high enough that every collider's lowest point clears the ground under it by CLEARANCE (a
-        given Z wins)."""
+        given Z wins). ``grid``: the ground as the target's heightfield has it (MJCF), not the mesh."""
         point = self.spawn if at is None else at
         x, y = point[0], point[1]
         if len(point) == 3:
             return (x, y, point[2])
         points = _low_points(robot, stance.positions)
         if not points:
-            ground = self.ground_height(x, y)
+            ground = self.ground_height(x, y, grid=grid)
             return (x, y, 0.0 if ground is None else ground)
         c, s = math.cos(self.yaw), math.sin(self.yaw)
         need = -math.inf
         for px, py, pz in points:
             wx, wy = x + c * px - s * py, y + s * px + c * py
-            ground = self.ground_height(wx, wy)
+            ground = self.ground_height(wx, wy, grid=grid)
             if ground is not None:
                 need = max(need, ground - pz)
         if need == -math.inf:
@@ -138,19 +207,22 @@ def place_world(
     spawn: tuple[float, ...] | None = None,
     copies: tuple[tuple[float, ...], ...] = (),
 ) -> PlacedWorld:
-    """Heightfields of the world's terrains (at ``resolution`` m, default 2 cm) and the spawn point
-    (``robot`` None: a world compiled alone, with no robot to place)."""
-    placed = PlacedWorld(world)
+    """The world's terrains (their surfaces; heightfields at ``resolution`` m, default 2 cm, when a
+    target asks) and the spawn point (``robot`` None: a world compiled alone, with no robot to place)."""
     resolution = resolution or DEFAULT_RESOLUTION
     if not (resolution > 0 and math.isfinite(resolution)):
         raise ConfigError(f"--terrain-resolution {resolution}: a positive number of metres")
+    placed = PlacedWorld(world, resolution=resolution, findings=findings)
     for body in world.bodies:
         for collider in body.colliders:
-            grid = _grid(body, collider, resolution, findings)
-            if grid is not None:
-                placed.grids.append(grid)
+            terrain = _terrain(body, collider, findings)
+            if terrain is not None:
+                placed.terrains.append(terrain)
     if robot is not None:
         _spawn(robot, world, spawn or (copies[0] if copies else None), placed)
+        if len(placed.spawn) == 2 and placed.terrains and len(copies) <= 1:
+            xy = (placed.spawn[0], placed.spawn[1])
+            placed.spawn = level_spot(robot, placed.ground_heights, xy, placed.yaw, placed.spawn_source, findings)
     if len(copies) > 1:
         placed.copies = [_point(point) for point in copies]
     for cords in world.cords:
@@ -174,7 +246,7 @@ def _anchors(placed: PlacedWorld, cords: CordField) -> list[Vec3]:
     return out
 
 
-def _grid(body: StaticBody, collider: WorldCollider, resolution: float, findings: Findings) -> TerrainGrid | None:
+def _terrain(body: StaticBody, collider: WorldCollider, findings: Findings) -> Terrain | None:
     shape = collider.shape
     if not isinstance(shape, Mesh | HeightImage):
         return None
@@ -194,17 +266,35 @@ def _grid(body: StaticBody, collider: WorldCollider, resolution: float, findings
         if isinstance(shape, HeightImage):
             from robodesc.meshes.heightimage import read_height_image
 
-            grid = read_height_image(shape.path, shape.size)
-        else:
-            grid = _mesh_grid(shape, resolution)
+            return Terrain(body, collider, frame, image=read_height_image(shape.path, shape.size))
+        points, triangles = _mesh_arrays(shape)
+        return Terrain(body, collider, frame, TerrainSurface(points, triangles), None, points, triangles)
     except HeightfieldError as exc:
-        findings.warn(
-            "world-terrain-unreadable",
-            f"no heightfield: {exc}; MJCF collides its convex hull, USD and SDF keep the mesh",
-            element=element,
-            loc=collider.src,
-            stage=STAGE,
-        )
+        _unreadable(exc, element, collider, findings)
+        return None
+
+
+def _unreadable(exc: HeightfieldError, element: str, collider: WorldCollider, findings: Findings) -> None:
+    findings.warn(
+        "world-terrain-unreadable",
+        f"no heightfield: {exc}; MJCF collides its convex hull, USD and SDF keep the mesh",
+        element=element,
+        loc=collider.src,
+        stage=STAGE,
+    )
+
+
+def _grid(terrain: Terrain, resolution: float, findings: Findings) -> TerrainGrid | None:
+    collider, body = terrain.collider, terrain.body
+    element = f"collision {collider.name!r} of {body.name!r}"
+    try:
+        if terrain.image is not None:
+            grid = terrain.image
+        else:
+            assert terrain.points is not None and terrain.triangles is not None
+            grid = rasterize(terrain.points, terrain.triangles, resolution)
+    except HeightfieldError as exc:
+        _unreadable(exc, element, collider, findings)
         return None
     rows, cols = grid.shape
     note = (
@@ -223,10 +313,10 @@ def _grid(body: StaticBody, collider: WorldCollider, resolution: float, findings
             loc=collider.src,
             stage=STAGE,
         )
-    return TerrainGrid(body, collider, grid, frame)
+    return TerrainGrid(body, collider, grid, terrain.frame)
 
 
-def _mesh_grid(mesh: Mesh, resolution: float) -> HeightGrid:
+def _mesh_arrays(mesh: Mesh) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     from robodesc.meshes.buffers import MeshReadError
     from robodesc.meshes.data import build_mesh
 
@@ -238,7 +328,7 @@ def _mesh_grid(mesh: Mesh, resolution: float) -> HeightGrid:
         raise HeightfieldError(f"the mesh cannot be read ({exc})") from None
     points = np.frombuffer(data.points, dtype=np.float32).astype(np.float64).reshape(-1, 3)
     triangles = np.frombuffer(data.face_vertex_indices, dtype=np.int32).astype(np.int64).reshape(-1, 3)
-    return rasterize(points, triangles, resolution)
+    return points, triangles
 
 
 def _spawn(robot: Robot, world: World, spawn: tuple[float, ...] | None, placed: PlacedWorld) -> None:
@@ -265,10 +355,15 @@ def _level(frame: Frame) -> bool:
     return abs(frame.rotation[2][2] - 1.0) < _LEVEL
 
 
-def _to_local(frame: Frame, point: Vec3) -> Vec3:
-    """``point`` (world) in ``frame``: the inverse transform, Rᵀ (p - t)."""
-    t = frame.translation
-    return apply(transpose(frame.rotation), (point[0] - t[0], point[1] - t[1], point[2] - t[2]))
+def _local_xy(frame: Frame, x: Array, y: Array) -> tuple[Array, Array]:
+    """World points (x, y, 0) in a level ``frame``: Rᵀ (p - t), its x and y (a level frame turns
+    about z only, so the points' height does not enter them)."""
+    r = frame.rotation
+    dx, dy = (
+        np.asarray(x, dtype=np.float64) - frame.translation[0],
+        np.asarray(y, dtype=np.float64) - frame.translation[1],
+    )
+    return r[0][0] * dx + r[1][0] * dy, r[0][1] * dx + r[1][1] * dy
 
 
 def _low_points(robot: Robot, q: Mapping[str, float]) -> list[Vec3]:

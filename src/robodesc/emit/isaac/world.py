@@ -112,8 +112,10 @@ def write_world_files(
 ) -> list[str]:
     """Write the world stage (and the terrain file for ``terrain_type="usd"``); return their roles."""
     from robodesc.emit.usd import write_terrain, write_world
+    from robodesc.emit.usd.world import robot_friction
 
     contacts = any(s.type.value == "contact" for s in robot.sensors)
+    mu = robot_friction(robot)  # Isaac Lab 3 runs Newton: the ground's friction capped at the robot's
     write_world(
         os.path.join(staging, names["world"]),
         names["usd"],
@@ -122,8 +124,9 @@ def write_world_files(
         world.roots,
         findings,
         contacts=contacts,
+        robot_mu=mu,
     )
     if world.terrain_type != "usd":
         return ["world"]
-    write_terrain(os.path.join(staging, names["terrain"]), placed, findings)
+    write_terrain(os.path.join(staging, names["terrain"]), placed, findings, robot_mu=mu)
     return ["world", "terrain"]

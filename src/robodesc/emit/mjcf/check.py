@@ -1,6 +1,7 @@
 """How an MJCF output is checked: MuJoCo loads robot.xml and scene.xml; the numbers are compared
 with the IR (masses, inertias, FK, joints, damping, armature, actuators and their gains, mimic and
-loop equalities); the scene runs mujoco_menagerie's model test (validation/mujoco_mjcf.py)."""
+loop equalities); the scene runs mujoco_menagerie's model test (validation/mujoco_mjcf.py); with a
+world, MuJoCo's ground under the terrain's points is the placed one (validation/world_check.py)."""
 
 from __future__ import annotations
 
@@ -33,6 +34,10 @@ def check_mjcf(robot: Robot, emitted: Emitted, request: CheckRequest) -> Validat
             text = re.sub(r'<include file="[^"]*"/>', f'<include file="{staged}"/>', text, count=1)
             handle.write(re.sub(r'(<model name="[^"]*" file=)"[^"]*"', rf'\1"{staged}"', text, count=1))
         report = validate_mjcf(robot, robot_file, probe, request.options, expected_drives=emitted.extra.get("drives"))
+        if emitted.extra.get("world_probes"):
+            from robodesc.validation.world_check import check_mjcf_ground
+
+            check_mjcf_ground(probe, emitted.extra["world_probes"], report)
         report.rename(os.path.basename(probe), os.path.basename(scene))
     finally:
         os.unlink(probe)

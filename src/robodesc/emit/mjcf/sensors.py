@@ -30,10 +30,10 @@ _RAY = Frame(((0.0, 0.0, 1.0), (0.0, 1.0, 0.0), (-1.0, 0.0, 0.0)))
 TOUCH_MARGIN = 0.005
 
 
-def collider_box(link: Link) -> tuple[Vec3, Vec3] | None:
-    """The centre and half extents, in the link's frame, of the box around the link's colliders."""
+def collider_box(link: Link, cache: MeshCache) -> tuple[Vec3, Vec3] | None:
+    """The centre and half extents, in the link's frame, of the box around the link's colliders
+    (``cache``: one for every sensor of the robot, so a mesh two feet share is read once)."""
     corners: list[Vec3] = []
-    cache = MeshCache()
     for collision in link.collisions:
         g = collision.geometry
         if isinstance(g, Box):
@@ -74,6 +74,7 @@ def sites_and_sensors(ctx: MjcfContext) -> ET.Element | None:
         set_pose(site, fixed.origin)
         insert_site(body, site)
     out = ET.Element("sensor")
+    meshes = MeshCache()
     for sensor in ctx.robot.sensors:
         label = f"sensor {sensor.name!r}"
         body = ctx.bodies.get(sensor.parent)
@@ -98,7 +99,7 @@ def sites_and_sensors(ctx: MjcfContext) -> ET.Element | None:
         site = ET.Element("site", name=ctx.unique_site(sensor.name))
         set_pose(site, frame @ _RAY if sensor.type is SensorType.RAY else frame)
         if sensor.type is SensorType.CONTACT:
-            box = collider_box(ctx.robot.link(sensor.parent))
+            box = collider_box(ctx.robot.link(sensor.parent), meshes)
             if box is None:
                 ctx.warn("mjcf-contact-no-collider", "the link has no collider to touch anything: site only", label)
             else:

@@ -43,7 +43,10 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
         final_name=os.path.basename(request.final or out),
         world=request.world,
     )
-    return Emitted(files=files, extra={"mjcf_options": request.options, "drives": _asked_drives(robot, request)})
+    extra = {"mjcf_options": request.options, "drives": _asked_drives(robot, request)}
+    if request.world is not None:
+        extra["world_probes"] = request.world.probes(grid=True)  # where check.py asks MuJoCo for the ground
+    return Emitted(files=files, extra=extra)
 
 
 def _default_pose(robot: Robot, request: EmitRequest, findings: Findings) -> Stance:
@@ -84,9 +87,12 @@ def _place_in_world(robot: Robot, request: EmitRequest, stance: Stance) -> None:
         return
     floating = not options.fix_base and robot.root.name != "world"
     zero = _Stance(complete(robot, {}), "zeros")
-    roots = placed.root_positions(robot, zero, floating)
+    # On the heightfield scene.xml writes, not the mesh it was made from (they differ by the grid's error).
+    roots = placed.root_positions(robot, zero, floating, grid=True)
     options.init_pos = roots[0]
-    homes = [r[2] for r in placed.root_positions(robot, stance, floating)] if floating else [r[2] for r in roots]
+    homes = (
+        [r[2] for r in placed.root_positions(robot, stance, floating, grid=True)] if floating else [r[2] for r in roots]
+    )
     if floating:
         options.home_height = homes[0]
     if len(roots) > 1:

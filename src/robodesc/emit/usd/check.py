@@ -13,4 +13,9 @@ def check_usd(robot: Robot, emitted: Emitted, request: CheckRequest) -> Validati
 
     if "usd" not in emitted.files:
         return None
-    return validate_usd(robot, emitted.files["usd"], request.options)
+    report = validate_usd(robot, emitted.files["usd"], request.options)
+    if "world" in emitted.files and "world_expect" in emitted.extra:
+        from robodesc.validation.world_check import check_usd_world
+
+        check_usd_world(emitted.files["world"], emitted.files["usd"], emitted.extra["world_expect"], report)
+    return report

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from robodesc.emit.common.source_drives import apply_source_gains
 from robodesc.emit.common.target import EmitRequest, Emitted, Target
 from robodesc.emit.usd.check import check_usd
@@ -21,17 +23,18 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
 
     findings.extend(emit_usd(robot, out, request.options))
     files = {"usd": out}
+    extra: dict[str, Any] = {}
     if request.world is not None:
-        files["world"] = _write_world(robot, request, out, findings)
-    return Emitted(files=files)
+        files["world"], extra["world_expect"] = _write_world(robot, request, out, findings)
+    return Emitted(files=files, extra=extra)
 
 
-def _write_world(robot: Robot, request: EmitRequest, out: str, findings: Findings) -> str:
+def _write_world(robot: Robot, request: EmitRequest, out: str, findings: Findings) -> tuple[str, dict[str, Any]]:
     """The world stage beside the robot, the robot on its ground in the zero pose USD starts it in."""
     import os
 
     from robodesc.emit.common.stance import Stance, complete
-    from robodesc.emit.usd.world import world_file_name, write_world
+    from robodesc.emit.usd.world import robot_friction, world_file_name, write_world
 
     placed = request.world
     assert placed is not None
@@ -40,8 +43,10 @@ def _write_world(robot: Robot, request: EmitRequest, out: str, findings: Finding
     roots = placed.root_positions(robot, Stance(complete(robot, {}), "zeros"), floating)
     path = os.path.join(os.path.dirname(os.path.abspath(out)), world_file_name(final))
     contacts = any(s.type.value == "contact" for s in robot.sensors)
-    write_world(path, final, robot.name, placed, roots, findings, contacts=contacts)
-    return path
+    expect = write_world(
+        path, final, robot.name, placed, roots, findings, contacts=contacts, robot_mu=robot_friction(robot)
+    )
+    return path, expect
 
 
 # USD prim names must be identifiers, and Isaac merges materials that share a name.

@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from robodesc.emit.usd.context import set_pose
 from robodesc.emit.usd.layers import encode, stage_metadata
@@ -31,6 +31,7 @@ from robodesc.usdfile.spec import Layer, Payload, Prim
 if TYPE_CHECKING:  # the placement reads meshes (numpy); a plain USD compile must not import it
     from robodesc.emit.common.target import WorldAlone
     from robodesc.emit.common.world import PlacedWorld
+    from robodesc.ir.model import Robot
 
 STAGE = "emit:usd"
 WORLD = "World"
@@ -56,44 +57,68 @@ def write_world(
     findings: Findings,
     *,
     contacts: bool = False,
-) -> int:
+    robot_mu: float = 1.0,
+) -> dict[str, Any]:
     """Write the world stage to ``path``; ``robot_file`` is the robot's final file name beside it,
     brought in once per root (several copies: one payload each, ``/World/<robot>_<i>``). No
-    ``roots``: the world alone (a world file as the input). Returns the static colliders written."""
+    ``roots``: the world alone (a world file as the input). ``robot_mu``: the robot's highest
+    friction (:func:`_terrain_material`). Returns what a reader must find in it
+    (validation/world_check.py, validation/world.py)."""
     from robodesc._files import write_atomic
 
-    layer, world, count = _ground(placed, findings)
+    layer, world, count, terrains = _ground(placed, findings, robot_mu)
     _scene(world, placed, contacts)
     for cords, anchors in placed.cords:
         _cords(world, cords, anchors)
     turn = rpy_rotation((0.0, 0.0, placed.yaw))
-    for name, root in zip(copy_names(robot_prim, len(roots)) if roots else [], roots, strict=True):
+    names = copy_names(robot_prim, len(roots)) if roots else []
+    for name, root in zip(names, roots, strict=True):
         assert robot_file is not None
         robot = world.child(name, "Xform")
         robot.payloads.append(Payload(f"./{os.path.basename(robot_file)}", f"/{robot_prim}"))
         set_pose(robot, Frame(translation=root, rotation=turn))
     write_atomic(path, encode(layer, os.path.splitext(path)[1].lower()))
-    return count
+    gravity = placed.world.physics.gravity or (0.0, 0.0, -9.81)
+    return {
+        "gravity": math.sqrt(sum(g * g for g in gravity)),
+        "colliders": count,
+        "terrains": terrains,
+        # The first copy: the one the checks find at its spawn.
+        "robot": f"/{WORLD}/{names[0]}" if names else None,
+        "payload_prim": f"/{robot_prim}",
+        "root": tuple(roots[0]) if roots else None,
+    }
 
 
-def write_terrain(path: str, placed: PlacedWorld, findings: Findings) -> None:
+def write_terrain(path: str, placed: PlacedWorld, findings: Findings, robot_mu: float = 1.0) -> None:
     """The world's ground alone (static bodies and their friction; no scene, robot or cords): what
     Isaac Lab's ``TerrainImporterCfg(terrain_type="usd")`` references under its own prim, beside the
     ``PhysicsScene`` its ``SimulationCfg`` makes."""
     from robodesc._files import write_atomic
 
-    layer, _, _ = _ground(placed, findings)
+    layer = _ground(placed, findings, robot_mu)[0]
     write_atomic(path, encode(layer, os.path.splitext(path)[1].lower()))
 
 
-def _ground(placed: PlacedWorld, findings: Findings) -> tuple[Layer, Prim, int]:
-    """A layer whose default prim ``/World`` holds the world's static bodies and their materials,
-    and the number of colliders it holds."""
+def robot_friction(robot: Robot) -> float:
+    """The robot's highest given friction, at least 1 (ODE's and Newton's default where it gives none)."""
+    given = [
+        contact.mu
+        for link in robot.links
+        for c in link.collisions
+        if (contact := link.collision_contact(c)) is not None and contact.mu is not None
+    ]
+    return max([1.0, *given])
+
+
+def _ground(placed: PlacedWorld, findings: Findings, robot_mu: float) -> tuple[Layer, Prim, int, dict[str, int]]:
+    """A layer whose default prim ``/World`` holds the world's static bodies and their materials;
+    the number of colliders it holds, and each terrain mesh's prim with its triangle count."""
     layer = Layer()
     stage_metadata(layer, WORLD)
     world = layer.prim(f"/{WORLD}", "Xform")
     world.kind = "assembly"
-    material = _terrain_material(world, placed)
+    material = _terrain_material(world, placed, robot_mu, findings)
     if not placed.world.bodies:  # a world of cords alone: a ground plane under them
         ground = world.child("ground", "Plane")
         ground.attr("width", "double", PLANE_SIZE)
@@ -101,12 +126,16 @@ def _ground(placed: PlacedWorld, findings: Findings) -> tuple[Layer, Prim, int]:
         ground.attr("axis", "token", "Z", uniform=True)
         ground.apply("PhysicsCollisionAPI")
     count = 0 if placed.world.bodies else 1
+    terrains: dict[str, int] = {}
     for body in placed.world.bodies:
         body_prim = world.child(_name(body.name), "Xform")
         set_pose(body_prim, pose_frame(body.pose))
         for collider in body.colliders:
-            count += _collider(body_prim, body, collider, material, findings)
-    return layer, world, count
+            written, triangles = _collider(body_prim, body, collider, material, findings)
+            count += written
+            if triangles:
+                terrains[terrain_prim(body.name, collider.name)] = triangles
+    return layer, world, count, terrains
 
 
 def _scene(world: Prim, placed: PlacedWorld, contacts: bool) -> None:
@@ -130,8 +159,14 @@ def _scene(world: Prim, placed: PlacedWorld, contacts: bool) -> None:
         scene.attr("newton:timeStepsPerSecond", "int", steps)
 
 
-def _terrain_material(world: Prim, placed: PlacedWorld) -> dict[float, str]:
-    """One physics material per distinct world friction, combining by the minimum (ODE's rule)."""
+def _terrain_material(world: Prim, placed: PlacedWorld, robot_mu: float, findings: Findings) -> dict[float, str]:
+    """One physics material per distinct world friction, combining by the minimum (ODE's rule).
+
+    A world friction above the robot's highest (``robot_mu``: its colliders' largest given one, at
+    least 1) is written as that: PhysX's minimum gives every robot collider its own friction either
+    way, and Newton, which reads no combine mode and hands both to MuJoCo's maximum, gets the robot's
+    friction instead of Quad-SDK's 100, at which its soft contacts let the robot sink through the
+    terrain (measured: a robot and two boxes fell through gap_40cm's slab)."""
     out: dict[float, str] = {}
     values = sorted(
         {
@@ -145,10 +180,19 @@ def _terrain_material(world: Prim, placed: PlacedWorld) -> dict[float, str]:
         return out
     scope = world.child("PhysicsMaterials", "Scope")
     for i, mu in enumerate(values):
+        written = min(mu, robot_mu)
+        if written < mu:
+            findings.info(
+                "usd-world-friction",
+                f"the world's mu {mu:g} is written as {written:g}, the robot's highest: PhysX combines by the minimum "
+                f"either way, and Newton (MuJoCo's maximum) gets the robot's friction, not {mu:g}",
+                element=f"material surface_{i}",
+                stage=STAGE,
+            )
         material = scope.child(f"surface_{i}", "Material")
         material.apply("PhysicsMaterialAPI")
-        material.attr("physics:staticFriction", "float", mu)
-        material.attr("physics:dynamicFriction", "float", mu)
+        material.attr("physics:staticFriction", "float", written)
+        material.attr("physics:dynamicFriction", "float", written)
         material.apply("PhysxMaterialAPI")
         material.attr("physxMaterial:frictionCombineMode", "token", "min", uniform=True)
         out[mu] = f"/{WORLD}/PhysicsMaterials/surface_{i}"
@@ -157,15 +201,18 @@ def _terrain_material(world: Prim, placed: PlacedWorld) -> dict[float, str]:
 
 def _collider(
     body_prim: Prim, body: StaticBody, collider: WorldCollider, materials: dict[float, str], findings: Findings
-) -> bool:
-    """Write one collider; False when it has no USD form (it is left out, with a warning)."""
+) -> tuple[bool, int]:
+    """Write one collider: whether it was written (False: it has no USD form and is left out, with a
+    warning), and a terrain mesh's triangle count (0 for any other shape)."""
     shape = collider.shape
     name = _name(collider.name)
+    triangles = 0
     if isinstance(shape, Mesh):
         prim = body_prim.child(name, "Mesh")
-        if not _mesh(prim, shape, collider, body, findings):
+        triangles = _mesh(prim, shape, collider, body, findings)
+        if not triangles:
             del body_prim.children[name]
-            return False
+            return False, 0
         prim.apply("PhysicsMeshCollisionAPI")
         prim.attr("physics:approximation", "token", "none", uniform=True)
     elif isinstance(shape, HeightImage):
@@ -176,7 +223,7 @@ def _collider(
             loc=collider.src,
             stage=STAGE,
         )
-        return False
+        return False, 0
     elif isinstance(shape, Box):
         prim = body_prim.child(name, "Cube")
         prim.attr("size", "double", 1.0)
@@ -196,7 +243,7 @@ def _collider(
         prim.attr("length", "double", PLANE_SIZE)
         prim.attr("axis", "token", "Z", uniform=True)
     else:  # pragma: no cover - the world IR has no other shape
-        return False
+        return False, 0
     if not isinstance(shape, Box):
         set_pose(prim, pose_frame(collider.origin))
     prim.apply("PhysicsCollisionAPI")
@@ -204,12 +251,12 @@ def _collider(
     if surface is not None and surface.mu is not None:
         prim.apply("MaterialBindingAPI")
         prim.rel("material:binding:physics", [materials[surface.mu]])
-    return True
+    return True, triangles
 
 
 def write_world_alone(placed: PlacedWorld, out: str, options: object, findings: Findings, validate: bool) -> WorldAlone:
     """``robodesc compile W.world -t usd``: the world stage, with no robot, at ``out``."""
-    count = write_world(out, None, "", placed, [], findings)
+    count = write_world(out, None, "", placed, [], findings)["colliders"]
     if not validate:
         return {"usd": out}, None
     from robodesc.validation.world import check_usd_world
@@ -275,7 +322,8 @@ def _cords(world: Prim, cords: CordField, anchors: list[Vec3]) -> None:
             previous = f"/{WORLD}/{cords.name}_{i}/s{k}"
 
 
-def _mesh(prim: Prim, shape: Mesh, collider: WorldCollider, body: StaticBody, findings: Findings) -> bool:
+def _mesh(prim: Prim, shape: Mesh, collider: WorldCollider, body: StaticBody, findings: Findings) -> int:
+    """The mesh's points and triangles on ``prim``; returns the triangle count (0: unreadable)."""
     from robodesc.emit.usd.geometry import author_mesh  # the robot's mesh writer: normals and UVs too
     from robodesc.meshes.buffers import MeshReadError
     from robodesc.meshes.data import build_mesh
@@ -291,9 +339,36 @@ def _mesh(prim: Prim, shape: Mesh, collider: WorldCollider, body: StaticBody, fi
             loc=collider.src,
             stage=STAGE,
         )
-        return False
+        return 0
+    _newton_hull(data.points, data.face_vertex_indices, collider, body, findings)
     author_mesh(prim, data)
-    return True
+    return len(data.face_vertex_counts)
+
+
+def _newton_hull(points: Any, indices: Any, collider: WorldCollider, body: StaticBody, findings: Findings) -> None:
+    """A concave terrain mesh: Newton's MuJoCo solver collides it as its convex hull (docs/worlds.md,
+    "Newton and the USD terrain"); PhysX honours every triangle."""
+    import numpy as np
+    import trimesh
+
+    v = np.frombuffer(points, dtype=np.float32).reshape(-1, 3)
+    f = np.frombuffer(indices, dtype=np.int32).reshape(-1, 3)
+    if trimesh.Trimesh(v, f, process=True).is_convex:
+        return
+    findings.warn(
+        "usd-world-newton-hull",
+        "the terrain is concave: Newton's MuJoCo solver (SolverMuJoCo) collides a mesh as its convex hull, so in "
+        "Newton it fills gaps and steps (PhysX and Isaac Sim honour every triangle). Give Newton the terrain as a "
+        "heightfield (ModelBuilder.add_shape_heightfield), as validate --dynamics does (docs/worlds.md)",
+        element=f"collision {collider.name!r} of {body.name!r}",
+        loc=collider.src,
+        stage=STAGE,
+    )
+
+
+def terrain_prim(body: str, collider: str) -> str:
+    """The path of a world collider's prim in the world stage."""
+    return f"/{WORLD}/{_name(body)}/{_name(collider)}"
 
 
 def _name(text: str) -> str:

@@ -277,7 +277,84 @@ def run_file(
     robot: Robot, path: str, kind: str, setup: Setup, options: Any, scenarios: tuple[str, ...]
 ) -> list[Run] | str:
     """The runner contract of :mod:`.run`: the runs, or why the file could not be loaded."""
+    if scenarios == ("stand",):
+        return [stand_scene(path, kind, setup)]
     spec, why = load_spec(robot, path, "mjcf" if kind == "mjcf" else "urdf", dict(options.package_paths))
     if spec is None:
         return f"MuJoCo cannot load it: {why}"
     return run_all(robot, spec, kind, setup, scenarios)
+
+
+# s: the contact sensors are averaged over the stand's last quarter second (a robot on drives sways).
+SENSOR_WINDOW = 0.25
+
+
+def stand_scene(path: str, kind: str, setup: Setup) -> Run:
+    """The stand on a world: MJCF's scene.xml (the terrain's hfield, the robot included) from its
+    ``home`` keyframe (the stance at the spawn point, drive targets at the stance), run for the
+    world's duration; the feet's poses at the start and the end, and the touch sensors, summed."""
+    started = time.perf_counter()
+    run = Run(ENGINE, kind, "stand")
+    world = setup.world
+    assert world is not None
+    try:
+        model = mujoco.MjModel.from_xml_path(path)
+    except ValueError as exc:
+        run.ok, run.error = False, f"MuJoCo cannot load {os.path.basename(path)}: {str(exc).strip()[:200]}"
+        return run
+    data = mujoco.MjData(model)
+    key = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home")
+    mujoco.mj_resetDataKeyframe(model, data, max(key, 0))
+    mujoco.mj_forward(model, data)
+    root = _free_root(model)
+    if root is None:
+        run.ok, run.error = False, "no free root body in the scene"
+        return run
+    body = int(model.jnt_bodyid[root])
+    feet = _foot_frames(model, world.soles)
+    touch = [
+        int(model.sensor_adr[i]) for i in range(model.nsensor) if model.sensor_type[i] == mujoco.mjtSensor.mjSENS_TOUCH
+    ]
+    run.feet_start = {n: _pose(data, f) for n, f in feet.items()}
+    steps = max(1, round(world.duration / model.opt.timestep))
+    window = max(1, round(SENSOR_WINDOW / model.opt.timestep))
+    sensed = 0.0
+    with captured_warnings([]):
+        for step in range(steps):
+            mujoco.mj_step(model, data)
+            if not np.all(np.isfinite(data.qpos)):
+                run.ok, run.error = False, f"state not finite after {(step + 1) * model.opt.timestep:.3g} s"
+                return run
+            if step >= steps - window and touch:
+                sensed += float(sum(data.sensordata[a] for a in touch))
+    run.feet_end = {n: _pose(data, f) for n, f in feet.items()}
+    run.height = float(data.xpos[body][2])
+    run.tilt = math.acos(max(-1.0, min(1.0, float(data.xmat[body][8]))))
+    run.mass = float(model.body_mass.sum())
+    run.weight = run.mass * float(np.linalg.norm(model.opt.gravity))
+    run.contact_sum = sensed / window if touch else None
+    run.seconds = time.perf_counter() - started
+    return run
+
+
+def _foot_frames(model: Any, names: Any) -> dict[str, tuple[str, int]]:
+    """Each foot link's frame in the scene: its body, or the site a merged fixed link became
+    (``--merge-fixed``, on for MJCF: Spirit's toes are sites of its lower legs)."""
+    out = {}
+    for name in names:
+        body = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, name)
+        site = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, name)
+        if body >= 0:
+            out[name] = ("body", body)
+        elif site >= 0:
+            out[name] = ("site", site)
+    return out
+
+
+def _pose(data: Any, frame: tuple[str, int]) -> list[float]:
+    kind, i = frame
+    if kind == "body":
+        return [*(float(v) for v in data.xpos[i]), *(float(v) for v in data.xquat[i])]
+    quat = np.zeros(4)
+    mujoco.mju_mat2Quat(quat, data.site_xmat[i])
+    return [*(float(v) for v in data.site_xpos[i]), *(float(v) for v in quat)]

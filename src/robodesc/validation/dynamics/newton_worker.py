@@ -94,13 +94,7 @@ def _run_robot(req, scenario):
         # The free root's coordinates come first: px py pz qx qy qz qw.
         q[2] = setup["stand_height"] + setup["drop_clearance"]
         q[3:7] = [0.0, 0.0, 0.0, 1.0]
-    state0.joint_q.assign(q)
-    newton.eval_fk(model, state0.joint_q, state0.joint_qd, state0)
-    if control.joint_target_q is not None:
-        target = control.joint_target_q.numpy().copy()
-        for n, v in pose.items():
-            target[names[n][0]] = v
-        control.joint_target_q.assign(target)
+    _start(model, state0, control, q, pose, names)
     solver = newton.solvers.SolverMuJoCo(model, use_mujoco_cpu=True, disable_contacts=not floor)
     dt = setup["timestep"]
     steps = max(1, round(setup["duration"] / dt))
@@ -138,6 +132,19 @@ def _run_robot(req, scenario):
         qx, qy = float(bq[3]), float(bq[4])
         run.update(height=float(bq[2]), tilt=math.acos(max(-1.0, min(1.0, 1.0 - 2.0 * (qx * qx + qy * qy)))))
     return run
+
+
+def _start(model, state, control, q, pose, names):
+    """The state at coordinates ``q`` (bodies by forward kinematics), drive targets at ``pose``."""
+    import newton
+
+    state.joint_q.assign(q)
+    newton.eval_fk(model, state.joint_q, state.joint_qd, state)
+    if control.joint_target_q is not None:
+        target = control.joint_target_q.numpy().copy()
+        for n, v in pose.items():
+            target[names[n][0]] = v
+        control.joint_target_q.assign(target)
 
 
 def _drives(model, control, names, pose):
@@ -204,7 +211,109 @@ def _version():
     return newton.__version__
 
 
+def _terrain_heightfields(builder, fields):
+    """Every static triangle mesh of the world stage (its terrains: the robot's shapes all belong to
+    bodies) out of collision, and each terrain's heightfield (``fields``: .npz files robodesc
+    rasterized, MJCF's grid) in its place. Newton's MuJoCo solver collides a mesh as its convex hull,
+    and a heightfield as one: a box dropped into gap_40cm's gap rests on the hull, falls in here.
+    Returns the labels of the meshes taken out."""
+    import newton
+    import numpy as np
+    import warp as wp
+
+    if not fields:
+        return []
+    out = []
+    for i in range(len(builder.shape_type)):
+        if builder.shape_body[i] == -1 and builder.shape_type[i] == newton.GeoType.MESH:
+            builder.shape_flags[i] &= ~int(newton.ShapeFlags.COLLIDE_SHAPES)
+            out.append(str(builder.shape_label[i]))
+    for field in fields:
+        data = np.load(field["npz"])
+        z, x0, y0, step = data["z"], float(data["x0"]), float(data["y0"]), float(data["step"])
+        tx, ty, tz, yaw = (float(v) for v in data["frame"])
+        rows, cols = z.shape
+        hx, hy = (cols - 1) * step / 2, (rows - 1) * step / 2
+        cx, cy = x0 + hx, y0 + hy  # the grid's centre in the terrain's frame
+        c, s = math.cos(yaw), math.sin(yaw)
+        xform = wp.transform((tx + c * cx - s * cy, ty + s * cx + c * cy, tz), wp.quat_rpy(0.0, 0.0, yaw))
+        field_ = newton.Heightfield(
+            data=z.astype(np.float32), nrow=rows, ncol=cols, hx=hx, hy=hy, min_z=float(z.min()), max_z=float(z.max())
+        )
+        builder.add_shape_heightfield(xform=xform, heightfield=field_, label=field.get("label"))
+    return out
+
+
+def _stand(req):
+    """The stand on a world: the world stage as Newton reads it (``add_usd``), its terrains as
+    heightfields (:func:`_terrain_heightfields`), the robot's joints at the home pose and its free
+    root at the spawn; the feet's body poses at the start and the end."""
+    import newton
+    import numpy as np
+
+    setup = req["setup"]
+    world = setup["world"]
+    builder = _builder()
+    fields = world.get("heightfields") or []
+    if fields:
+        # Newton's default contact gap (0.1 m) reaches MuJoCo as every geom's ``gap``, and against a
+        # heightfield MuJoCo 3.17 then keeps no contact active: the robot and a box fell through it.
+        builder.rigid_gap = 0.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        builder.add_usd(req["usd"], floating=True, enable_self_collisions=False, load_visual_shapes=False)
+    swapped = _terrain_heightfields(builder, fields)
+    model = builder.finalize(device="cpu")
+    names = _names(model, req["usd"])
+    pose = {n: v for n, v in setup["pose"].items() if n in names and names[n][1] == 1}
+    labels = [_short(str(b)) for b in model.body_label]
+    root = labels.index(req["root"]) if req["root"] in labels else 0
+    free = [j for j in range(model.joint_count) if int(model.joint_child.numpy()[j]) == root]
+    if not free:
+        return {"scenario": "stand", "ok": False, "error": "the robot's root has no joint Newton can move"}
+    start = int(model.joint_q_start.numpy()[free[0]])
+    q = model.joint_q.numpy().copy()
+    for n, v in pose.items():
+        q[names[n][0]] = v
+    x, y, z, yaw = world["spawn"]
+    q[start : start + 7] = [x, y, z, 0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)]
+    state0, state1, control = model.state(), model.state(), model.control()
+    _start(model, state0, control, q, pose, names)
+    feet = {n: labels.index(n) for n in world["feet"] if n in labels}
+
+    def poses():
+        bq = state0.body_q.numpy()
+        # Newton's transforms: px py pz qx qy qz qw; the answer's: x y z qw qx qy qz.
+        return {
+            n: [*(float(v) for v in bq[i][:3]), float(bq[i][6]), *(float(v) for v in bq[i][3:6])]
+            for n, i in feet.items()
+        }
+
+    run = {"scenario": "stand", "ok": True, "error": "", "feet_start": poses(), "terrain_swapped": swapped}
+    solver = newton.solvers.SolverMuJoCo(model, use_mujoco_cpu=True)
+    dt = setup["timestep"]
+    for _ in range(max(1, round(world["duration"] / dt))):
+        state0.clear_forces()
+        solver.step(state0, state1, control, None, dt)
+        state0, state1 = state1, state0
+    bq = state0.body_q.numpy()
+    if not np.all(np.isfinite(bq)):
+        return {**run, "ok": False, "error": f"state not finite after {world['duration']:.3g} s"}
+    qx, qy = float(bq[root][3]), float(bq[root][4])
+    prefix = str(model.body_label[root]).rsplit("/", 1)[0]
+    masses = model.body_mass.numpy()
+    run.update(
+        feet_end=poses(),
+        height=float(bq[root][2]),
+        tilt=math.acos(max(-1.0, min(1.0, 1.0 - 2.0 * (qx * qx + qy * qy)))),
+        mass=float(sum(m for m, label in zip(masses, model.body_label, strict=True) if str(label).startswith(prefix))),
+    )
+    return run
+
+
 def _scenario(req, name, mu):
+    if name == "stand":
+        return _stand(req)
     return _slide(req, mu) if name == "slide" else _run_robot(req, name)
 
 

@@ -299,11 +299,13 @@ def _robot_run(req, scenario, folder):
         sim.close()
 
 
-def _simulate(sim, req, info, scenario, floor, mu):
+def _home(sim, info, setup):
+    """The joints at the home pose, still, their drives targeting it: (the joints' properties as
+    PhysX read them, driven joint path -> (name, scale to PhysX units), the targets written), or
+    why not."""
     import numpy as np
     from ovphysx.types import SimObjectType as T
 
-    setup = req["setup"]
     mpu = info["mpu"]
     props = sim.read(T.ARTICULATION_JOINT, ["jointStiffness", "jointDamping", "jointMaxForce", "jointPosition"])
     # Joint prim -> (name, scale from SI to PhysX units): degrees for angular axes, stage units for linear.
@@ -315,7 +317,7 @@ def _simulate(sim, req, info, scenario, floor, mu):
         if name in setup["pose"]:
             driven[path] = (name, math.degrees(1.0) if kind == "angular" else 1.0 / mpu)
     if setup["pose"] and not driven:
-        return {"scenario": scenario, "ok": False, "error": "none of the robot's driven joints is in the file"}
+        return "none of the robot's driven joints is in the file"
     every_joint = props["jointPosition"]
     target = {
         p: np.array([setup["pose"][driven[p][0]] * driven[p][1]]) if p in driven else np.array(v, copy=True)
@@ -323,6 +325,117 @@ def _simulate(sim, req, info, scenario, floor, mu):
     }
     zeros = {p: np.zeros_like(v) for p, v in every_joint.items()}
     sim.write(T.ARTICULATION_JOINT, {"jointPosition": target, "jointVelocity": zeros, "jointPositionTarget": target})
+    return props, driven, target
+
+
+def _stand(req):
+    """The stand on a world: the world stage as written (its terrain, gravity and step), the robot's
+    joints at the home pose and its root at the spawn (``setup.world.spawn``: x, y, z, yaw); the
+    feet's link poses at the start and the end, and the contact sensors' net normal force (the
+    ``PhysxContactReportAPI`` links), averaged over the last quarter second."""
+    import numpy as np
+    from ovphysx.types import SimObjectType as T
+
+    setup = req["setup"]
+    world = setup["world"]
+    info = _inspect(req["usd"], req["root"], world["feet"])
+    mpu = info["mpu"]
+    sim = _Sim(req["usd"])
+    binding = None
+    try:
+        posed = _home(sim, info, setup)
+        if isinstance(posed, str):
+            return {"scenario": "stand", "ok": False, "error": posed}
+        x, y, z, yaw = world["spawn"]
+        roots = sim.read(T.ARTICULATION, ["rootPosition"])["rootPosition"]
+        mine = [p for p in roots if p == info["root"]] or list(roots)[:1]
+        sim.write(
+            T.ARTICULATION,
+            {
+                "rootPosition": {p: ([x / mpu, y / mpu, z / mpu] if p in mine else roots[p]) for p in roots},
+                "rootOrientation": {
+                    p: ([0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)] if p in mine else [0.0, 0.0, 0.0, 1.0])
+                    for p in roots
+                },
+            },
+        )
+        feet = _link_paths(req["usd"], world["feet"])
+        sensors = list(_link_paths(req["usd"], world["sensors"]).values())
+        if sensors:
+            binding = sim.physx.create_contact_binding(sensor_patterns=sensors)
+        start = _link_poses(sim, feet, mpu)
+        dt = setup["timestep"]
+        steps = max(1, round(world["duration"] / dt))
+        window = max(1, round(0.25 / dt))
+        total = np.zeros(3)
+        out = np.zeros((len(sensors), 3), dtype=np.float32)
+        for step in range(steps):
+            sim.physx.step_sync(dt)
+            if binding is not None and step >= steps - window:
+                sim.physx.wait_all()
+                binding.read_net_normal_forces(out)
+                total += out.sum(axis=0)
+        end = _link_poses(sim, feet, mpu)
+        root = sim.read(T.ARTICULATION, ["rootPosition", "rootOrientation"])
+        pos = root["rootPosition"][mine[0]] * mpu
+        qx, qy = (float(c) for c in root["rootOrientation"][mine[0]][:2])
+        if not np.all(np.isfinite(pos)):
+            return {"scenario": "stand", "ok": False, "error": "state not finite at the end"}
+        masses = sim.read(T.ARTICULATION_LINK, ["mass"])["mass"]
+        robot_mass = sum(float(m[0]) for p, m in masses.items() if p.startswith(info["root"].rsplit("/", 1)[0]))
+        return {
+            "scenario": "stand",
+            "ok": True,
+            "error": "",
+            "height": float(pos[2]),
+            "tilt": math.acos(max(-1.0, min(1.0, 1.0 - 2.0 * (qx * qx + qy * qy)))),
+            "feet_start": start,
+            "feet_end": end,
+            "mass": robot_mass,
+            "contact_sum": float(total[2] / window) * mpu if binding is not None else None,
+        }
+    finally:
+        if binding is not None:
+            binding.destroy()
+        sim.close()
+
+
+def _link_paths(usd, names):
+    """Link name -> its rigid body's prim path in the stage (by displayName, else prim name)."""
+    from pxr import Usd, UsdPhysics
+
+    stage = Usd.Stage.Open(usd)
+    out = {}
+    for prim in stage.Traverse():
+        if prim.HasAPI(UsdPhysics.RigidBodyAPI):
+            label = prim.GetMetadata("displayName") or prim.GetName()
+            if label in names and label not in out:
+                out[label] = str(prim.GetPath())
+    return out
+
+
+def _link_poses(sim, paths, mpu):
+    """Link name -> [x, y, z, qw, qx, qy, qz] (m) of the links at ``paths`` (name -> prim path)."""
+    from ovphysx.types import SimObjectType as T
+
+    rows = sim.read(T.ARTICULATION_LINK, ["position", "orientation"])
+    out = {}
+    for name, path in paths.items():
+        if path in rows["position"]:
+            p, q = rows["position"][path] * mpu, rows["orientation"][path]
+            out[name] = [float(p[0]), float(p[1]), float(p[2]), float(q[3]), float(q[0]), float(q[1]), float(q[2])]
+    return out
+
+
+def _simulate(sim, req, info, scenario, floor, mu):
+    from ovphysx.types import SimObjectType as T
+
+    setup = req["setup"]
+    mpu = info["mpu"]
+    posed = _home(sim, info, setup)
+    if isinstance(posed, str):
+        return {"scenario": scenario, "ok": False, "error": posed}
+    props, driven, target = posed
     roots = sim.read(T.ARTICULATION, ["rootPosition"])["rootPosition"]
     if floor:
         spawn = [info["root_pos"][0], info["root_pos"][1], (setup["stand_height"] + setup["drop_clearance"]) / mpu]
@@ -443,6 +556,8 @@ if __name__ == "__main__":
 
         def _scenario(req, name, mu):
             folder = _sub(scratch, name)
+            if name == "stand":
+                return _stand(req)
             return _slide(req, mu, folder) if name == "slide" else _robot_run(req, name, folder)
 
         serve("physx", _version, _scenario)

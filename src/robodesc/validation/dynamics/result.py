@@ -61,6 +61,15 @@ class Run:
     # (time, (x, y, z, qw, qx, qy, qz)) of the root link in the world, SI, at the trajectory's
     # samples: filled by the drop only when ``Setup.record`` asks (``validate --video``).
     root: list[tuple[float, tuple[float, ...]]] = field(default_factory=list)
+    # stand (on a world): each foot link's pose (x, y, z, qw, qx, qy, qz) at the start and the end,
+    # what the runner read; the rest is measured from them against the ground (run.py).
+    feet_start: dict[str, list[float]] = field(default_factory=dict)
+    feet_end: dict[str, list[float]] = field(default_factory=dict)
+    feet_height: dict[str, float] = field(default_factory=dict)  # root height over the ground under each foot, m
+    sole_gap: float | None = None  # the largest |sole - ground under it| at the end, m
+    slip: float | None = None  # the largest horizontal travel of a sole, m
+    contact_sum: float | None = None  # the feet's contact sensors, summed (N, the normal force)
+    weight: float | None = None  # the robot's weight as the engine read its mass, N
 
     def as_dict(self) -> dict[str, Any]:
         keys = ("engine", "file", "scenario", "ok", "error", "drift", "worst_joint", "height", "tilt", "mu")
@@ -68,6 +77,14 @@ class Run:
         out.update(stick=self.stick, slide=self.slide, settle=self.settle, seconds=round(self.seconds, 3))
         if self.mass is not None:
             out["mass"] = round(self.mass, 4)
+        if self.scenario == "stand":
+            out.update(
+                feet_height={k: round(v, 4) for k, v in self.feet_height.items()},
+                sole_gap=self.sole_gap,
+                slip=self.slip,
+                contact_sum=self.contact_sum,
+                weight=self.weight,
+            )
         if self.peak_effort:
             out["peak_effort"] = {k: round(v, 4) for k, v in self.peak_effort.items()}
             out["saturation"] = {k: round(v, 4) for k, v in self.saturation.items()}
@@ -108,7 +125,9 @@ class DynamicsReport:
         """Per scenario: "agree", "differ" or "n/a" (fewer than two engines ran it), for the corpus
         report's column."""
         out: dict[str, str] = {}
-        for scenario in ("hold-fixed", "drop", "slide"):
+        # The stand only when there was a world: the corpus report's columns stay the three.
+        stand = ("stand",) if any(r.scenario == "stand" for r in self.runs) else ()
+        for scenario in ("hold-fixed", "drop", "slide", *stand):
             names = [c for c in self.checks if c.name == f"agree:{scenario}"]
             if not names:
                 out[scenario] = "n/a"
@@ -135,11 +154,22 @@ class DynamicsReport:
                 lines.append(f"  {r.engine:<8} {r.file:<7} {r.scenario:<11} failed: {r.error}")
                 continue
             moved = "" if r.stick is None else f"{_num(r.stick, 3)}/{_num(r.slide, 3)}"
+            if r.scenario == "stand":
+                moved = f"slip {_num(r.slip, 3)}"
             tilt = None if r.tilt is None else math.degrees(r.tilt)
             lines.append(
                 f"  {r.engine:<8} {r.file:<7} {r.scenario:<11} {_num(r.drift, 4):>9} {_num(r.height, 3):>8} "
                 f"{_num(tilt, 1):>7} {_num(r.mu, 3):>6} {moved:>18} {_saturation(r):>20} {r.seconds:>6.2f}"
             )
+        stands = [r for r in self.runs if r.scenario == "stand" and r.ok and r.feet_height]
+        if stands:
+            lines.append(
+                "  on the world: root height over the ground under each foot (m), sole gap, contact sensors / weight"
+            )
+        for r in stands:
+            feet = " ".join(f"{k} {v:.3f}" for k, v in r.feet_height.items())
+            sensed = "" if r.contact_sum is None else f"; sensors {r.contact_sum:.1f} N / weight {_num(r.weight, 1)} N"
+            lines.append(f"  {r.engine:<8} {r.file:<7} {feet}; sole gap {_num(r.sole_gap, 3)}{sensed}")
         for c in sorted(self.checks, key=lambda c: c.status is Status.PASS):
             lines.append(f"  {c.status.value.upper():<4} {c.name} {c.element}: {c.message}")
         verdict = "passed" if self.ok else "FAILED (an output behaves unlike its source)"
@@ -156,7 +186,7 @@ def _saturation(run: Run) -> str:
 def run_from_json(engine: str, kind: str, raw: Mapping[str, Any], limits: Mapping[str, float]) -> Run:
     """A :class:`Run` from a worker's JSON answer (the Newton and PhysX workers speak the same)."""
     run = Run(engine, kind, str(raw["scenario"]), ok=bool(raw.get("ok")), error=str(raw.get("error", "")))
-    for key in ("drift", "height", "tilt", "mu", "stick", "slide", "mass"):
+    for key in ("drift", "height", "tilt", "mu", "stick", "slide", "mass", "contact_sum"):
         value = raw.get(key)
         setattr(run, key, None if value is None else float(value))
     run.worst_joint = str(raw.get("worst_joint", ""))
@@ -164,6 +194,8 @@ def run_from_json(engine: str, kind: str, raw: Mapping[str, Any], limits: Mappin
     run.final_q = {str(k): float(v) for k, v in (raw.get("final_q") or {}).items()}
     run.trajectory = [(float(t), {str(k): float(v) for k, v in q.items()}) for t, q in raw.get("trajectory", [])]
     run.root = [(float(t), tuple(float(c) for c in pose)) for t, pose in raw.get("root", [])]
+    for key in ("feet_start", "feet_end"):
+        setattr(run, key, {str(k): [float(v) for v in pose] for k, pose in (raw.get(key) or {}).items()})
     if raw.get("heights"):
         run.settle = settle_time([(float(t), float(z)) for t, z in raw["heights"]])
     if raw.get("peak_effort"):

@@ -106,9 +106,80 @@ def run_dynamics(
             if not any(r.engine == src_engine and r.file == SOURCE for r in report.runs):
                 runs = _run_engine(src_engine, robot, source_urdf, SOURCE, setup, opts, report, ("hold-fixed",))
                 report.runs.extend(runs)
+    if setup.world is not None:
+        _stand(robot, setup, opts, report, wanted)
     judge(report, setup, opts.thresholds)
     report.info["seconds"] = round(time.perf_counter() - started, 3)
     return report
+
+
+# The world file each engine stands the robot on (WorldStand.files is keyed by file kind).
+_WORLD_KIND = {"mujoco": "mjcf", "newton": "usd", "physx": "usd"}
+STANDS_ON_WORLD = tuple(_WORLD_KIND)  # the engines given a world file (Drake: none, DRAKE_NO_TERRAIN)
+DRAKE_NO_TERRAIN = (
+    "not run: Drake has no heightfield, and its point contact collides a mesh as its convex hull "
+    "(a concave terrain only as a rigid hydroelastic mesh against compliant robot colliders, which "
+    "the SDF robodesc writes does not declare)"
+)
+
+
+def _stand(robot: Robot, setup: Setup, opts: DynamicsOptions, report: DynamicsReport, wanted: set[str]) -> None:
+    """The stand on the world in every engine asked for that reads a world file."""
+    world = setup.world
+    assert world is not None
+    for engine in ENGINES:
+        if engine not in wanted:
+            continue
+        kind = _WORLD_KIND.get(engine)
+        if kind is None:
+            report.add("stand", Status.SKIP, engine, DRAKE_NO_TERRAIN)
+            continue
+        path = world.files.get(kind)
+        if path is None:
+            report.add("stand", Status.SKIP, engine, f"not run: no {kind} world was compiled")
+            continue
+        for run in _run_engine(engine, robot, path, kind, setup, opts, report, ("stand",)):
+            measure_stand(run, setup)
+            report.runs.append(run)
+
+
+def measure_stand(run: Run, setup: Setup) -> None:
+    """Each foot's sole in the world from the pose the engine reported, against the ground under it:
+    the root's height over the ground under each foot, how far the soles are from the ground, and
+    how far they slid."""
+    import numpy as np
+
+    world = setup.world
+    if world is None or not run.ok or not run.feet_end or run.height is None:
+        return
+    ends = {k: _sole(world.soles[k], v) for k, v in run.feet_end.items() if k in world.soles}
+    if not ends:
+        return
+    xy = np.array([[p[0], p[1]] for p in ends.values()])
+    ground = world.ground(xy[:, 0], xy[:, 1])
+    run.feet_height = {
+        name: run.height - float(g) for name, g in zip(ends, ground.tolist(), strict=True) if np.isfinite(g)
+    }
+    gaps = [abs(p[2] - g) for p, g in zip(ends.values(), ground.tolist(), strict=True) if np.isfinite(g)]
+    run.sole_gap = max(gaps) if gaps else None
+    starts = {k: _sole(world.soles[k], v) for k, v in run.feet_start.items() if k in ends}
+    moves = [float(np.hypot(ends[k][0] - p[0], ends[k][1] - p[1])) for k, p in starts.items()]
+    run.slip = max(moves) if moves else None
+    if run.weight is None and run.mass is not None:
+        run.weight = run.mass * 9.81  # the workers' engines run the world's gravity, 9.81 in Quad-SDK's
+
+
+def _sole(local: tuple[float, float, float], pose: list[float]) -> tuple[float, float, float]:
+    """A point of a link (``local``, in its frame) in the world, the link at ``pose`` (x, y, z, qw, qx, qy, qz)."""
+    x, y, z, w, a, b, c = pose
+    px, py, pz = local
+    # v' = v + 2 w (q × v) + 2 q × (q × v), q = (a, b, c)
+    tx, ty, tz = 2 * (b * pz - c * py), 2 * (c * px - a * pz), 2 * (a * py - b * px)
+    return (
+        x + px + w * tx + (b * tz - c * ty),
+        y + py + w * ty + (c * tx - a * tz),
+        z + pz + w * tz + (a * ty - b * tx),
+    )
 
 
 Runner = Callable[[Robot, str, str, Setup, DynamicsOptions, tuple[str, ...]], "list[Run] | str"]

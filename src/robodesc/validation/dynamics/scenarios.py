@@ -83,6 +83,36 @@ class DynamicsOptions:
     record: bool = False
     # Called with a line before each engine runs (``validate --dynamics`` prints it on a terminal).
     progress: Callable[[str], None] | None = None
+    # A world to stand the robot in (``validate --dynamics --world``): the "stand" scenario.
+    world: WorldStand | None = None
+
+
+@dataclass(slots=True)
+class WorldStand:
+    """The stand on a world (``validate --dynamics --world``), placed once by the driver: the world
+    files each engine reads (kind -> path: MJCF's scene.xml, USD's world stage), where the root
+    starts (x, y, z at the home pose, yaw), each foot's sole (its lowest point at the home pose, in
+    the foot link's frame), the links with contact sensors, and the ground's height at any x, y
+    (NaN over none; the terrain as USD and SDF keep it). ``heightfields``: each terrain as a grid
+    file (.npz: z, x0, y0, step, the frame's x, y, z, yaw) and the USD prim it replaces, for Newton,
+    whose MuJoCo solver collides a triangle mesh as its convex hull."""
+
+    files: dict[str, str]
+    spawn: tuple[float, float, float, float]
+    soles: dict[str, tuple[float, float, float]]
+    ground: Callable[[NDArray[np.float64], NDArray[np.float64]], NDArray[np.float64]]
+    sensors: tuple[str, ...] = ()
+    heightfields: list[dict[str, Any]] = field(default_factory=list)
+    duration: float = 2.0  # s: a dropped robot settles on its feet within 1 s, the sensors are read after
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "spawn": list(self.spawn),
+            "feet": list(self.soles),
+            "sensors": list(self.sensors),
+            "heightfields": self.heightfields,
+            "duration": self.duration,
+        }
 
 
 @dataclass(slots=True)
@@ -110,9 +140,11 @@ class Setup:
     timestep: float = 0.001
     drop_clearance: float = 0.05
     record: bool = False  # DynamicsOptions.record
+    world: WorldStand | None = None
 
     def as_dict(self) -> dict[str, Any]:
         return {
+            "world": self.world.as_dict() if self.world is not None else None,
             "pose": self.pose,
             "gains": {k: list(v) for k, v in self.gains.items()},
             "stand_height": self.stand_height,
@@ -285,4 +317,5 @@ def make_setup(robot: Robot, options: DynamicsOptions) -> Setup:
         timestep=options.timestep,
         drop_clearance=options.drop_clearance,
         record=options.record,
+        world=options.world,
     )

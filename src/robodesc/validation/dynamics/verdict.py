@@ -52,6 +52,7 @@ def judge(report: DynamicsReport, setup: Setup, th: Thresholds) -> None:
     _slide(report, [r for r in outputs if r.scenario == "slide"], setup, th)
     for scenario in ("hold-fixed", "drop"):
         _saturation(report, [r for r in outputs if r.scenario == scenario], th)
+    _stand(report, [r for r in outputs if r.scenario == "stand"], th)
 
 
 def _label(r: Run) -> str:
@@ -249,3 +250,52 @@ def _slide(report: DynamicsReport, runs: list[Run], setup: Setup, th: Thresholds
             f"{a.engine}/{a.file} vs {b.engine}/{b.file}",
             f"mu {a.mu} and {b.mu}" + ("" if same else ": the engines' defaults differ where the source gives none"),
         )
+
+
+# The feet's contact sensors read the robot's weight within this (relative) when it stands.
+CONTACT_REL = 0.05
+# A sole this far from the ground under it at the end is not standing on it.
+SOLE_GAP = 0.02  # m
+
+
+def _stand(report: DynamicsReport, runs: list[Run], th: Thresholds) -> None:
+    """The stand on a world: upright on its soles in each engine, the engines agreeing on the
+    height over the ground and the tilt, and the contact sensors reading the weight. All WARN: the
+    terrain and each engine's contact model decide them, not what the output says of the robot."""
+    for r in runs:
+        tilt = math.degrees(r.tilt or 0.0)
+        upright = r.tilt is not None and r.tilt <= th.upright_tilt
+        on_ground = r.sole_gap is not None and r.sole_gap <= SOLE_GAP
+        heights = ", ".join(f"{k} {v:.3f}" for k, v in r.feet_height.items())
+        message = f"tilt {tilt:.1f}°, slip {_m(r.slip)}, soles within {_m(r.sole_gap)} of the ground; over each foot {heights}"
+        report.add("stand", Status.PASS if upright and on_ground else Status.WARN, _label(r), message)
+        if r.contact_sum is not None and r.weight:
+            off = abs(r.contact_sum - r.weight) / r.weight
+            report.add(
+                "contact",
+                Status.PASS if off <= CONTACT_REL else Status.WARN,
+                _label(r),
+                f"the feet's contact sensors sum to {r.contact_sum:.2f} N against the weight {r.weight:.2f} N ({off:.1%})",
+                error=off,
+                tolerance=CONTACT_REL,
+            )
+    for a, b in combinations(runs, 2):
+        if not (a.feet_height and b.feet_height) or a.tilt is None or b.tilt is None:
+            continue
+        ha = sum(a.feet_height.values()) / len(a.feet_height)
+        hb = sum(b.feet_height.values()) / len(b.feet_height)
+        dh, dt = abs(ha - hb), abs(a.tilt - b.tilt)
+        agree = dh <= th.drop_height_agree and dt <= th.drop_tilt_agree
+        report.add(
+            "agree:stand",
+            Status.PASS if agree else Status.WARN,
+            f"{_label(a)} vs {_label(b)}",
+            f"height over the ground {ha:.3f} / {hb:.3f} m, tilt {math.degrees(a.tilt):.1f}° / {math.degrees(b.tilt):.1f}°"
+            + ("" if agree else " (contact models differ, or one engine reads the terrain differently)"),
+            error=dh,
+            tolerance=th.drop_height_agree,
+        )
+
+
+def _m(value: float | None) -> str:
+    return "-" if value is None else f"{value:.3f} m"
