@@ -111,8 +111,7 @@ def write_world_files(
     robot: Robot, staging: str, names: Mapping[str, str], world: IsaacWorld, placed: PlacedWorld, findings: Findings
 ) -> list[str]:
     """Write the world stage (and the terrain file for ``terrain_type="usd"``); return their roles."""
-    from robodesc.emit.usd import write_terrain, write_world
-    from robodesc.emit.usd.world import robot_friction
+    from robodesc.emit.usd import robot_friction, write_terrain, write_world
 
     contacts = any(s.type.value == "contact" for s in robot.sensors)
     mu = robot_friction(robot)  # Isaac Lab 3 runs Newton: the ground's friction capped at the robot's

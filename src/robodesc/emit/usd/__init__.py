@@ -25,11 +25,11 @@ from robodesc.emit.usd.target import TARGET
 
 if TYPE_CHECKING:
     from robodesc.emit.usd.emitter import PhysicsOpinions, emit_usd, physics_opinions
-    from robodesc.emit.usd.world import write_terrain, write_world
+    from robodesc.emit.usd.world import robot_friction, write_terrain, write_world
 
 _WRITER = ("emit_usd", "physics_opinions", "PhysicsOpinions")
 # The world stage and the ground alone (the Isaac folder writes both).
-_WORLD = ("write_world", "write_terrain")
+_WORLD = ("write_world", "write_terrain", "robot_friction")
 
 
 def __getattr__(name: str) -> Any:
@@ -56,6 +56,7 @@ __all__ = [
     "UsdOptions",
     "emit_usd",
     "physics_opinions",
+    "robot_friction",
     "write_terrain",
     "write_world",
 ]
