@@ -28,14 +28,18 @@ OUT = os.path.join(ROOT, "benchmarks", "results", "dynamics.json")
 ENGINES = "mujoco,drake,newton"
 
 
-def run_one(robot: CorpusRobot, engines: str, timeout: float, target: str = "usd") -> dict[str, Any]:
-    cmd = [sys.executable, "-m", "robodesc", "validate", robot.path, "-t", target, "--dynamics", "--engines", engines]
+def run_one(
+    robot: CorpusRobot, engines: str, timeout: float, target: str = "usd", src: str = os.path.join(ROOT, "src")
+) -> dict[str, Any]:
+    """``src``: the robodesc tree that runs (another checkout's, for a before/after)."""
+    cmd = [sys.executable, "-m", "robodesc", "validate", robot.path, "-t", target, "--dynamics"]
+    cmd += ["--engines", engines] if engines else []
     cmd += ["--json"]
     for name, path in robot.packages.items():
         cmd += ["--package", f"{name}={path}"]
     for name, value in robot.xacro_args.items():
         cmd += ["--arg", f"{name}={value}"]
-    env = {**os.environ, "PYTHONPATH": os.path.join(ROOT, "src")}
+    env = {**os.environ, "PYTHONPATH": src}
     started = time.perf_counter()
     try:
         done = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, check=False)

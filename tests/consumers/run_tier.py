@@ -558,7 +558,10 @@ def main(argv: list[str] | None = None) -> int:
         if robot.name in results:
             continue
         start = time.perf_counter()
-        results[robot.name] = {**run_robot(robot, args.envs, work), **run_robot_physx(robot, work, not args.no_physx_dynamics)}
+        results[robot.name] = {
+            **run_robot(robot, args.envs, work),
+            **run_robot_physx(robot, work, not args.no_physx_dynamics),
+        }
         print(f"{robot.name}: {time.perf_counter() - start:.0f} s  " + json.dumps(results[robot.name]), flush=True)
         _write(results, args.out)
     return 0
