@@ -78,7 +78,7 @@ def markdown(results: dict[str, dict[str, Any]]) -> str:
                 counts[(scenario, other, verdict)] = counts.get((scenario, other, verdict), 0) + 1
         runs = {(r["engine"], r["scenario"]): r for r in row["runs"] if r["file"] != "source"}
         engines = ("physx", *OTHERS)
-        hold = " / ".join(_num(runs.get((e, "hold-fixed")), "drift", ".3f") for e in engines)
+        hold = " / ".join(_num(runs.get((e, "hold-fixed")), "drift", ".3g") for e in engines)
         drop = " / ".join(_num(runs.get((e, "drop")), "height", ".3f") for e in engines)
         spent = row.get("engine_seconds", {})
         lines.append(
