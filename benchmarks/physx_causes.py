@@ -47,6 +47,7 @@ from robodesc.check_dynamics import default_stance
 from robodesc.passes.options import parse_armature
 from robodesc.validation.corpora import example_robot_data_robots
 from robodesc.validation.dynamics import DynamicsOptions
+from robodesc.validation.dynamics.run import folder_files
 from robodesc.validation.physx_python import physx_python
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -167,7 +168,7 @@ def physx_row(
     gains = _gains(options, base)
     out = os.path.join(folder, "isaac")
     robodesc.compile_for_isaac_sim(source, out, validate=False, **gains, **options)
-    usd = next(os.path.join(out, f) for f in os.listdir(out) if f.endswith((".usda", ".usd", ".usdc")))
+    usd = folder_files(out)["usd"]  # the robot's stage, not the folder's physics layer (<robot>_physics.usda)
     request = {"usd": usd, "spawn": base["spawn"], "duration": DURATION, "timestep": TIMESTEP, "floor_mu": FLOOR_MU}
     if terrain is not None:
         request.update(spawn=terrain["spawn"], terrain=terrain["stage"])
@@ -294,7 +295,7 @@ def terrain_rows(source: str, options: dict[str, Any], base: dict[str, Any], fol
     return rows
 
 
-def run(robot: str, causes: list[str], done: list[dict[str, Any]]) -> list[dict[str, Any]]:
+def run(robot: str, causes: list[str], done: list[dict[str, Any]], physx_only: bool = False) -> list[dict[str, Any]]:
     """``done``: rows of an earlier run whose PhysX results are kept (``--physx-from``)."""
     source, given = source_of(robot)
     rows = []
@@ -311,13 +312,15 @@ def run(robot: str, causes: list[str], done: list[dict[str, Any]]) -> list[dict[
                 row = {"robot": robot, "cause": cause, "variant": variant, "options": shown}
                 kept = next((r for r in done if (r["robot"], r["variant"]) == (robot, variant)), None)
                 where = os.path.join(folder, re.sub(r"\W+", "_", variant))
+                physx_ok = kept is not None and not kept["physx"].get("error")
                 if cause == "terrain":
-                    row.update(terrain_rows(source, options, base, where))
+                    row.update(kept if kept and physx_ok else terrain_rows(source, options, base, where))
                     rows.append(row)
                     continue
-                row["physx"] = kept["physx"] if kept else physx_row(source, options, base, where)
+                row["physx"] = kept["physx"] if kept and physx_ok else physx_row(source, options, base, where)
                 if cause in OTHER_ENGINES and robot not in CORPUS:
-                    row.update(other_rows(source, options, base))
+                    others = {e: kept[e] for e in ENGINES if kept and e in kept}
+                    row.update(others if others or physx_only else other_rows(source, options, base))
                 rows.append(row)
     return rows
 
@@ -417,7 +420,12 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--robot", action="append", choices=sorted({*ROBOTS, *CORPUS}))
     parser.add_argument("--cause", action="append", choices=[c for c in CAUSES if c != "baseline"])
-    parser.add_argument("--physx-from", metavar="JSON", help="keep the PhysX rows of an earlier run's JSON")
+    parser.add_argument(
+        "--physx-from",
+        metavar="JSON",
+        help="keep the rows of an earlier run's JSON whose PhysX run did not fail (with their other engines)",
+    )
+    parser.add_argument("--physx-only", action="store_true", help="no MuJoCo, Drake or Newton runs (kept rows stay)")
     parser.add_argument("--json")
     parser.add_argument("--md")
     args = parser.parse_args()
@@ -425,8 +433,8 @@ def main() -> int:
     done = []
     if args.physx_from:
         with open(args.physx_from, encoding="utf-8") as handle:
-            done = [r for r in json.load(handle) if "error" not in r["physx"]]
-    rows = [row for robot in (args.robot or ["spirit"]) for row in run(robot, causes, done)]
+            done = json.load(handle)
+    rows = [row for robot in (args.robot or ["spirit"]) for row in run(robot, causes, done, args.physx_only)]
     publish(markdown(rows), rows, args.json, args.md)
     return 0
 
