@@ -24,6 +24,12 @@ dynamics=...)`` (``validate --dynamics``) for the variants their files carry (th
 damping defaults, ``--preset gazebo_parity``): same stance, same gains, 2 s, from 5 mm. The other causes
 are PhysX attributes (iterations, offsets, combine mode, the PhysX mesh approximations) none of them
 reads; a dash says so. Results: benchmarks/results/physx_causes.{json,md}.
+
+Two causes beyond flat ground, for Spirit and Go2: ``quad-sdk gains`` (Quad-SDK's own joint gains
+replace the derived ones in every engine: QUADSDK_GAINS) and ``terrain`` (Quad-SDK's worlds through
+``--world``: MuJoCo on the MJCF's heightfield, PhysX on the ``-t usd --world`` stage's terrain with the
+Isaac folder's robot; heights over the ground under the root; Drake and Newton have no column).
+``--physx-only`` runs no other engine (rows kept by ``--physx-from`` keep theirs).
 """
 
 from __future__ import annotations
