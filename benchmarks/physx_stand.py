@@ -51,9 +51,8 @@ def _scene(folder, usd, spawn, floor_mu, terrain=None):
         # The world stage robodesc writes (-t usd --world): its physics scene, terrain and materials
         # as written; its own robot (a payload) is switched off, the request's robot stands in.
         world = Usd.Stage.Open(os.path.abspath(terrain), load=Usd.Stage.LoadNone)
-        for child in (
-            world.GetDefaultPrim().GetChildren() if world.GetDefaultPrim() else world.GetPseudoRoot().GetChildren()
-        ):
+        top = world.GetDefaultPrim() or world.GetPseudoRoot()
+        for child in top.GetAllChildren():  # GetChildren skips the unloaded payload: the robot itself
             if child.HasAuthoredPayloads():
                 stage.OverridePrim(child.GetPath()).SetActive(False)
         layer.Save()
