@@ -28,14 +28,18 @@ OUT = os.path.join(ROOT, "benchmarks", "results", "dynamics.json")
 ENGINES = "mujoco,drake,newton"
 
 
-def run_one(robot: CorpusRobot, engines: str, timeout: float, target: str = "usd") -> dict[str, Any]:
-    cmd = [sys.executable, "-m", "robodesc", "validate", robot.path, "-t", target, "--dynamics", "--engines", engines]
+def run_one(
+    robot: CorpusRobot, engines: str, timeout: float, target: str = "usd", src: str = os.path.join(ROOT, "src")
+) -> dict[str, Any]:
+    """``src``: the robodesc tree that runs (another checkout's, for a before/after)."""
+    cmd = [sys.executable, "-m", "robodesc", "validate", robot.path, "-t", target, "--dynamics"]
+    cmd += ["--engines", engines] if engines else []
     cmd += ["--json"]
     for name, path in robot.packages.items():
         cmd += ["--package", f"{name}={path}"]
     for name, value in robot.xacro_args.items():
         cmd += ["--arg", f"{name}={value}"]
-    env = {**os.environ, "PYTHONPATH": os.path.join(ROOT, "src")}
+    env = {**os.environ, "PYTHONPATH": src}
     started = time.perf_counter()
     try:
         done = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, check=False)
@@ -73,6 +77,7 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
     parser.add_argument("--subset", choices=("erd", "all"), default="erd")
     parser.add_argument("--robots", default="", help="comma-separated substrings of corpus names")
+    parser.add_argument("--exact", action="store_true", help="--robots names whole corpus names, in that order")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--engines", default=ENGINES)
     parser.add_argument("--timeout", type=float, default=600.0)
@@ -84,7 +89,11 @@ def main(argv: list[str] | None = None) -> int:
         robots = [r for r in robots if r.corpus in ("quadsdk", "example-robot-data")]
     if args.robots:
         wanted = [w for w in args.robots.split(",") if w]
-        robots = [r for r in robots if any(w in r.name for w in wanted)]
+        if args.exact:
+            by_name = {r.name: r for r in robots}
+            robots = [by_name[w] for w in wanted if w in by_name]
+        else:
+            robots = [r for r in robots if any(w in r.name for w in wanted)]
     results: dict[str, Any] = {}
     started = time.perf_counter()
     with ThreadPoolExecutor(args.jobs) as pool:
@@ -95,11 +104,15 @@ def main(argv: list[str] | None = None) -> int:
             results[key] = future.result()
             res = results[key]
             print(f"{key}: {res['status']} {res.get('agreement', '')} {res['seconds']} s", flush=True)
-    os.makedirs(os.path.dirname(args.out), exist_ok=True)
-    with open(args.out, "w", encoding="utf-8") as fh:
-        json.dump(results, fh, indent=1, sort_keys=True)
+            _write(results, args.out)  # after every robot: a long run cut off keeps what it measured
     print(f"{len(results)} robots in {time.perf_counter() - started:.0f} s; wrote {args.out}")
     return 0
+
+
+def _write(results: dict[str, Any], out: str) -> None:
+    os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
+    with open(out, "w", encoding="utf-8") as fh:
+        json.dump(results, fh, indent=1, sort_keys=True)
 
 
 if __name__ == "__main__":

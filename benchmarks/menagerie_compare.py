@@ -238,19 +238,26 @@ def measure(scene: str, vlimits: dict[str, float], key_name: str = "home") -> di
         speed_over_limit=ratio,
         speed_over_limit_joint=ratio_joint,
     )
-    # Speed.
-    # The best of five runs of this process's CPU time: the machine is shared (load 19 on 2 cores
-    # while measured), and wall time measured the neighbours.
+    row["steps_per_s"] = steps_per_second(model, data, ctrl0, key_name)
+    return row
+
+
+def steps_per_second(model: Any, data: Any, ctrl: Any, key_name: str = "home") -> float:
+    """MuJoCo steps per second of CPU time over SPEED_STEPS steps from ``key_name`` holding ``ctrl``.
+
+    The best of five runs of this process's CPU time: the machine is shared (load 19 on 2 cores
+    while measured), and wall time measured the neighbours."""
+    import mujoco
+
     best = math.inf
     for _ in range(5):
         _reset(model, data, key_name)
-        data.ctrl[:] = ctrl0
+        data.ctrl[:] = ctrl
         started = time.process_time()
         for _ in range(SPEED_STEPS):
             mujoco.mj_step(model, data)
         best = min(best, time.process_time() - started)
-    row["steps_per_s"] = SPEED_STEPS / best
-    return row
+    return SPEED_STEPS / best
 
 
 def compile_robot(source: str, out_dir: str, options: dict[str, Any], erd: str) -> tuple[str, list[str]]:

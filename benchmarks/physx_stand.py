@@ -5,13 +5,15 @@ cannot live in robodesc's environment), by ``benchmarks/physx_causes.py``: one J
 standard input, one JSON answer on standard output. A benchmark's own minimal runner, written
 before PhysX became a ``validate --dynamics`` engine on main.
 
-Request: ``{"usd", "spawn": [x, y, z], "duration", "timestep", "floor_mu"}``. The USD is read as
+Request: ``{"usd", "spawn": [x, y, z], "duration", "timestep", "floor_mu"}``, optionally
+``"terrain"``: a world stage ``-t usd --world`` wrote (``<stem>_world.usda``). The USD is read as
 written (its drives, targets, initial joint state, masses, colliders, materials, PhysX attributes);
 a scene layer that sublayers it adds only gravity, a floor plane with friction ``floor_mu`` and the
-spawn translation of the robot prim.
+spawn translation of the robot prim; with ``terrain``, the world stage's scene, terrain and
+materials instead of the gravity and plane (its own robot switched off).
 
-Answer: ``{"height", "tilt", "joint_error", "worst_joint", "peak_torque", "peak_share", "peak_joint",
-"steps_per_second"}`` in SI: the root's final height (m) and tilt from upright (rad); the largest
+Answer: ``{"height", "xy", "tilt", "joint_error", "worst_joint", "peak_torque", "peak_share", "peak_joint",
+"steps_per_second"}`` in SI: the root's final height (m; z, not over a terrain), its x and y, and tilt from upright (rad); the largest
 final |q - target| (rad or m); the largest drive torque over the run, |kp (target - q) - kd qd|
 clamped to the drive's maxForce (PhysX's drive is implicit: this is the force of each step's end
 state), and the same as a share of maxForce (the effort limit), with the joint it occurs at.
@@ -28,7 +30,7 @@ import tempfile
 import time
 
 
-def _scene(folder, usd, spawn, floor_mu):
+def _scene(folder, usd, spawn, floor_mu, terrain=None):
     from pxr import Gf, Sdf, Usd, UsdGeom, UsdPhysics, UsdShade
 
     robot = Usd.Stage.Open(usd)
@@ -36,16 +38,28 @@ def _scene(folder, usd, spawn, floor_mu):
     path = os.path.join(folder, "scene.usda")
     layer = Sdf.Layer.CreateNew(path)
     layer.subLayerPaths.append(os.path.abspath(usd))
+    if terrain:
+        layer.subLayerPaths.append(os.path.abspath(terrain))
     stage = Usd.Stage.Open(layer)
     stage.SetEditTarget(layer)
     stage.SetDefaultPrim(stage.GetPrimAtPath(prim.GetPath()))
     UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.z)
     UsdGeom.SetStageMetersPerUnit(stage, UsdGeom.GetStageMetersPerUnit(robot) or 1.0)
+    # The robot prim has no transform ops of its own: one translate moves every link to the spawn.
+    UsdGeom.Xformable(stage.GetPrimAtPath(prim.GetPath())).AddTranslateOp().Set(Gf.Vec3d(*spawn))
+    if terrain:
+        # The world stage robodesc writes (-t usd --world): its physics scene, terrain and materials
+        # as written; its own robot (a payload) is switched off, the request's robot stands in.
+        world = Usd.Stage.Open(os.path.abspath(terrain), load=Usd.Stage.LoadNone)
+        top = world.GetDefaultPrim() or world.GetPseudoRoot()
+        for child in top.GetAllChildren():  # GetChildren skips the unloaded payload: the robot itself
+            if child.HasAuthoredPayloads():
+                stage.OverridePrim(child.GetPath()).SetActive(False)
+        layer.Save()
+        return path
     scene = UsdPhysics.Scene.Define(stage, "/PhysicsScene")
     scene.CreateGravityDirectionAttr().Set(Gf.Vec3f(0.0, 0.0, -1.0))
     scene.CreateGravityMagnitudeAttr().Set(9.81)
-    # The robot prim has no transform ops of its own: one translate moves every link to the spawn.
-    UsdGeom.Xformable(stage.GetPrimAtPath(prim.GetPath())).AddTranslateOp().Set(Gf.Vec3d(*spawn))
     material = UsdShade.Material.Define(stage, "/FloorMaterial")
     api = UsdPhysics.MaterialAPI.Apply(material.GetPrim())
     api.CreateStaticFrictionAttr().Set(float(floor_mu))
@@ -122,7 +136,7 @@ def run(req):
     from ovphysx.types import SimObjectType as T
 
     with tempfile.TemporaryDirectory(prefix="physx-causes-") as folder:
-        sim = _Sim(_scene(folder, req["usd"], req["spawn"], req["floor_mu"]))
+        sim = _Sim(_scene(folder, req["usd"], req["spawn"], req["floor_mu"], req.get("terrain")))
         try:
             angular = _angular(req["usd"])
             fixed = sim.read(
@@ -160,10 +174,11 @@ def run(req):
             }
             worst = max(errors, key=errors.get)
             root = sim.read(T.ARTICULATION, ["rootPosition", "rootOrientation"])
-            z = next(iter(root["rootPosition"].values()))[2]
+            x, y, z = next(iter(root["rootPosition"].values()))[:3]
             qx, qy = next(iter(root["rootOrientation"].values()))[:2]  # x y z w
             return {
                 "height": z,
+                "xy": [x, y],
                 "tilt": math.acos(max(-1.0, min(1.0, 1.0 - 2.0 * (qx * qx + qy * qy)))),
                 "joint_error": errors[worst],
                 "worst_joint": worst.rsplit("/", 1)[-1],

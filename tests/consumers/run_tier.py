@@ -311,7 +311,7 @@ def run_robot_mjcf(robot: CorpusRobot, envs: str, work: str) -> dict[str, object
     return out
 
 
-def run_robot_physx(robot: CorpusRobot, work: str) -> dict[str, object]:
+def run_robot_physx(robot: CorpusRobot, work: str, dynamics: bool = True) -> dict[str, object]:
     """The ``physx`` columns: ``compile -t usd`` and ``--isaac-sim`` as a user runs them (validation
     on, with the tier's base flag), and what their PhysX check says. ``physx`` is the compile's
     verdict on the PhysX rows; ``physx_loads``, ``physx_masses`` and ``physx_drives`` split it (a
@@ -330,7 +330,7 @@ def run_robot_physx(robot: CorpusRobot, work: str) -> dict[str, object]:
         proc = _run([*py, "compile", str(robot.path), *target, "-o", dest, "--json", *flags], 900, log)
         out[f"{kind}_seconds"] = round(time.perf_counter() - start, 1)
         out.update({f"{kind}{k}": v for k, v in physx_verdict(proc).items()})
-    hook = physx_dynamics(robot, flags, log)
+    hook = physx_dynamics(robot, flags, log) if dynamics else None
     if hook is not None:
         out["physx_dynamics"] = hook
     return out
@@ -497,6 +497,12 @@ def main(argv: list[str] | None = None) -> int:
         help=f"comma list of columns to (re)run, of {', '.join(ALL_KINDS)}; the others are kept from --out "
         "(default: the USD columns, robots already in --out skipped with --resume)",
     )
+    ap.add_argument(
+        "--no-physx-dynamics",
+        action="store_true",
+        help="physx: only the structural columns (hold and drop in PhysX are benchmarks/dynamics_corpus.py's, "
+        "which runs them beside the other engines; the hook doubles the tier's time)",
+    )
     ap.add_argument("--out", default=os.path.join(ROOT, "benchmarks", "results", "consumers.json"))
     args = ap.parse_args(argv)
     sys.path.insert(0, os.path.join(ROOT, "src"))
@@ -542,7 +548,7 @@ def main(argv: list[str] | None = None) -> int:
             if "newton_mjcf" in kinds:
                 row.update(run_robot_mjcf(robot, args.envs, work))
             if "physx" in kinds:
-                row.update(run_robot_physx(robot, work))
+                row.update(run_robot_physx(robot, work, not args.no_physx_dynamics))
             if set(kinds) & set(KINDS):
                 row.update({k: v for k, v in run_robot(robot, args.envs, work).items() if k in kinds or k not in KINDS})
             print(f"{robot.name}: {time.perf_counter() - start:.0f} s  " + json.dumps(row), flush=True)
@@ -552,7 +558,10 @@ def main(argv: list[str] | None = None) -> int:
         if robot.name in results:
             continue
         start = time.perf_counter()
-        results[robot.name] = {**run_robot(robot, args.envs, work), **run_robot_physx(robot, work)}
+        results[robot.name] = {
+            **run_robot(robot, args.envs, work),
+            **run_robot_physx(robot, work, not args.no_physx_dynamics),
+        }
         print(f"{robot.name}: {time.perf_counter() - start:.0f} s  " + json.dumps(results[robot.name]), flush=True)
         _write(results, args.out)
     return 0
