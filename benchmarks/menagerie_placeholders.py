@@ -75,7 +75,9 @@ def referenced_files(folder: str) -> dict[str, str]:
 def _includer_dirs(folder: str, xml: str) -> dict[str, str] | None:
     for other in glob.glob(os.path.join(folder, "**", "*.xml"), recursive=True):
         root = ET.parse(other).getroot()
-        includes = {os.path.normpath(os.path.join(os.path.dirname(other), i.get("file", ""))) for i in root.iter("include")}
+        includes = {
+            os.path.normpath(os.path.join(os.path.dirname(other), i.get("file", ""))) for i in root.iter("include")
+        }
         if os.path.normpath(xml) in includes:
             for compiler in root.iter("compiler"):
                 asset = compiler.get("assetdir", "")
