@@ -94,3 +94,29 @@ def test_pybullet_round_trip_keeps_extensions_and_says_ros_will_not_load_it(tmp_
     assert "<capsule" in text and 'type="spherical"' in text
     with pytest.raises((ValueError, RuntimeError)):
         pin.buildModelFromXML(text)
+
+
+def test_mjcf_input_urdf_is_written_for_ros(tmp_path: Path) -> None:
+    # An MJCF model's URDF is a new file, not a round trip of a pybullet URDF: urdfdom must load it
+    # (menagerie go1's 24 capsules made urdfdom drop every collision of 9 links). The fixture has
+    # capsules, a ball joint and a <connect> loop (a <loop_joint type="spherical">, which the URDF
+    # check once mistook for the ball joint itself and compared the unsplit robot).
+    source = ROOT / "tests" / "mjcf_in" / "data" / "features.xml"
+    result = robodesc.compile_to_urdf(str(source), tmp_path / "out.urdf")
+    assert result.validation is not None and result.validation.ok, result.validation.to_text()
+    text = (tmp_path / "out.urdf").read_text(encoding="utf-8")
+    assert "<capsule" not in text
+    assert 'type="spherical"' in text  # the loop joint stays, written as <loop_joint>
+    model = _loads(tmp_path / "out.urdf")
+    assert {"ball_x", "ball_y", "ball_z"} <= set(model.names)
+    codes = {f.code for f in result.findings}
+    assert {"urdf-capsule-split", "urdf-spherical-split"} <= codes and "urdf-not-ros" not in codes
+
+
+def test_urdf_named_xml_is_still_a_round_trip(tmp_path: Path) -> None:
+    # A URDF saved as .xml keeps its capsules (pybullet reads them), as a .urdf does.
+    urdf = tmp_path / "capsule.xml"
+    urdf.write_text(PYBULLET.read_text(encoding="utf-8"), encoding="utf-8")
+    result = robodesc.compile_to_urdf(str(urdf), tmp_path / "out.urdf", validate=False)
+    assert "<capsule" in (tmp_path / "out.urdf").read_text(encoding="utf-8")
+    assert "urdf-not-ros" in {f.code for f in result.findings}
