@@ -133,7 +133,7 @@ def pinocchio_check(urdf: str, source: Any, robot: Any) -> str:
     data_mj = mujoco.MjData(source)
     rng = np.random.default_rng(0)
     bodies = [mujoco.mj_id2name(source, mujoco.mjtObj.mjOBJ_BODY, b) for b in range(1, source.nbody)]
-    frames = {n: model.getFrameId(n) for n in bodies if model.existFrame(n)}
+    frames = {n: model.getFrameId(n, pin.FrameType.BODY) for n in bodies if model.existFrame(n, pin.FrameType.BODY)}
     root = next((b for b in range(1, source.nbody) if source.body_parentid[b] == 0), 1)
     root_name = bodies[root - 1]
     worst, where = 0.0, ""
@@ -460,7 +460,10 @@ def main() -> None:
     work = args.work or tempfile.mkdtemp(prefix="menagerie-engines-")
     rows, cases = [], []
     for path in models(args.menagerie, args.models, args.every_scene):
-        row, more = run_model(path, work, args.dynamics)
+        try:
+            row, more = run_model(path, work, args.dynamics)
+        except Exception as exc:  # one model's crash is its row, the run goes on
+            row, more = {"model": path, "read": f"benchmark error: {type(exc).__name__}: {exc}"[:300]}, []
         rows.append(row)
         cases += more
         print(json.dumps(row), flush=True)

@@ -45,45 +45,30 @@ def placeholder_box() -> trimesh.Trimesh:
     return box
 
 
+def _compiler_dirs(root: ET.Element) -> dict[str, str] | None:
+    for compiler in root.iter("compiler"):
+        asset = compiler.get("assetdir", "")
+        mesh = compiler.get("meshdir", asset)
+        return {"mesh": mesh, "hfield": mesh, "skin": mesh, "texture": compiler.get("texturedir", asset)}
+    return None
+
+
 def referenced_files(folder: str) -> dict[str, str]:
-    """Every asset file the folder's XMLs name: absolute path -> the XML that names it."""
+    """Every asset file the folder's XMLs name: absolute path -> the XML that names it. MuJoCo's
+    ``<compiler>`` is global to the model: a file without one (a scene, an included part) takes the
+    one its model's other file has (menagerie writes one per model)."""
+    xmls = sorted(glob.glob(os.path.join(folder, "**", "*.xml"), recursive=True))
+    roots = {xml: ET.parse(xml).getroot() for xml in xmls}
+    shared = next((d for d in map(_compiler_dirs, roots.values()) if d is not None), None)
     found: dict[str, str] = {}
-    for xml in sorted(glob.glob(os.path.join(folder, "**", "*.xml"), recursive=True)):
-        root = ET.parse(xml).getroot()
-        base = os.path.dirname(xml)
-        dirs = {"mesh": "", "texture": "", "hfield": "", "skin": ""}
-        for compiler in root.iter("compiler"):
-            asset = compiler.get("assetdir", "")
-            dirs = {
-                "mesh": compiler.get("meshdir", asset),
-                "hfield": compiler.get("meshdir", asset),
-                "skin": compiler.get("meshdir", asset),
-                "texture": compiler.get("texturedir", asset),
-            }
-        # An included file has no <compiler> of its own: it takes its includer's.
-        includer = _includer_dirs(folder, xml)
-        if includer is not None and not any(dirs.values()):
-            dirs = includer
+    for xml, root in roots.items():
+        dirs = _compiler_dirs(root) or shared or {"mesh": "", "hfield": "", "skin": "", "texture": ""}
         for tag, sub in dirs.items():
             for el in root.iter(tag):
                 name = el.get("file")
                 if name:
-                    found[os.path.normpath(os.path.join(base, sub, name))] = xml
+                    found[os.path.normpath(os.path.join(os.path.dirname(xml), sub, name))] = xml
     return found
-
-
-def _includer_dirs(folder: str, xml: str) -> dict[str, str] | None:
-    for other in glob.glob(os.path.join(folder, "**", "*.xml"), recursive=True):
-        root = ET.parse(other).getroot()
-        includes = {
-            os.path.normpath(os.path.join(os.path.dirname(other), i.get("file", ""))) for i in root.iter("include")
-        }
-        if os.path.normpath(xml) in includes:
-            for compiler in root.iter("compiler"):
-                asset = compiler.get("assetdir", "")
-                mesh = compiler.get("meshdir", asset)
-                return {"mesh": mesh, "hfield": mesh, "skin": mesh, "texture": compiler.get("texturedir", asset)}
-    return None
 
 
 def write_placeholder(path: str) -> str:
