@@ -5,6 +5,7 @@ capsules and a spherical joint. The test tier runs ``check_urdf`` itself on more
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pinocchio as pin
@@ -120,3 +121,34 @@ def test_urdf_named_xml_is_still_a_round_trip(tmp_path: Path) -> None:
     result = robodesc.compile_to_urdf(str(urdf), tmp_path / "out.urdf", validate=False)
     assert "<capsule" in (tmp_path / "out.urdf").read_text(encoding="utf-8")
     assert "urdf-not-ros" in {f.code for f in result.findings}
+
+
+def test_continuous_joint_limit_gets_the_missing_velocity(tmp_path: Path) -> None:
+    # An unlimited MJCF hinge driven by a servo with a forcerange (menagerie Gen3's joint_1) is a
+    # continuous joint whose <limit> has an effort only: urdfdom refused the whole file ("limit has
+    # no velocity"). The missing number gets the documented default, with the warning.
+    mjcf = tmp_path / "wheel.xml"
+    mjcf.write_text(
+        """<mujoco model="wheel">
+  <worldbody>
+    <body name="base">
+      <geom type="box" size="0.1 0.1 0.1" mass="1"/>
+      <body name="rotor" pos="0 0 0.2">
+        <joint name="spin" axis="0 0 1"/>
+        <geom type="cylinder" size="0.05 0.01" mass="0.2"/>
+      </body>
+    </body>
+  </worldbody>
+  <actuator><position name="spin" joint="spin" kp="10" forcerange="-7 7"/></actuator>
+</mujoco>
+""",
+        encoding="utf-8",
+    )
+    result = robodesc.compile_to_urdf(str(mjcf), tmp_path / "out.urdf")
+    assert result.validation is not None and result.validation.ok
+    text = (tmp_path / "out.urdf").read_text(encoding="utf-8")
+    assert re.search(r'type="continuous">(?:(?!</joint>).)*<limit effort="7" velocity="100"/>', text, re.DOTALL)
+    model = _loads(tmp_path / "out.urdf")
+    assert model.effortLimit[model.joints[model.getJointId("spin")].idx_v] == pytest.approx(7.0)
+    warned = [f for f in result.findings if f.code == "urdf-limit-defaults"]
+    assert warned and "spin" in warned[0].message
