@@ -233,7 +233,11 @@ class UrdfEmitter:
                 number: float | None = getattr(joint.limit, attr) if joint.limit is not None else None
                 # urdfdom reads a continuous joint's <limit> too, and refuses it without both
                 # (menagerie Gen3's unlimited joints have an actuator's effort and no velocity).
-                if number is None and attr in ("effort", "velocity") and (joint.type.needs_limit or joint.limit is not None):
+                if (
+                    number is None
+                    and attr in ("effort", "velocity")
+                    and (joint.type.needs_limit or joint.limit is not None)
+                ):
                     number = self.options.default_effort if attr == "effort" else self.options.default_velocity
                     if number is not None:
                         self.defaulted.setdefault(joint.name, []).append(attr)
