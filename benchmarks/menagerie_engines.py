@@ -57,6 +57,7 @@ NEWTON_STRUCTURE |= {"limits lower", "limits upper"}
 # placeholder effort and velocity where the source gives none (1000, 100; the USD writes none). Those
 # are compared against the IR by the PhysX check instead.
 NEWTON_DRIVES = {"drive stiffness", "drive damping", "drive modes"}
+STAND_SHARE = 0.7  # of MuJoCo's settled height on robodesc's URDF, for "stands"
 FK_TOL = 1e-6  # m, Pinocchio's body places against MuJoCo's (both float64)
 MASS_TOL = 1e-6  # relative
 
@@ -119,7 +120,7 @@ def ir_against_mujoco(robot: Any, path: str) -> str:
             continue  # sampled as MuJoCo qpos = IR q, which a ref moves: the round trip column compares FK
         if c.name == "bodies" and _documented_body(source, c.element, robot):
             continue
-        if c.name == "total mass" and len(robot.links) < source.nbody - 1 and _scene_objects(source, robot):
+        if c.name == "total mass" and _scene_objects(source, robot):
             continue  # the scene's objects weigh in MuJoCo's total, not in the robot's
         rows.append(f"{c.name} ({c.element})")
     return verdict(rows)
@@ -128,11 +129,9 @@ def ir_against_mujoco(robot: Any, path: str) -> str:
 def _one_dof(source: Any) -> list[int]:
     import mujoco
 
-    return [
-        j
-        for j in range(source.njnt)
-        if source.jnt_type[j] in (mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE)
-    ]
+    # int(): numpy's integers and pybind's enum do not compare equal inside "in".
+    kinds = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))
+    return [j for j in range(source.njnt) if int(source.jnt_type[j]) in kinds]
 
 
 def _scene_objects(source: Any, robot: Any) -> list[str]:
@@ -198,8 +197,7 @@ def pinocchio_check(urdf: str, source: Any, robot: Any) -> str:
     if abs(mass - want) > MASS_TOL * max(want, 1.0):
         problems.append(f"mass {mass:.6g} vs {want:.6g}")
     # Limits and the random configurations, by joint name (1-DOF joints; IR positions are qpos - ref).
-    hinge = {mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE}
-    joints = [j for j in range(source.njnt) if source.jnt_type[j] in hinge]
+    joints = _one_dof(source)
     pin_ids = {model.names[i]: i for i in range(model.njoints)}
     for j in joints:
         name = mujoco.mj_id2name(source, mujoco.mjtObj.mjOBJ_JOINT, j)
@@ -226,7 +224,12 @@ def pinocchio_check(urdf: str, source: Any, robot: Any) -> str:
             adr = source.jnt_qposadr[j]
             data_mj.qpos[adr] = value
             if name in pin_ids:
-                q[model.joints[pin_ids[name]].idx_q] = value - source.qpos0[adr]
+                joint = model.joints[pin_ids[name]]
+                angle = value - source.qpos0[adr]
+                if joint.nq == 2:  # a continuous joint is (cos, sin) in Pinocchio
+                    q[joint.idx_q], q[joint.idx_q + 1] = np.cos(angle), np.sin(angle)
+                else:
+                    q[joint.idx_q] = angle
         mujoco.mj_kinematics(source, data_mj)
         pin.framesForwardKinematics(model, data, q)
         if root_name not in frames:
@@ -422,6 +425,8 @@ def run_model(
                     "usd": usd,
                     "floating": row["floating"],
                     "gains": gains,
+                    # The numbers only: the 200-step run compares against a URDF without armature.
+                    "steps": 0,
                 }
             )
     if dynamics:
@@ -464,7 +469,39 @@ def behaviour_section(rows: list[dict[str, Any]]) -> list[str]:
             ours = "; ".join(f"{k}: {v}" for k, v in sorted(r.get("behaviour", {}).items()))
             theirs = "; ".join(f"{k}: {v}" for k, v in sorted(r.get("conv_behaviour", {}).items()))
             lines.append(f"| {r['model']} | {ours} | {theirs} | {r.get('dynamics_s', '-')} |")
+        lines += ["", "| engine and file | hold | stand |", "|---|---|---|"]
+        for key, (holds, stands, runs) in sorted(tally_behaviour(dyn).items()):
+            lines.append(f"| {key} | {holds}/{runs['hold']} | {stands}/{runs['drop']} |")
     return lines
+
+
+def _height(text: str) -> float | None:
+    found = re.search(r"h (-?[0-9.]+) m", text)
+    return float(found.group(1)) if found else None
+
+
+def tally_behaviour(rows: list[dict[str, Any]]) -> dict[str, tuple[int, int, dict[str, int]]]:
+    """Per engine and file: how many robots hold, and how many dropped robots stand: upright
+    (tilt at most 30 degrees) and at least STAND_SHARE of the height MuJoCo on robodesc's URDF
+    settles at, so a robot that folds to the floor upright is not counted as standing."""
+    out: dict[str, tuple[int, int, dict[str, int]]] = {}
+    for r in rows:
+        reference = _height(r.get("behaviour", {}).get("mujoco/urdf drop", ""))
+        for side, prefix in (("behaviour", ""), ("conv_behaviour", "converter ")):
+            for key, text in r.get(side, {}).items():
+                engine, scenario = key.rsplit(" ", 1)
+                if scenario not in ("hold", "drop"):
+                    continue
+                holds, stands, runs = out.get(prefix + engine, (0, 0, {"hold": 0, "drop": 0}))
+                runs[scenario] += 1
+                if scenario == "hold" and text == "holds":
+                    holds += 1
+                height = _height(text)
+                tall = reference is not None and height is not None and height >= STAND_SHARE * reference
+                if scenario == "drop" and text.startswith("stands") and tall:
+                    stands += 1
+                out[prefix + engine] = (holds, stands, runs)
+    return out
 
 
 def markdown(rows: list[dict[str, Any]]) -> str:
@@ -568,17 +605,49 @@ def markdown(rows: list[dict[str, Any]]) -> str:
     return "\n".join(lines) + "\n"
 
 
+def recheck(menagerie: str, work: str, out: str) -> None:
+    """The MuJoCo- and Pinocchio-side columns again, from a finished run's files (fast: no engine)."""
+    import mujoco
+
+    from robodesc.frontends.load import load_path
+
+    with open(out + ".json") as handle:
+        saved = json.load(handle)
+    for row in saved["rows"]:
+        name = row["model"]
+        path = os.path.join(menagerie, name) if name.endswith(".xml") else os.path.join(menagerie, name, "scene.xml")
+        if not os.path.exists(path):
+            path = sorted(glob.glob(os.path.join(menagerie, name, "scene*.xml")))[-1]
+        robot = load_path(path).robot
+        row["ir"] = ir_against_mujoco(robot, path)
+        urdf = os.path.join(work, re.sub(r"[^A-Za-z0-9_]+", "_", name), "robot.urdf")
+        if os.path.exists(urdf):
+            row["pinocchio"] = pinocchio_check(urdf, mujoco.MjModel.from_xml_path(path), robot)
+    with open(out + ".json", "w") as handle:
+        json.dump(saved, handle, indent=1, default=str)
+    with open(out + ".md", "w") as handle:
+        handle.write(markdown(saved["rows"]))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--menagerie", required=True)
     parser.add_argument("--models")
     parser.add_argument("--dynamics", action="store_true")
     parser.add_argument("--only-dynamics", action="store_true", help="the behaviour columns alone")
+    parser.add_argument(
+        "--recheck",
+        action="store_true",
+        help="recompute the IR and Pinocchio columns from --out's JSON and --work's files",
+    )
     parser.add_argument("--every-scene", action="store_true", help="also scene variants (scene_cube.xml, ...)")
     parser.add_argument("--work", default=None, help="keep every output here (default: a temporary folder)")
     parser.add_argument("--out", default=os.path.join(HERE, "results", "menagerie_engines"))
     args = parser.parse_args()
     work = args.work or tempfile.mkdtemp(prefix="menagerie-engines-")
+    if args.recheck:
+        recheck(args.menagerie, work, args.out)
+        return
     rows, cases = [], []
     for path in models(args.menagerie, args.models, args.every_scene):
         try:
