@@ -102,6 +102,9 @@ def test_geometry_and_inertia(loaded: tuple[Robot, list[tuple[str, str, str]]]) 
     assert capsule.geometry.length == pytest.approx(0.2)  # type: ignore[union-attr]
     assert capsule.contact is not None
     assert capsule.contact.mu == pytest.approx(0.7)
+    # MuJoCo's friction is isotropic: both directions (SDF's mu2 would default to 1, which Drake reads
+    # as a dynamic friction above the static 0.7 and refuses).
+    assert capsule.contact.mu2 == pytest.approx(0.7)
     assert capsule.contact.torsional == pytest.approx(0.01)
     assert capsule.contact.kp is not None and capsule.contact.kd is not None
     mesh = next(v for v in arm.visuals if type(v.geometry).__name__ == "Mesh")
