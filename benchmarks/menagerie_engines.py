@@ -274,13 +274,19 @@ def convert(path: str, out: str) -> tuple[str | None, float, list[str]]:
     return top[0], seconds, warnings
 
 
-def usd_checks(robot: Any, usd: str) -> tuple[str, str, str]:
-    """usd-core's parser and PhysX against the IR: (parser, PhysX masses, PhysX joints and drives)."""
+def usd_checks(robot: Any, usd: str, classes: dict[str, Any] | None = None) -> tuple[str, str, str]:
+    """usd-core's parser and PhysX against the IR: (parser, PhysX masses, PhysX joints and drives).
+    ``classes`` receives every failing row name with how many elements it names."""
     from robodesc.validation.physx_usd import validate_usd_physx
     from robodesc.validation.usd_physics import validate_usd_physics
 
     parsed = validate_usd_physics(robot, usd)
     physx = validate_usd_physx(robot, usd)
+    if classes is not None:
+        for report in (parsed, physx):
+            for c in report.checks:
+                if c.status.value == "fail":
+                    classes[c.name] = classes.get(c.name, 0) + 1
     masses = [
         r
         for r in failing(physx)
@@ -475,6 +481,26 @@ def behaviour_section(rows: list[dict[str, Any]]) -> list[str]:
     return lines
 
 
+def class_section(rows: list[dict[str, Any]]) -> list[str]:
+    """Every failing check class of each USD against the IR (usd-core's parser and PhysX), with the
+    models it affects and how many elements it names there."""
+    lines: list[str] = []
+    for kind, title in (("usd", "robodesc's USD"), ("conv", "mujoco-usd-converter's USD")):
+        by: dict[str, list[str]] = defaultdict(list)
+        for r in rows:
+            for name, count in r.get(f"{kind}_classes", {}).items():
+                by[name].append(f"{r['model'].split('/')[0]} ({count})")
+        if not any(f"{kind}_classes" in r for r in rows):
+            continue
+        lines += ["", f"## {title}: failing checks against the IR (usd-core's parser and PhysX)", ""]
+        if not by:
+            lines.append("None.")
+            continue
+        lines += ["| check | models (failing elements) |", "|---|---|"]
+        lines += [f"| `{n}` | {', '.join(sorted(m))} |" for n, m in sorted(by.items(), key=lambda kv: -len(kv[1]))]
+    return lines
+
+
 def _height(text: str) -> float | None:
     found = re.search(r"h (-?[0-9.]+) m", text)
     return float(found.group(1)) if found else None
@@ -600,6 +626,7 @@ def markdown(rows: list[dict[str, Any]]) -> str:
             conv_by[text].append(r["model"])
     lines += ["", "## robodesc's warning classes", "", "| warning class | models |", "|---|---|"]
     lines += [f"| `{c}` | {', '.join(sorted(set(m)))} |" for c, m in sorted(by_code.items())]
+    lines += class_section(rows)
     lines += ["", "## mujoco-usd-converter's warnings", "", "| warning | models |", "|---|---|"]
     lines += [f"| {c} | {', '.join(sorted(set(m)))} |" for c, m in sorted(conv_by.items())]
     return "\n".join(lines) + "\n"
@@ -620,9 +647,19 @@ def recheck(menagerie: str, work: str, out: str) -> None:
             path = sorted(glob.glob(os.path.join(menagerie, name, "scene*.xml")))[-1]
         robot = load_path(path).robot
         row["ir"] = ir_against_mujoco(robot, path)
-        urdf = os.path.join(work, re.sub(r"[^A-Za-z0-9_]+", "_", name), "robot.urdf")
+        folder = os.path.join(work, re.sub(r"[^A-Za-z0-9_]+", "_", name))
+        urdf = os.path.join(folder, "robot.urdf")
         if os.path.exists(urdf):
             row["pinocchio"] = pinocchio_check(urdf, mujoco.MjModel.from_xml_path(path), robot)
+        for kind, found in (
+            ("usd", [os.path.join(folder, "robot.usda")]),
+            ("conv", glob.glob(os.path.join(folder, "converter", "*.usda"))),
+        ):
+            usd = next((f for f in found if os.path.exists(f)), None)
+            if usd is not None:
+                classes: dict[str, Any] = {}
+                usd_checks(robot, usd, classes)
+                row[f"{kind}_classes"] = classes
     with open(out + ".json", "w") as handle:
         json.dump(saved, handle, indent=1, default=str)
     with open(out + ".md", "w") as handle:
