@@ -82,7 +82,7 @@ def run_for(
     # The checked file's drives are what its target wrote: a target that writes its options'
     # constant gains (-t usd: 100 / 1) is simulated with them everywhere, not with derived ones
     # Newton would not read from that file. Then the pose and the gains the others lack.
-    opts = default_stance(robot, _written_gains(target, opts))
+    opts = _with_source_gains(robot, default_stance(robot, _written_gains(target, opts)), options)
     for engine in engines:
         if any(engine in READERS.get(kind, ()) for kind in files):
             continue
@@ -215,6 +215,22 @@ def default_stance(robot: Robot, opts: DynamicsOptions) -> DynamicsOptions:
     out.defaults = f"pose: {given}; gains: " + (
         "given" if opts.stiffness is not None and opts.damping is not None else "derived (docs/isaac.md)"
     )
+    return out
+
+
+def _with_source_gains(robot: Robot, opts: DynamicsOptions, options: Mapping[str, Any]) -> DynamicsOptions:
+    """The source's own servos (an MJCF's actuators, ``Joint.drive``) ahead of the constant or derived
+    gains, where the user gave none: every target writes them (emit/common/source_drives.py), so the
+    USD Newton and PhysX read carries menagerie's kp 2000 while a URDF carries no gains. Without this
+    MuJoCo and Drake simulated the constant 100 beside them and the engines "disagreed" on a hold
+    that differed only in the gains each was given."""
+    from robodesc.emit.common.source_drives import apply_source_gains
+
+    out = dataclasses.replace(opts)
+    given = {k for k in ("stiffness", "damping") if k in options}
+    count = apply_source_gains(robot, out, given)
+    if count:
+        out.defaults = f"{out.defaults}; the source's servos on {count} joints"
     return out
 
 

@@ -246,6 +246,16 @@ def check(args: argparse.Namespace) -> dict:
     # --- per-DOF parameters ---------------------------------------------------------------
     dofs_u = _dof_table(bu, mu, skip_base=True)
     dofs_s = _dof_table(bs, ms, skip_base=True)
+    if getattr(args, "gains", None):
+        # The source's own servos (an MJCF's actuators, joint -> [kp, kv] in SI per radian or
+        # metre): a URDF carries no gains, so the reference is given the ones robodesc's USD writes
+        # for them (docs/mjcf-input.md), instead of one constant for every joint.
+        ke, kd = mu.joint_target_ke.numpy(), mu.joint_target_kd.numpy()
+        for n, (kp, kv) in args.gains.items():
+            for i in dofs_u.get(n, []):
+                ke[i], kd[i] = kp, kv
+        mu.joint_target_ke.assign(ke)
+        mu.joint_target_kd.assign(kd)
     mimic_u = (
         {_short(mu.joint_label[j]) for j in range(mu.joint_count) if int(mu.joint_mimic_joint.numpy()[j]) >= 0}
         if mu.joint_mimic_joint is not None
@@ -774,6 +784,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--package-dir", action="append", default=[], help="package roots for package:// URIs")
     ap.add_argument("--variant", default=None, help="select this Physics variant first (Isaac importer output)")
     ap.add_argument("--steps", type=int, default=200)
+    ap.add_argument("--gains", type=json.loads, default=None, help='per-joint reference gains, {"joint": [kp, kv]}')
     ap.add_argument("--cases", help="a JSON list of cases (keys: name, urdf, usd or mjcf, and the options above)")
     ap.add_argument("--out", default=None, help="write the JSON here (Warp prints to standard output)")
     args = ap.parse_args(argv)

@@ -279,3 +279,30 @@ def test_a_file_with_constant_drives_is_simulated_with_them() -> None:
     assert {tuple(g) for g in usd.info["setup"]["gains"].values()} == {(100.0, 1.0)}
     mjcf = robodesc.check(ARM, "mjcf", dynamics=MUJOCO).dynamics
     assert mjcf is not None and {tuple(g) for g in mjcf.info["setup"]["gains"].values()} != {(100.0, 1.0)}
+
+
+def test_every_engine_is_given_the_source_servos_gains() -> None:
+    # An MJCF's position servo (shoulder kp 50 kv 2, slide kp 200 kv 10) is what every target writes;
+    # the dynamics check must simulate it in every engine, not the USD's constant 100 in MuJoCo and
+    # Drake beside the source's gains in Newton and PhysX (menagerie's iiwa14 drifted 0.156 rad in
+    # MuJoCo and 0.029 in PhysX, a "disagreement" made by the gains alone).
+    from robodesc.check_dynamics import _with_source_gains
+    from robodesc.ir.rules import lookup
+
+    robot = robodesc.load(str(ROOT / "tests/mjcf_in/data/features.xml"))
+    opts = _with_source_gains(robot, DynamicsOptions(stiffness=100.0, damping=1.0), {})
+    assert lookup(opts.stiffness, "shoulder", "stiffness") == pytest.approx(50.0)
+    assert lookup(opts.damping, "shoulder", "damping") == pytest.approx(2.0)
+    assert lookup(opts.stiffness, "slide", "stiffness") == pytest.approx(200.0)
+    assert lookup(opts.damping, "slide", "damping") == pytest.approx(10.0)
+    # A velocity servo holds no position: stiffness 0, its kv as damping.
+    assert lookup(opts.stiffness, "wrist_roll", "stiffness") == pytest.approx(0.0)
+    assert lookup(opts.damping, "wrist_roll", "damping") == pytest.approx(3.0)
+    # Joints without a source servo keep the constant.
+    others = [j.name for j in robot.actuated_joints() if j.drive is None]
+    assert others and all(lookup(opts.stiffness, n, "stiffness") == pytest.approx(100.0) for n in others)
+    assert "the source's servos on 3 joints" in (opts.defaults or "")
+    # Gains the user gives win.
+    given = _with_source_gains(robot, DynamicsOptions(stiffness=7.0, damping=1.0), {"stiffness": 7.0})
+    assert lookup(given.stiffness, "shoulder", "stiffness") == pytest.approx(7.0)
+    assert lookup(given.damping, "shoulder", "damping") == pytest.approx(2.0)

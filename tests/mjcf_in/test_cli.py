@@ -43,3 +43,41 @@ def test_batch_discovers_scenes_not_the_robots_they_include(tmp_path: Path) -> N
     (tmp_path / "arm.xml").write_text('<robot name="arm"><link name="a"/></robot>')
     found = [job for _, job in discover(str(tmp_path))]
     assert found == ["alone", "arm", "scene"]
+
+
+def test_sdf_of_an_mjcf_with_low_friction_reads_in_drake(tmp_path: Path) -> None:
+    # menagerie Spot's feet have friction 0.8: the SDF wrote <mu>0.8</mu> without <mu2>, SDF's
+    # default 1 made Drake read a dynamic friction above the static one and refuse the drop.
+    from pydrake.multibody.parsing import Parser
+    from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
+    from pydrake.systems.framework import DiagramBuilder
+
+    import robodesc
+
+    source = tmp_path / "foot.xml"
+    source.write_text(
+        """<mujoco model="foot">
+  <worldbody>
+    <body name="leg">
+      <freejoint/>
+      <geom type="capsule" size="0.02 0.1" mass="1" friction="0.7"/>
+    </body>
+  </worldbody>
+</mujoco>
+""",
+        encoding="utf-8",
+    )
+    result = robodesc.compile_to(str(source), "sdf", tmp_path / "robot.sdf")
+    assert result.validation is not None and result.validation.ok
+    plant, scene_graph = AddMultibodyPlantSceneGraph(DiagramBuilder(), 0.001)
+    Parser(plant).AddModels(str(tmp_path / "robot.sdf"))
+    plant.Finalize()
+    inspector = scene_graph.model_inspector()
+    frictions = []
+    for geometry in inspector.GetAllGeometryIds():
+        props = inspector.GetProximityProperties(geometry)
+        if props is not None and props.HasProperty("material", "coulomb_friction"):
+            friction = props.GetProperty("material", "coulomb_friction")
+            frictions.append((friction.static_friction(), friction.dynamic_friction()))
+    # Friction 0.7: static and dynamic alike, as MuJoCo's one coefficient.
+    assert any(s == pytest.approx(0.7) and d == pytest.approx(0.7) for s, d in frictions), frictions

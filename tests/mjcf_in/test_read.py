@@ -102,6 +102,9 @@ def test_geometry_and_inertia(loaded: tuple[Robot, list[tuple[str, str, str]]]) 
     assert capsule.geometry.length == pytest.approx(0.2)  # type: ignore[union-attr]
     assert capsule.contact is not None
     assert capsule.contact.mu == pytest.approx(0.7)
+    # MuJoCo's friction is isotropic: both directions (SDF's mu2 would default to 1, which Drake reads
+    # as a dynamic friction above the static 0.7 and refuses).
+    assert capsule.contact.mu2 == pytest.approx(0.7)
     assert capsule.contact.torsional == pytest.approx(0.01)
     assert capsule.contact.kp is not None and capsule.contact.kd is not None
     mesh = next(v for v in arm.visuals if type(v.geometry).__name__ == "Mesh")
@@ -210,3 +213,38 @@ def test_scene_objects_are_left_out_with_a_warning(tmp_path: Path) -> None:
     found = [f for f in result.findings if f.code == "mjcf-scene-object"]
     assert len(found) == 1 and "'table', 'cube'" in found[0].message
     assert not [f for f in result.findings if f.code in ("mjcf-world-geom", "mjcf-world-frame")]
+
+
+def test_chained_joint_equalities_become_one_leader(tmp_path: Path) -> None:
+    # Stretch's telescoping arm: l0 follows l1, l1 follows l2. URDF readers refuse a mimic of a
+    # mimic (Newton's add_urdf raised on Stretch and TALOS); the maps compose exactly.
+    source = tmp_path / "chain.xml"
+    source.write_text(
+        """<mujoco model="chain">
+  <worldbody>
+    <body name="base">
+      <geom type="box" size="0.1 0.1 0.1" mass="1"/>
+      <body name="a"><joint name="a" type="slide" axis="1 0 0" range="-1 1"/><geom size="0.02" mass="0.1"/>
+        <body name="b"><joint name="b" type="slide" axis="1 0 0" range="-1 1"/><geom size="0.02" mass="0.1"/>
+          <body name="c"><joint name="c" type="slide" axis="1 0 0" range="-1 1"/><geom size="0.02" mass="0.1"/>
+          </body>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+  <equality>
+    <joint joint1="a" joint2="b" polycoef="0.1 2 0 0 0"/>
+    <joint joint1="b" joint2="c" polycoef="0.05 3 0 0 0"/>
+  </equality>
+</mujoco>
+""",
+        encoding="utf-8",
+    )
+    loaded = load_path(str(source))
+    joints = loaded.robot.joint_map()
+    a, b = joints["a"].mimic, joints["b"].mimic
+    assert a is not None and b is not None and a.joint == "c" and b.joint == "c"
+    # a = 0.1 + 2 b = 0.1 + 2 (0.05 + 3 c) = 0.2 + 6 c
+    assert a.multiplier == pytest.approx(6.0) and a.offset == pytest.approx(0.2)
+    assert b.multiplier == pytest.approx(3.0) and b.offset == pytest.approx(0.05)
+    assert "mjcf-mimic-chain" in {f.code for f in loaded.findings}

@@ -5,6 +5,7 @@ capsules and a spherical joint. The test tier runs ``check_urdf`` itself on more
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pinocchio as pin
@@ -94,3 +95,60 @@ def test_pybullet_round_trip_keeps_extensions_and_says_ros_will_not_load_it(tmp_
     assert "<capsule" in text and 'type="spherical"' in text
     with pytest.raises((ValueError, RuntimeError)):
         pin.buildModelFromXML(text)
+
+
+def test_mjcf_input_urdf_is_written_for_ros(tmp_path: Path) -> None:
+    # An MJCF model's URDF is a new file, not a round trip of a pybullet URDF: urdfdom must load it
+    # (menagerie go1's 24 capsules made urdfdom drop every collision of 9 links). The fixture has
+    # capsules, a ball joint and a <connect> loop (a <loop_joint type="spherical">, which the URDF
+    # check once mistook for the ball joint itself and compared the unsplit robot).
+    source = ROOT / "tests" / "mjcf_in" / "data" / "features.xml"
+    result = robodesc.compile_to_urdf(str(source), tmp_path / "out.urdf")
+    assert result.validation is not None and result.validation.ok, result.validation.to_text()
+    text = (tmp_path / "out.urdf").read_text(encoding="utf-8")
+    assert "<capsule" not in text
+    assert 'type="spherical"' in text  # the loop joint stays, written as <loop_joint>
+    model = _loads(tmp_path / "out.urdf")
+    assert {"ball_x", "ball_y", "ball_z"} <= set(model.names)
+    codes = {f.code for f in result.findings}
+    assert {"urdf-capsule-split", "urdf-spherical-split"} <= codes and "urdf-not-ros" not in codes
+
+
+def test_urdf_named_xml_is_still_a_round_trip(tmp_path: Path) -> None:
+    # A URDF saved as .xml keeps its capsules (pybullet reads them), as a .urdf does.
+    urdf = tmp_path / "capsule.xml"
+    urdf.write_text(PYBULLET.read_text(encoding="utf-8"), encoding="utf-8")
+    result = robodesc.compile_to_urdf(str(urdf), tmp_path / "out.urdf", validate=False)
+    assert "<capsule" in (tmp_path / "out.urdf").read_text(encoding="utf-8")
+    assert "urdf-not-ros" in {f.code for f in result.findings}
+
+
+def test_continuous_joint_limit_gets_the_missing_velocity(tmp_path: Path) -> None:
+    # An unlimited MJCF hinge driven by a servo with a forcerange (menagerie Gen3's joint_1) is a
+    # continuous joint whose <limit> has an effort only: urdfdom refused the whole file ("limit has
+    # no velocity"). The missing number gets the documented default, with the warning.
+    mjcf = tmp_path / "wheel.xml"
+    mjcf.write_text(
+        """<mujoco model="wheel">
+  <worldbody>
+    <body name="base">
+      <geom type="box" size="0.1 0.1 0.1" mass="1"/>
+      <body name="rotor" pos="0 0 0.2">
+        <joint name="spin" axis="0 0 1"/>
+        <geom type="cylinder" size="0.05 0.01" mass="0.2"/>
+      </body>
+    </body>
+  </worldbody>
+  <actuator><position name="spin" joint="spin" kp="10" forcerange="-7 7"/></actuator>
+</mujoco>
+""",
+        encoding="utf-8",
+    )
+    result = robodesc.compile_to_urdf(str(mjcf), tmp_path / "out.urdf")
+    assert result.validation is not None and result.validation.ok
+    text = (tmp_path / "out.urdf").read_text(encoding="utf-8")
+    assert re.search(r'type="continuous">(?:(?!</joint>).)*<limit effort="7" velocity="100"/>', text, re.DOTALL)
+    model = _loads(tmp_path / "out.urdf")
+    assert model.effortLimit[model.joints[model.getJointId("spin")].idx_v] == pytest.approx(7.0)
+    warned = [f for f in result.findings if f.code == "urdf-limit-defaults"]
+    assert warned and "spin" in warned[0].message

@@ -5,6 +5,7 @@ Folder targets that hold a URDF (ROS 2, Isaac) are checked through the URDF they
 from __future__ import annotations
 
 import os
+import re
 
 from robodesc.emit.common.target import CheckRequest, Emitted
 from robodesc.emit.urdf.ros import ros_equivalent
@@ -12,6 +13,7 @@ from robodesc.ir.model import JointType, Robot
 from robodesc.validation.report import Status, ValidationReport
 
 _MODELLED_SHAPES = frozenset({"box", "cylinder", "sphere", "mesh", "capsule"})
+_SPHERICAL_JOINT = re.compile(r'<joint\b[^>]*\btype="spherical"')
 
 
 def check_urdf(robot: Robot, emitted: Emitted, request: CheckRequest) -> ValidationReport | None:
@@ -29,7 +31,8 @@ def check_urdf(robot: Robot, emitted: Emitted, request: CheckRequest) -> Validat
     text, unmodelled = without_unmodelled_shapes(text)
     # Written for ROS, a spherical joint of the IR is three revolute joints (emit/urdf/ros.py):
     # the URDF is compared with the robot it stands for.
-    split = any(j.type is JointType.SPHERICAL for j in robot.joints) and 'type="spherical"' not in text
+    # A <loop_joint type="spherical"> (an MJCF <connect>) is not a tree joint: only <joint> counts.
+    split = any(j.type is JointType.SPHERICAL for j in robot.joints) and not _SPHERICAL_JOINT.search(text)
     report = validate_urdf_text(ros_equivalent(robot) if split else robot, text, base_dir, request.options)
     if split:
         report.add(

@@ -9,7 +9,7 @@ urdfdom reads URDF 1.0 and nothing else. The IR can hold three things it refuses
 The third is handled by the URDF emitter itself for every URDF it writes
 (``UrdfOptions.default_effort``/``default_velocity``, see ``writer.py``). The first two are lowered
 here, on a copy of the robot, for the URDF written for ROS (``--ros2``, the Isaac folder's URDF,
-``-t urdf`` from a composition):
+``-t urdf`` from a composition or from an MJCF or SDF model):
 
 - a capsule becomes a cylinder of the same radius and length plus a sphere at each end (the same
   solid); ``UrdfOptions.capsules = "keep"`` keeps ``<capsule>`` instead (pybullet, Isaac and MuJoCo
@@ -26,6 +26,7 @@ IR to compare the URDF that was written with the robot it stands for.
 from __future__ import annotations
 
 import copy
+import re
 from collections.abc import Sequence
 from dataclasses import replace
 from typing import TypeVar
@@ -43,10 +44,38 @@ _AXES = (("x", (1.0, 0.0, 0.0)), ("y", (0.0, 1.0, 0.0)), ("z", (0.0, 0.0, 1.0)))
 COMPOSITION_SUFFIXES = (".yaml", ".yml", ".holo", ".py")
 
 
+URDF_SUFFIXES = (".urdf", ".xacro")
+# How far into an ``.xml`` file its root element is looked for (comments and a licence header first).
+_SNIFF_BYTES = 64 * 1024
+
+
 def from_composition(robot: Robot) -> bool:
-    """Whether the robot was composed (YAML, ``.holo``, Python) rather than read from URDF/xacro."""
+    """Whether the URDF is a new file, written for ROS, rather than a round trip of a URDF/xacro input:
+    the robot was composed (YAML, ``.holo``, Python) or read from another format (MJCF, SDF). A
+    menagerie model's URDF has no pybullet extensions to keep; its readers are ROS's (urdfdom,
+    Pinocchio), which refuse ``<capsule>`` and spherical joints."""
     src = robot.source_file
-    return src is None or src.lower().endswith(COMPOSITION_SUFFIXES)
+    if src is None or src.lower().endswith(COMPOSITION_SUFFIXES):
+        return True
+    if src.lower().endswith(URDF_SUFFIXES):
+        return False
+    if not src.lower().endswith(".xml"):
+        return True  # .sdf, .mjcf, model.config
+    return not _urdf_root(src)
+
+
+def _urdf_root(path: str) -> bool:
+    """Whether an ``.xml`` file's root element is ``<robot>`` (URDF) rather than ``<mujoco>`` or
+    ``<sdf>``; a file that cannot be read now counts as URDF (the round trip keeps what it had)."""
+    try:
+        with open(path, "rb") as handle:
+            head = handle.read(_SNIFF_BYTES).decode("utf-8", "replace")
+    except OSError:
+        return True
+    # The first element that is not a declaration, comment or processing instruction.
+    body = re.sub(r"<\?.*?\?>|<!--.*?-->|<!DOCTYPE[^>]*>", "", head, flags=re.DOTALL)
+    first = re.search(r"<\s*([A-Za-z_][\w.:-]*)", body)
+    return first is None or first.group(1) == "robot"
 
 
 def non_urdf_features(robot: Robot) -> tuple[list[str], list[str]]:

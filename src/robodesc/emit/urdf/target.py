@@ -1,6 +1,6 @@
 """The URDF target as the pipeline sees it.
 
-From a composition (YAML, ``.holo``, Python) the URDF is written for ROS: capsules and spherical
+From a composition (YAML, ``.holo``, Python), an MJCF or an SDF model the URDF is written for ROS: capsules and spherical
 joints are lowered as ``ros.py`` says. From a URDF or xacro input it is a faithful round trip that
 keeps pybullet's extensions, with a warning when ROS will not load the result.
 """

@@ -7,8 +7,9 @@ per-target lowering (stripping, Isaac limits, ...) is the passes' job.
 
 Two exceptions, so that urdfdom (ROS's parser) loads every URDF robodesc writes:
 
-- a revolute or prismatic joint's ``<limit>`` always has ``effort`` and ``velocity`` (urdfdom
-  refuses "joint limit: no effort"): missing ones get ``UrdfOptions.default_effort`` /
+- a revolute or prismatic joint's ``<limit>`` always has ``effort`` and ``velocity``, and so does a
+  continuous joint's when it has one (urdfdom refuses "joint limit: no effort", "limit has no
+  velocity"): missing ones get ``UrdfOptions.default_effort`` /
   ``default_velocity`` (``DEFAULT_EFFORT`` N·m or N, ``DEFAULT_VELOCITY`` rad/s or m/s, the values
   Isaac's importer assumes), and a joint without ``<limit>`` gets one with just those two (no
   lower/upper: urdfdom reads 0, MuJoCo no range, as for the source's own ``limit-unbounded``);
@@ -230,7 +231,13 @@ class UrdfEmitter:
             lim = E(el, "limit")
             for attr in ("lower", "upper", "effort", "velocity"):
                 number: float | None = getattr(joint.limit, attr) if joint.limit is not None else None
-                if number is None and joint.type.needs_limit and attr in ("effort", "velocity"):
+                # urdfdom reads a continuous joint's <limit> too, and refuses it without both
+                # (menagerie Gen3's unlimited joints have an actuator's effort and no velocity).
+                if (
+                    number is None
+                    and attr in ("effort", "velocity")
+                    and (joint.type.needs_limit or joint.limit is not None)
+                ):
                     number = self.options.default_effort if attr == "effort" else self.options.default_velocity
                     if number is not None:
                         self.defaulted.setdefault(joint.name, []).append(attr)

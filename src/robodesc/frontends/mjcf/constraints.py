@@ -56,6 +56,49 @@ def read_equalities(r: Reading) -> None:
                 label,
                 loc,
             )
+    _resolve_chains(r)
+
+
+def _linear(mimic: Mimic) -> tuple[float, float]:
+    """(multiplier, offset), URDF's defaults (1, 0) where not given."""
+    return (1.0 if mimic.multiplier is None else mimic.multiplier, 0.0 if mimic.offset is None else mimic.offset)
+
+
+def _resolve_chains(r: Reading) -> None:
+    """A mimic of a mimic (Stretch's telescoping arm: l0 follows l1, l1 follows l2, l2 follows l3)
+    made one leader of each chain: URDF readers refuse a chain (Newton's add_urdf: "Reference joint is
+    already a mimic joint"; ros2_control and Isaac's importer take one leader), and composing the
+    linear maps is exact: q_f = o1 + m1 (o2 + m2 q_l) = (o1 + m1 o2) + m1 m2 q_l."""
+    joints = r.robot.joint_map()
+    resolved = []
+    for joint in r.robot.joints:
+        mimic = joint.mimic
+        seen = {joint.name}
+        while mimic is not None and mimic.joint in joints and joints[mimic.joint].mimic is not None:
+            upper = joints[mimic.joint].mimic
+            assert upper is not None
+            if upper.joint in seen:  # a cycle of equalities: MuJoCo solves it, no leader exists
+                r.warn(
+                    "mjcf-mimic-cycle",
+                    f"joint equalities form a cycle through {sorted(seen)}: the mimic is left as written",
+                    f"joint {joint.name!r}",
+                    mimic.src,
+                )
+                break
+            seen.add(mimic.joint)
+            m1, o1 = _linear(mimic)
+            m2, o2 = _linear(upper)
+            mimic = Mimic(joint=upper.joint, multiplier=m1 * m2, offset=o1 + m1 * o2, src=mimic.src)
+            joint.mimic = mimic
+        if len(seen) > 1 and joint.mimic is not None and joint.mimic.joint not in seen:
+            resolved.append(f"{joint.name} -> {joint.mimic.joint}")
+    if resolved:
+        r.info(
+            "mjcf-mimic-chain",
+            f"joint equalities chained through followers, each made a mimic of its chain's leader: {', '.join(resolved)}",
+            f"robot {r.robot.name!r}",
+            None,
+        )
 
 
 def _mimic(r: Reading, e: int, joints: Mapping[str, Joint], label: str, loc: SourceLoc) -> None:

@@ -77,8 +77,12 @@ def read_geoms(r: Reading) -> None:
             if not _close(friction, DEFAULT_FRICTION) or not _close(solref, DEFAULT_SOLREF):
                 surfaces.append((collision, solref))
                 # Torsion and roll as MuJoCo's defaults stay "not given": the MJCF emitter writes those.
+                # MuJoCo's sliding friction is one coefficient for both tangent directions: mu2 says
+                # so, where SDF's default mu2 of 1 would otherwise stand (Drake then reads Spot's
+                # feet, mu 0.8, as static 0.8 and dynamic 1 and refuses them).
                 collision.contact = Contact(
                     mu=friction[0],
+                    mu2=friction[0],
                     torsional=None if friction[1] == DEFAULT_FRICTION[1] else friction[1],
                     rolling=None if friction[2] == DEFAULT_FRICTION[2] else friction[2],
                     src=loc,
