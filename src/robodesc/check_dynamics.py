@@ -94,6 +94,28 @@ def run_for(
     return run_dynamics(robot, files, opts, source_urdf=_source_file(source, robot, folder, options))
 
 
+def stage_dynamics(
+    source: Any,
+    stages: Mapping[str, str],
+    options: Mapping[str, Any],
+    dynamics: DynamicsOptions | Mapping[str, Any] | None = None,
+) -> dict[str, DynamicsReport]:
+    """Each USD stage in ``stages`` (label -> path) run through the scenarios, in the engines that
+    read USD (PhysX unless ``dynamics`` names others), from the stance ``validate --dynamics``
+    gives ``source`` compiled with ``options``: the same robot, base, pose and gains for every
+    stage, so the stages can be compared with
+    :func:`robodesc.validation.dynamics.routes.behaviour_differences`. A stage need not be robodesc's
+    output: the Isaac Sim 6 route's composed stage (``emit/isaac/composed.py``) is one, and each
+    joint and body is found by name (or ``displayName``), as in robodesc's own USD."""
+    robot = _load_robot(source, options)
+    opts = dynamics_options(dynamics if dynamics is not None else True, options)
+    if not opts.engines:
+        opts = dataclasses.replace(opts, engines=("physx",))
+    opts = dataclasses.replace(opts, fix_base=choose_base(robot, opts.fix_base).fixed)
+    opts = default_stance(robot, opts)
+    return {label: run_dynamics(robot, {"usd": path}, opts) for label, path in stages.items()}
+
+
 def default_stance(robot: Robot, opts: DynamicsOptions) -> DynamicsOptions:
     """``opts`` with the Isaac folder's default pose and derived gains where it has none: the pose
     ``--isaac-sim --no-fix-base`` spawns the robot in when its root is free (``world`` welds it:
@@ -145,16 +167,20 @@ def _source_robot(source: Any, options: Mapping[str, Any]) -> Robot | None:
     """The source's IR, before any target's passes: the checked target's robot may carry renamed
     joints (USD sanitizes ``0`` to ``a0``) that neither the pose table nor the other files know.
     Every file names its joints after the source (USD through ``displayName``)."""
+    try:
+        return _load_robot(source, options)
+    except RobodescError:
+        return None
+
+
+def _load_robot(source: Any, options: Mapping[str, Any]) -> Robot:
     from robodesc.frontends.load import load_source
     from robodesc.frontends.options import LoadOptions
     from robodesc.options import build_options
 
     loading = {f.name for f in dataclasses.fields(LoadOptions)}
-    try:
-        opts = build_options({k: v for k, v in options.items() if k in loading})
-        return load_source(source, opts.load, Findings())
-    except RobodescError:
-        return None
+    opts = build_options({k: v for k, v in options.items() if k in loading})
+    return load_source(source, opts.load, Findings())
 
 
 def _written_gains(target: str, opts: DynamicsOptions) -> DynamicsOptions:

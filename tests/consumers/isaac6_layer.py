@@ -38,7 +38,11 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, "src"))
 
-EXAMPLES = {"quadruped": "examples/quadruped.yaml", "arm6_gripper": "examples/arm6_gripper.yaml"}
+EXAMPLES = {
+    "quadruped": "examples/quadruped.yaml",
+    "arm6_gripper": "examples/arm6_gripper.yaml",
+    "four_bar": "examples/four_bar.yaml",
+}
 REL, ABS = 1e-5, 1e-9
 PER_SHAPE = ("staticFriction", "dynamicFriction")
 
@@ -76,24 +80,14 @@ def compare(reference: dict[str, Any], other: dict[str, Any], names: dict[str, s
     return diffs
 
 
-def composed_stage(path: str, robot: str, sublayers: list[str], scene: bool) -> None:
-    """A root layer sublayering ``sublayers`` (strongest first), with the importer's ``physx``
-    variant selected (and a scene when no sublayer brings one)."""
-    subs = ", ".join(f"@{os.path.abspath(s)}@" for s in sublayers)
-    text = (
-        f'#usda 1.0\n(\n    defaultPrim = "{robot}"\n    metersPerUnit = 1\n    kilogramsPerUnit = 1\n'
-        f'    upAxis = "Z"\n    subLayers = [{subs}]\n)\n\n'
-        f'over "{robot}" (\n    variants = {{\n        string Physics = "physx"\n    }}\n)\n{{\n}}\n'
-    )
-    if scene:
-        text += '\ndef PhysicsScene "PhysicsScene"\n{\n}\n'
-    with open(path, "w", encoding="utf-8") as fh:
-        fh.write(text)
-
-
-def run_robot(name: str, source: str, extra: dict[str, Any], envs: str, work: str) -> dict[str, Any]:
+def run_robot(
+    name: str, source: str, extra: dict[str, Any], envs: str, work: str, behaviour: dict[str, Any] | None = None
+) -> dict[str, Any]:
+    """One robot through the route; ``behaviour``: the dynamics options (``DynamicsOptions`` fields)
+    to run hold, drop and slide with on the three stages, None to leave them out."""
     import robodesc
     import robodesc.emit.isaac.folder as folder
+    from robodesc.emit.isaac.composed import write_composed_stage
     from robodesc.emit.isaac.importer_layout import layout_from_rules, layout_from_usd
     from robodesc.emit.isaac.physics_layer import physics_layer
     from robodesc.ir.diagnostics import Findings
@@ -153,8 +147,8 @@ def run_robot(name: str, source: str, extra: dict[str, Any], envs: str, work: st
     robot = layout.robot.lstrip("/")
     with_settings = os.path.join(here, "importer_settings_route.usda")
     with_layer = os.path.join(here, "layer_route.usda")
-    composed_stage(with_settings, robot, [usd], scene=True)
-    composed_stage(with_layer, robot, [files["physics_layer"], usd], scene=False)
+    write_composed_stage(with_settings, robot, [usd], scene=True)
+    write_composed_stage(with_layer, robot, [files["physics_layer"], usd])
     stages = os.path.join(here, "stages.json")
     with open(stages, "w", encoding="utf-8") as fh:
         json.dump([files["usd"], with_settings, with_layer], fh)
@@ -175,6 +169,39 @@ def run_robot(name: str, source: str, extra: dict[str, Any], envs: str, work: st
     out["importer_settings_diffs"] = compare(own, settings_route, names)
     out["layer_diffs"] = compare(own, layer_route, names)
     out["physx"] = "match" if not out["layer_diffs"] else f"{len(out['layer_diffs'])} differences"
+    if behaviour is not None:
+        stages = {"robodesc": files["usd"], "settings": with_settings, "layer": with_layer}
+        out.update(behave(source, extra, stages, behaviour))
+    return out
+
+
+def behave(source: str, extra: dict[str, Any], stages: dict[str, str], dynamics: dict[str, Any]) -> dict[str, Any]:
+    """Hold, drop and slide in PhysX on each route's stage (``validate --dynamics``' scenarios, the
+    same stance for all three), and each route against robodesc's own USD within the thresholds
+    docs/dynamics.md documents."""
+    from robodesc.check_dynamics import stage_dynamics
+    from robodesc.validation.dynamics.routes import behaviour_differences
+
+    start = time.perf_counter()
+    reports = stage_dynamics(source, stages, extra, dynamics)
+    out: dict[str, Any] = {"behaviour_s": round(time.perf_counter() - start, 1)}
+    runs: dict[str, Any] = {}
+    for label, report in reports.items():
+        rows = {}
+        for r in report.runs:
+            row = {"ok": r.ok, "error": r.error, "drift": r.drift, "worst_joint": r.worst_joint}
+            row.update(height=r.height, tilt=r.tilt, mass=r.mass, mu=r.mu, stick=r.stick, slide=r.slide)
+            row["worst_saturation"] = r.worst_saturation()
+            rows[r.scenario] = {k: v for k, v in row.items() if v not in (None, "")}
+        rows["skipped"] = [f"{c.name} {c.element}: {c.message}" for c in report.checks if c.status.value == "skip"]
+        rows["failed"] = [f"{c.name} {c.element}: {c.message}" for c in report.checks if c.status.value == "fail"]
+        runs[label] = rows
+    out["behaviour"] = runs
+    reference = reports["robodesc"].runs
+    out["settings_behaviour_diffs"] = behaviour_differences(reference, reports["settings"].runs)
+    out["layer_behaviour_diffs"] = behaviour_differences(reference, reports["layer"].runs)
+    ran = bool(reference)
+    out["behaves"] = "not run" if not ran else "same" if not out["layer_behaviour_diffs"] else "differs"
     return out
 
 
@@ -185,27 +212,44 @@ def main(argv: list[str] | None = None) -> int:
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--envs", default=os.path.expanduser("~/.cache/robodesc-consumers"))
-    ap.add_argument("--robots", default="quadruped,arm6_gripper", help="comma-separated names (examples, corpus)")
+    ap.add_argument(
+        "--robots", default="quadruped,arm6_gripper", help="comma-separated names (examples, corpus), or all"
+    )
     ap.add_argument("--corpus", default=os.path.join(ROOT, "..", "shared", "corpus"))
     ap.add_argument("--work", default="/tmp/robodesc-isaac6")
     ap.add_argument("--out", help="write the results here (JSON)")
+    ap.add_argument("--no-behaviour", action="store_true", help="skip the hold/drop/slide runs")
+    ap.add_argument("--log", help="append each robot's result here as one JSON line (a cut run keeps its rows)")
     args = ap.parse_args(argv)
-    corpus = {r.name: r for r in all_robots(args.corpus)}
+    robots = all_robots(args.corpus)
+    # By full name, or by the file's stem where that is unique ("panda" for panda_description/urdf/panda).
+    stems = [r.name.rsplit("/", 1)[-1] for r in robots]
+    corpus = {stem: r for stem, r in zip(stems, robots, strict=True) if stems.count(stem) == 1}
+    corpus.update({r.name: r for r in robots})
+    names = [*EXAMPLES, *(r.name for r in robots)] if args.robots == "all" else args.robots.split(",")
     results = []
-    for name in args.robots.split(","):
+    for name in names:
+        if name not in EXAMPLES and name not in corpus:
+            results.append({"robot": name, "error": "no such robot (an example, or a corpus name or unique stem)"})
+            print(json.dumps(results[-1]), flush=True)
+            continue
         if name in EXAMPLES:
             source, extra = os.path.join(ROOT, EXAMPLES[name]), {}
         else:
             robot = corpus[name]
             source = robot.path
             extra = {"package_paths": robot.packages, "xacro_args": robot.xacro_args}
-            extra["fix_base"] = not FLOATING.search(name)
+            extra["fix_base"] = not FLOATING.search(robot.name)
         try:
-            result = run_robot(name, source, extra, args.envs, args.work)
+            behaviour = None if args.no_behaviour else {}
+            result = run_robot(name, source, extra, args.envs, args.work, behaviour)
         except Exception as exc:  # one robot's failure is a row, not the end of the run
             result = {"robot": name, "error": f"{type(exc).__name__}: {str(exc)[:300]}"}
-        print(json.dumps({k: v for k, v in result.items() if not k.endswith("diffs")}), flush=True)
+        print(json.dumps({k: v for k, v in result.items() if not k.endswith("diffs") and k != "behaviour"}), flush=True)
         results.append(result)
+        if args.log:
+            with open(args.log, "a", encoding="utf-8") as fh:
+                fh.write(json.dumps(result) + "\n")
     if args.out:
         with open(args.out, "w", encoding="utf-8") as fh:
             json.dump(results, fh, indent=1)

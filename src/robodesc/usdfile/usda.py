@@ -105,6 +105,12 @@ def _prim_metadata(prim: Prim, depth: int) -> list[str]:
     if prim.payloads:
         items = [f"@{p.asset_path}@" + (f"<{p.prim_path}>" if p.prim_path else "") for p in prim.payloads]
         lines.append(f"{pad}prepend payload = {_one_or_list(items)}\n")
+    if prim.variant_selections:
+        inner = "".join(
+            f"{pad}{INDENT}string {name} = {quote(prim.variant_selections[name])}\n"
+            for name in sorted(prim.variant_selections)
+        )
+        lines.append(f"{pad}variants = {{\n{inner}{pad}}}\n")
     return lines
 
 

@@ -72,9 +72,22 @@ def physics_layer(robot: Robot, options: UsdOptions, layout: ImporterLayout, fin
     top = source.find(robot_path)
     if top is not None:
         _move(top, robot_path, mapping, out, result)
+    _display_names(robot, layout, out)
     if ours.scene is not None:
         out.root.children["PhysicsScene"] = ours.scene
     return result
+
+
+def _display_names(robot: Robot, layout: ImporterLayout, out: Layer) -> None:
+    """The source's names, as robodesc's USD keeps them (``displayName``): the Isaac URDF carries
+    the sanitized ones (Spirit's joints ``0``..``11`` are ``a0``..``a11``), so the importer's prims
+    lack them, and whatever finds a joint by the source's name (``validate --dynamics``' pose table,
+    Isaac Sim's stage tree) missed every one of Spirit's and Go2's joints on the composed stage."""
+    for elements, paths in ((robot.links, layout.links), (robot.joints, layout.joints)):
+        for element in elements:
+            where = paths.get(element.name)
+            if where is not None and element.display_name and element.display_name != where.rsplit("/", 1)[-1]:
+                out.prim(where, specifier="over").display_name = element.display_name
 
 
 def _path_map(robot: Robot, source: PhysicsOpinions, layout: ImporterLayout, missing: list[str]) -> dict[str, str]:
