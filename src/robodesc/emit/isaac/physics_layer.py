@@ -45,6 +45,8 @@ class PhysicsLayer:
     # binding on an instanced collider changes nothing.
     default_materials: set[str] = field(default_factory=set)
     missing: list[str] = field(default_factory=list)  # "link 'x'", "joint 'y'", ... the layout lacks
+    # Importer paths the layer defines rather than overs: prims the import lacks (loop closures).
+    defined: set[str] = field(default_factory=set)
     prims: int = 0  # prims of robodesc's physics that found their place
 
 
@@ -62,7 +64,7 @@ def physics_layer(robot: Robot, options: UsdOptions, layout: ImporterLayout, fin
     )
     if layout.articulation_root is None:
         result.missing.append("the articulation root")
-    mapping = _path_map(robot, ours, layout, result.missing)
+    mapping = _path_map(robot, ours, layout, result)
     mapping[f"{robot_path}/{ours.materials_scope}"] = result.materials
     scope = source.find(f"{robot_path}/{ours.materials_scope}")
     for name, material in scope.children.items() if scope is not None else ():
@@ -90,9 +92,10 @@ def _display_names(robot: Robot, layout: ImporterLayout, out: Layer) -> None:
                 out.prim(where, specifier="over").display_name = element.display_name
 
 
-def _path_map(robot: Robot, source: PhysicsOpinions, layout: ImporterLayout, missing: list[str]) -> dict[str, str]:
+def _path_map(robot: Robot, source: PhysicsOpinions, layout: ImporterLayout, result: PhysicsLayer) -> dict[str, str]:
     """robodesc's prim path -> the importer's, for every prim that carries physics."""
     robot_path = source.robot_path
+    missing = result.missing
     mapping: dict[str, str] = {}
     for link in robot.links:
         ours = f"{robot_path}/{link.name}"
@@ -114,9 +117,30 @@ def _path_map(robot: Robot, source: PhysicsOpinions, layout: ImporterLayout, mis
             missing.append(f"joint {joint.name!r}")
         else:
             mapping[f"{robot_path}/{source.joints_scope}/{joint.name}"] = theirs
-    # Where the importer puts a <loop_joint> was not measured: not addressed, and said so.
-    missing.extend(f"loop joint {loop.name!r}" for loop in robot.loop_joints)
+    # Isaac Sim 6.2's importer drops <loop_joint> (urdf-usd-converter reads no such tag: its import of
+    # the four-bar has no closure), so the chain arrives open and its drives carry the load the
+    # closure would (the four-bar's crank at 42 % of its effort instead of 3.5 %, in PhysX). The
+    # layer defines the closure beside the importer's joints, between the importer's bodies, as
+    # robodesc's USD has it (outside the articulation); link frames are the URDF's in both layouts.
+    scope = _joints_scope(layout)
+    taken = {path.rsplit("/", 1)[-1] for path in layout.joints.values()} | {"root_joint"}
+    for loop in robot.loop_joints:
+        ends = [layout.links.get(side.link) for side in (loop.link1, loop.link2)]
+        if None in ends or loop.name in taken:
+            why = "a link it joins is not in the import" if None in ends else "the import has a joint of that name"
+            missing.append(f"loop joint {loop.name!r} ({why})")
+            continue
+        target = f"{scope}/{loop.name}"
+        mapping[f"{robot_path}/{source.loops_scope}/{loop.name}"] = target
+        result.defined.add(target)
     return mapping
+
+
+def _joints_scope(layout: ImporterLayout) -> str:
+    """Where the importer puts joints: beside the ones it wrote, else its ``/<robot>/Physics``."""
+    for path in layout.joints.values():
+        return path.rsplit("/", 1)[0]
+    return f"{layout.robot}/Physics"
 
 
 def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result: PhysicsLayer) -> None:
@@ -143,10 +167,11 @@ def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result:
         else:
             result.prims += 1  # the importer already authors exactly this
     elif target is not None:
-        # Prims robodesc adds (its contact materials) are defined; everything else is an over.
-        new = prim.specifier == "def" and target.startswith(result.materials)
+        # Prims robodesc adds (its contact materials, loop closures) are defined; everything else
+        # is an over.
+        new = prim.specifier == "def" and (target.startswith(result.materials) or target in result.defined)
         made = out.prim(target, prim.type_name if new else "", "def" if new else "over")
-        _over(prim, made, mapping, result)
+        _over(prim, made, mapping, result, keep_bodies=new)
     for index, (name, child) in enumerate(prim.children.items()):
         # Colliders by their place in the link (the importer's names are its own).
         _move(child, f"{path}/#{index}" if path.endswith("/collisions") else f"{path}/{name}", mapping, out, result)
@@ -169,13 +194,17 @@ def _beyond_importer(collider: Prim, default_materials: set[str]) -> list[str]:
     return extra
 
 
-def _over(source: Prim, target: Prim, mapping: Mapping[str, str], result: PhysicsLayer) -> None:
+def _over(
+    source: Prim, target: Prim, mapping: Mapping[str, str], result: PhysicsLayer, *, keep_bodies: bool = False
+) -> None:
+    """``source``'s opinions on ``target``; a joint the layer defines (``keep_bodies``) keeps its
+    bodies, moved to the importer's paths, where the importer's own joints name theirs."""
     result.prims += 1
     for schema in source.api_schemas:
         if schema not in _DROPPED_SCHEMAS:
             target.apply(schema)
     for name, prop in source.properties.items():
-        if name in _DROPPED_PROPERTIES:
+        if name in _DROPPED_PROPERTIES and not (keep_bodies and name.startswith("physics:body")):
             continue
         if isinstance(prop, Relationship):
             targets = [_remap(t, mapping) for t in prop.targets]
