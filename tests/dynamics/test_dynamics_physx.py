@@ -108,3 +108,26 @@ def test_without_an_interpreter_physx_is_a_skip_row_saying_how_to_get_it(
     (row,) = [c for c in dyn.checks if c.element == "physx/usd"]
     assert row.status is Status.SKIP and "robodesc[physx]" in row.message and "tests/consumers/run.sh" in row.message
     assert {r.engine for r in dyn.runs} == {"mujoco"}
+
+
+def test_feet_friction_is_read_inside_instances(tmp_path: Path) -> None:
+    # Isaac Sim 6's importer instances a mesh collider; the worker (pxr only, here usd-core) must
+    # look inside the instance for its shapes, or the slide has no friction to test (solo12).
+    from pxr import Usd, UsdPhysics
+
+    from robodesc.validation.dynamics import physx_worker
+
+    (tmp_path / "mesh.usda").write_text(
+        '#usda 1.0\n(defaultPrim = "shape")\ndef Xform "shape" {\n def Cube "box" (prepend apiSchemas = '
+        '["PhysicsCollisionAPI", "MaterialBindingAPI"]) {\n  rel material:binding:physics = </shape/grip>\n }\n'
+        ' def Material "grip" (prepend apiSchemas = ["PhysicsMaterialAPI"]) {\n'
+        "  float physics:dynamicFriction = 0.9\n }\n}\n"
+    )
+    (tmp_path / "robot.usda").write_text(
+        '#usda 1.0\ndef Xform "robot" {\n def Xform "foot" (prepend apiSchemas = ["PhysicsRigidBodyAPI"]) {\n'
+        '  def Xform "collider" (instanceable = true\n   prepend references = @./mesh.usda@) {}\n }\n}\n'
+    )
+    stage = Usd.Stage.Open(str(tmp_path / "robot.usda"))
+    foot = stage.GetPrimAtPath("/robot/foot")
+    assert foot.HasAPI(UsdPhysics.RigidBodyAPI)
+    assert physx_worker._feet_mu([foot]) == pytest.approx(0.9)

@@ -107,7 +107,9 @@ def _feet_mu(bodies):
 
     values = []
     for body in bodies:
-        for prim in Usd.PrimRange(body):
+        # Into instances too: Isaac Sim 6's importer puts a mesh collider's shapes inside an
+        # instance, and without this the composed stage's feet had no friction to read (solo12).
+        for prim in Usd.PrimRange(body, Usd.TraverseInstanceProxies()):
             if prim != body and prim.HasAPI(UsdPhysics.RigidBodyAPI):
                 break
             if not prim.HasAPI(UsdPhysics.CollisionAPI):
