@@ -107,10 +107,18 @@ def test_layer_command_names_the_prims_it_cannot_find(
     assert edited.Apply(edit)
     edited.Save()
     out = tmp_path / "physics.usda"
-    code = main(["layer", str(QUADRUPED), "--onto", str(imported), "-o", str(out), "--no-validate"])
+    composed = tmp_path / "stage.usda"
+    argv = ["layer", str(QUADRUPED), "--onto", str(imported), "-o", str(out), "--stage", str(composed)]
+    code = main([*argv, "--no-validate"])
     err = capsys.readouterr().err
     assert code == 0
     assert "cannot address" in err and "joint 'FR_knee'" in err and "link 'RR_calf'" in err
+    assert f"stage {composed} (open this one)" in err
+    # The stage to open: the layer over the import, the layer stronger (its mass of FL_calf wins).
+    root = Sdf.Layer.FindOrOpen(str(composed))
+    assert root.subLayerPaths == ["./physics.usda", "./imported.usda"] and root.defaultPrim == "quadruped"
+    opened = Usd.Stage.Open(str(composed))
+    assert opened.GetPrimAtPath("/quadruped/FL_calf").GetAttribute("physics:mass").Get() == pytest.approx(0.25)
     layer = Sdf.Layer.FindOrOpen(str(out))
     # The rest is addressed at the paths read from that USD (robodesc's own flat layout here).
     assert layer.GetPrimAtPath("/quadruped/joints/FL_knee") is not None
