@@ -105,10 +105,19 @@ def stage_dynamics(
     gives ``source`` compiled with ``options``: the same robot, base, pose and gains for every
     stage, so the stages can be compared with
     :func:`robodesc.validation.dynamics.routes.behaviour_differences`. A stage need not be robodesc's
-    output: the Isaac Sim 6 route's composed stage (``emit/isaac/composed.py``) is one, and each
-    joint and body is found by name (or ``displayName``), as in robodesc's own USD."""
+    output: the Isaac Sim 6 route's composed stage (``emit/isaac/composed.py``) is one. Each joint
+    and body is found by ``displayName``, else by name, the source's or the one robodesc's
+    ``sanitize_names`` gives it (what Isaac Sim 6's import of the Isaac URDF names it)."""
+    from robodesc.passes.sanitize_names import unique_names
+
     robot = _load_robot(source, options)
     opts = dynamics_options(dynamics if dynamics is not None else True, options)
+    renamed = {
+        new: old
+        for names in ([j.name for j in robot.joints], [link.name for link in robot.links])
+        for old, new in unique_names(names).items()
+    }
+    opts = dataclasses.replace(opts, names={**renamed, **opts.names})
     if not opts.engines:
         opts = dataclasses.replace(opts, engines=("physx",))
     opts = dataclasses.replace(opts, fix_base=choose_base(robot, opts.fix_base).fixed)

@@ -131,3 +131,20 @@ def test_feet_friction_is_read_inside_instances(tmp_path: Path) -> None:
     foot = stage.GetPrimAtPath("/robot/foot")
     assert foot.HasAPI(UsdPhysics.RigidBodyAPI)
     assert physx_worker._feet_mu([foot]) == pytest.approx(0.9)
+
+
+def test_joints_are_found_by_the_names_a_file_uses(tmp_path: Path) -> None:
+    # Isaac Sim 6's import names Spirit's joint "0" as the Isaac URDF does, "a0", with no displayName.
+    from robodesc.validation.dynamics import physx_worker
+
+    (tmp_path / "robot.usda").write_text(
+        '#usda 1.0\ndef Xform "robot" {\n def Xform "body" (prepend apiSchemas = ["PhysicsRigidBodyAPI"]) {}\n'
+        ' def Xform "leg" (prepend apiSchemas = ["PhysicsRigidBodyAPI"]) {}\n'
+        ' def PhysicsRevoluteJoint "a0" {\n  rel physics:body0 = </robot/body>\n  rel physics:body1 = </robot/leg>\n }\n'
+        ' def PhysicsRevoluteJoint "knee" (displayName = "knee joint") {\n'
+        "  rel physics:body0 = </robot/body>\n  rel physics:body1 = </robot/leg>\n }\n}\n"
+    )
+    info = physx_worker._inspect(str(tmp_path / "robot.usda"), "body", (), {"a0": "0", "knee": "other"})
+    # displayName first (robodesc's USD), then the file's name mapped, then the name itself.
+    assert info["joints"] == {"/robot/a0": ("0", "angular"), "/robot/knee": ("knee joint", "angular")}
+    assert info["root"] == "/robot/body"

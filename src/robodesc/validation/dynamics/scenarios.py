@@ -78,6 +78,10 @@ class DynamicsOptions:
     # What chose the pose and gains when the caller gave none (``validate --dynamics`` fills them
     # with the Isaac folder's defaults, robodesc.check_dynamics.default_stance); shown in the report.
     defaults: str | None = None
+    # A file's own name -> the source's, for a file that names links and joints otherwise and keeps
+    # no displayName: Isaac Sim 6's import of robodesc's Isaac URDF names them as that URDF does,
+    # sanitized (Spirit's joint "0" is "a0"). PhysX's worker reads it.
+    names: Mapping[str, str] = field(default_factory=dict)
 
 
 @dataclass(slots=True)
@@ -104,6 +108,7 @@ class Setup:
     duration: float = 1.0
     timestep: float = 0.001
     drop_clearance: float = 0.05
+    names: dict[str, str] = field(default_factory=dict)  # DynamicsOptions.names
 
     def as_dict(self) -> dict[str, Any]:
         return {
@@ -116,6 +121,7 @@ class Setup:
             "duration": self.duration,
             "timestep": self.timestep,
             "drop_clearance": self.drop_clearance,
+            "names": self.names,
         }
 
 
@@ -276,4 +282,5 @@ def make_setup(robot: Robot, options: DynamicsOptions) -> Setup:
         duration=options.duration,
         timestep=options.timestep,
         drop_clearance=options.drop_clearance,
+        names=dict(options.names),
     )
