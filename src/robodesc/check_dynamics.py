@@ -28,7 +28,7 @@ from robodesc.ir.diagnostics import Finding, Findings, RobodescError, Severity
 from robodesc.ir.model import Robot
 from robodesc.targets import TARGETS, target_spec
 from robodesc.validation.dynamics import READERS, DynamicsOptions, DynamicsReport, run_dynamics
-from robodesc.validation.dynamics.run import folder_files, joining
+from robodesc.validation.dynamics.run import folder_files, joining, kind_of
 from robodesc.validation.dynamics.source import write_source
 from robodesc.validation.report import Status
 
@@ -122,7 +122,13 @@ def stage_dynamics(
         opts = dataclasses.replace(opts, engines=("physx",))
     opts = dataclasses.replace(opts, fix_base=choose_base(robot, opts.fix_base).fixed)
     opts = default_stance(robot, opts)
-    return {label: run_dynamics(robot, {"usd": path}, opts) for label, path in stages.items()}
+    reports = {}
+    for label, path in stages.items():
+        kind = kind_of(path)  # by suffix: a stage is a .usd/.usda/.usdc
+        if kind is None:
+            raise RobodescError(f"{path}: no engine here reads this kind of file", element=f"stage {label!r}")
+        reports[label] = run_dynamics(robot, {kind: path}, opts)
+    return reports
 
 
 def default_stance(robot: Robot, opts: DynamicsOptions) -> DynamicsOptions:
