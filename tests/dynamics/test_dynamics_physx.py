@@ -148,3 +148,24 @@ def test_joints_are_found_by_the_names_a_file_uses(tmp_path: Path) -> None:
     # displayName first (robodesc's USD), then the file's name mapped, then the name itself.
     assert info["joints"] == {"/robot/a0": ("0", "angular"), "/robot/knee": ("knee joint", "angular")}
     assert info["root"] == "/robot/body"
+
+
+def test_feet_friction_skips_nested_bodies_without_stopping(tmp_path: Path) -> None:
+    # Isaac Sim 6's importer nests a child link before its parent's collider: the parent's collider
+    # still counts, the child's belongs to the child.
+    from pxr import Usd
+
+    from robodesc.validation.dynamics import physx_worker
+
+    grip = ' def Material "grip" (prepend apiSchemas = ["PhysicsMaterialAPI"]) {\n  float physics:dynamicFriction = 0.9\n }\n'
+    (tmp_path / "robot.usda").write_text(
+        '#usda 1.0\ndef Xform "robot" {\n'
+        + grip
+        + ' def Xform "thigh" (prepend apiSchemas = ["PhysicsRigidBodyAPI"]) {\n'
+        '  def Xform "shin" (prepend apiSchemas = ["PhysicsRigidBodyAPI"]) {\n   def Cube "c" (prepend apiSchemas = '
+        '["PhysicsCollisionAPI"]) {}\n  }\n  def Cube "collider" (prepend apiSchemas = ["PhysicsCollisionAPI", '
+        '"MaterialBindingAPI"]) {\n   rel material:binding:physics = </robot/grip>\n  }\n }\n}\n'
+    )
+    stage = Usd.Stage.Open(str(tmp_path / "robot.usda"))
+    assert physx_worker._feet_mu([stage.GetPrimAtPath("/robot/thigh")]) == pytest.approx(0.9)
+    assert physx_worker._feet_mu([stage.GetPrimAtPath("/robot/thigh/shin")]) == pytest.approx(0.5)

@@ -149,3 +149,20 @@ def test_the_source_names_ride_on_the_importers_prims(tmp_path: Path) -> None:
     assert link.GetInfo("displayName") == "8"
     # A name the importer kept needs none.
     assert not layer.GetPrimAtPath("/leg/Geometry/body").HasInfo("displayName")
+
+
+def test_instanceable_is_written_as_usd_core_writes_it() -> None:
+    layer = Layer()
+    prim = layer.prim("/r/c", specifier="over")
+    prim.instanceable = False
+    prim.display_name = "c"
+    prim.kind = "component"
+    sdf = Sdf.Layer.CreateAnonymous(".usda")
+    spec = Sdf.CreatePrimInLayer(sdf, "/r/c")
+    spec.specifier = Sdf.SpecifierOver
+    spec.instanceable = False
+    spec.SetInfo("displayName", "c")
+    spec.kind = "component"
+    assert usda_text(layer) == sdf.ExportToString()
+    with pytest.raises(ValueError, match=r"instanceable is written to \.usda only"):
+        usdc_bytes(layer)

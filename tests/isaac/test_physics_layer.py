@@ -230,3 +230,38 @@ def test_loop_joints_are_defined_between_the_importers_bodies(tmp_path: Path) ->
     assert loop.GetAttribute("physics:excludeFromArticulation").Get() is True
     assert tuple(loop.GetAttribute("physics:localPos0").Get()) == pytest.approx((0.4, 0.0, 0.2))
     assert not stage.GetPrimAtPath("/four_bar/loop_joints")  # robodesc's own scope does not travel
+
+
+def test_instanced_collider_read_from_the_import_is_made_editable(quadruped: robodesc.CompileResult) -> None:
+    # Isaac Sim 6.2 instances a mesh collider (Talos': friction 0.9 and a rest offset, read as 0.5
+    # and 0 in PhysX while the layer could not reach inside). When the import was read, the layer
+    # knows the shapes inside: it makes the collider not instanceable and carries robodesc's
+    # collider opinions onto each shape.
+    from robodesc.emit.isaac.folder import usd_options
+    from robodesc.emit.isaac.physics_layer import physics_layer
+    from robodesc.emit.isaac.settings import IsaacSettings
+    from robodesc.ir.diagnostics import Findings
+    from robodesc.usdfile.usda import usda_text
+
+    robot = quadruped.robot
+    options = usd_options(IsaacSettings(rest_offset=0.0005))
+    foot = "/quadruped/Geometry/trunk/FL_hip/FL_thigh/FL_calf/sphere_1"
+    for shapes in ({}, {foot: [f"{foot}/mesh_0", f"{foot}/mesh_1"]}):
+        layout = layout_from_rules(robot)
+        layout.instanced = {foot}
+        layout.instance_shapes = shapes
+        made = physics_layer(robot, options, layout, Findings())
+        missing = [m for m in made.missing if foot in m]
+        text = usda_text(made.layer)
+        if not shapes:  # the naming rules cannot name the shapes: named in the warning
+            assert len(missing) == 1 and "physxCollision:restOffset" in missing[0]
+            assert "instanceable" not in text
+            continue
+        assert missing == []
+        layer = Sdf.Layer.CreateAnonymous(".usda")
+        layer.ImportFromString(text)
+        assert layer.GetPrimAtPath(foot).GetInfo("instanceable") is False
+        for shape in shapes[foot]:
+            spec = layer.GetPrimAtPath(shape)
+            assert spec.attributes["physxCollision:restOffset"].default == pytest.approx(0.0005)
+            assert "PhysxCollisionAPI" in spec.GetInfo("apiSchemas").prependedItems

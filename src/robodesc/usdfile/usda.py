@@ -100,6 +100,8 @@ def _prim_metadata(prim: Prim, depth: int) -> list[str]:
         lines.append(f"{pad}assetInfo = {{\n{pad}{INDENT}string name = {quote(prim.asset_name)}\n{pad}}}\n")
     if prim.display_name is not None:
         lines.append(f"{pad}displayName = {quote(prim.display_name)}\n")
+    if prim.instanceable is not None:
+        lines.append(f"{pad}instanceable = {'true' if prim.instanceable else 'false'}\n")
     if prim.kind is not None:
         lines.append(f"{pad}kind = {quote(prim.kind)}\n")
     if prim.payloads:

@@ -40,6 +40,10 @@ class ImporterLayout:
     # Colliders whose shapes the importer puts inside an instance (mesh files): a layer cannot edit
     # instance proxies, so only what the importer itself authors there (CollisionAPI, convexHull) holds.
     instanced: set[str] = field(default_factory=set)
+    # Read from an import only (the rules cannot name what a mesh file puts inside): each instanced
+    # collider's shapes, the prims inside it with PhysicsCollisionAPI. A layer that makes the
+    # collider not instanceable can then address them.
+    instance_shapes: dict[str, list[str]] = field(default_factory=dict)
     source: str = "rules"  # "rules", or the imported USD read
 
 
@@ -124,11 +128,13 @@ def layout_from_usd(path: str, robot: Robot) -> ImporterLayout:
                 for child in prim.GetChildren():
                     if child.HasAPI(UsdPhysics.CollisionAPI):
                         layout.colliders[name].append(str(child.GetPath()))
-                    elif child.IsInstance() and any(
-                        p.HasAPI(UsdPhysics.CollisionAPI) for p in Usd.PrimRange(child, Usd.TraverseInstanceProxies())
-                    ):
-                        layout.colliders[name].append(str(child.GetPath()))
-                        layout.instanced.add(str(child.GetPath()))
+                    elif child.IsInstance():
+                        inside = Usd.PrimRange(child, Usd.TraverseInstanceProxies())
+                        shapes = [str(p.GetPath()) for p in inside if p.HasAPI(UsdPhysics.CollisionAPI)]
+                        if shapes:
+                            layout.colliders[name].append(str(child.GetPath()))
+                            layout.instanced.add(str(child.GetPath()))
+                            layout.instance_shapes[str(child.GetPath())] = shapes
         elif prim.IsA(UsdPhysics.Joint):
             name = next((k for k in keys if k in joint_names), None)
             if name is not None and name not in layout.joints:

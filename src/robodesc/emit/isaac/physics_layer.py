@@ -41,6 +41,7 @@ class PhysicsLayer:
     materials_source: str  # robodesc's scope of them
     articulation_root: str | None  # where the importer put the articulation root
     instanced: set[str] = field(default_factory=set)  # importer colliders inside instances
+    instance_shapes: dict[str, list[str]] = field(default_factory=dict)  # ImporterLayout.instance_shapes
     # robodesc's materials that say only what PhysX assumes unbound (friction 0.5): losing their
     # binding on an instanced collider changes nothing.
     default_materials: set[str] = field(default_factory=set)
@@ -61,6 +62,7 @@ def physics_layer(robot: Robot, options: UsdOptions, layout: ImporterLayout, fin
         f"{robot_path}/{ours.materials_scope}",
         layout.articulation_root,
         layout.instanced,
+        layout.instance_shapes,
     )
     if layout.articulation_root is None:
         result.missing.append("the articulation root")
@@ -159,10 +161,19 @@ def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result:
             _over(prim, out.prim(root, specifier="over"), mapping, result)
     elif (target := mapping.get(path) or _remap(path, {result.materials_source: result.materials})) in result.instanced:
         extra = _beyond_importer(prim, result.default_materials)
-        if extra:
+        shapes = result.instance_shapes.get(target or "")
+        if extra and shapes and target is not None:
+            # Read from the import: the collider is made not instanceable, so the shapes inside
+            # become prims of the stage, and each takes robodesc's collider opinions (Talos' sole
+            # friction 0.9 and rest offset, which PhysX read as 0.5 and 0 on the instance).
+            out.prim(target, specifier="over").instanceable = False
+            for shape in shapes:
+                _over(prim, out.prim(shape, specifier="over"), mapping, result)
+        elif extra:
             result.missing.append(
                 f"{path.rsplit('/collisions/', 1)[0].rsplit('/', 1)[-1]}'s mesh collider {target} "
-                f"({', '.join(extra)}: inside an instance the importer made, which a layer cannot edit)"
+                f"({', '.join(extra)}: inside an instance the importer made; the naming rules cannot name "
+                "its shapes, robodesc layer --onto the import reads them)"
             )
         else:
             result.prims += 1  # the importer already authors exactly this

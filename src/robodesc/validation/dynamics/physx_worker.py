@@ -116,9 +116,14 @@ def _feet_mu(bodies):
     for body in bodies:
         # Into instances too: Isaac Sim 6's importer puts a mesh collider's shapes inside an
         # instance, and without this the composed stage's feet had no friction to read (solo12).
-        for prim in Usd.PrimRange(body, Usd.TraverseInstanceProxies()):
+        walk = iter(Usd.PrimRange(body, Usd.TraverseInstanceProxies()))
+        for prim in walk:
             if prim != body and prim.HasAPI(UsdPhysics.RigidBodyAPI):
-                break
+                # Another body's colliders are its own. Skipped, not the end of the walk: the
+                # importer nests child links among a link's colliders (Talos: 10 of 60 bodies had
+                # their colliders read before this).
+                walk.PruneChildren()
+                continue
             if not prim.HasAPI(UsdPhysics.CollisionAPI):
                 continue
             material, _ = UsdShade.MaterialBindingAPI(prim).ComputeBoundMaterial("physics")
