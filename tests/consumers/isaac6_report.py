@@ -32,7 +32,7 @@ def load(paths: list[str]) -> list[dict[str, Any]]:
 def cause_of_missing(message: str) -> str:
     """A prim the layer could not address, grouped by why."""
     if "inside an instance" in message:
-        extra = re.search(r"\(([^:]*): inside an instance", message)
+        extra = re.search(r"mesh collider \S+ \((.*?): inside an instance", message)
         what = (
             ", ".join(sorted({re.sub(r"^physx\w*:|^physics:", "", w.strip()) for w in extra.group(1).split(",")}))
             if extra
@@ -133,26 +133,30 @@ def markdown(rows: list[dict[str, Any]]) -> str:
         "## Per robot",
         "",
         "Hold: the largest joint drift after 1 s (rad); drop: the settled base height (m); R = robodesc's USD,",
-        "S = import + importer_settings.json, L = import + layer; peak: the drop's largest drive effort as a share",
-        "of its limit (1.00: saturated on landing). Structure S: how many PhysX quantities differ.",
+        "S = import + importer_settings.json, L = import + layer; peak: the run's largest drive effort as a share",
+        "of its limit (1.00: saturated). Structure S: how many PhysX quantities differ.",
         "",
-        "| robot | links / DOF | import s | compile s | layer s | not addressed | structure L | structure S | hold R / S / L | drop R / S / L | peak R / S / L | behaves L | behaves S |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "| robot | links / DOF | import s | compile s | layer s | not addressed | structure L | structure S | hold R / S / L | hold peak R / S / L | drop R / S / L | drop peak R / S / L | behaves L | behaves S |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
         if "error" in r or r.get("import") != "pass":
-            lines.append(f"| {r['robot']} | {r.get('error') or r.get('import')} |" + " |" * 12)
+            lines.append(f"| {r['robot']} | {r.get('error') or r.get('import')} |" + " |" * 13)
             continue
         hold = " / ".join(_num(_route(r, x, "hold-fixed", "drift"), 4) for x in ROUTES)
         drop = " / ".join(_num(_route(r, x, "drop", "height"), 4) for x in ROUTES)
-        peaks = [_route(r, x, "drop", "worst_saturation") for x in ROUTES]
-        peak = " / ".join(_num(p[1] if p else None, 2) for p in peaks)
+        peak = {
+            scenario: " / ".join(
+                _num(p[1] if p else None, 2) for p in (_route(r, x, scenario, "worst_saturation") for x in ROUTES)
+            )
+            for scenario in ("hold-fixed", "drop")
+        }
         settings = len(r.get("importer_settings_diffs", []))
         behaves_s = "–" if "behaves" not in r else "same" if not r.get("settings_behaviour_diffs") else "differs"
         lines.append(
             f"| {r['robot']} | {r.get('links')} / {r.get('joints')} | {r.get('import_s')} | {r.get('compile_s')} "
             f"| {r.get('layer_s')} | {len(r.get('prims_missing', []))} | {r.get('physx')} "
-            f"| {settings or 'equal'} | {hold} | {drop} | {peak} | {r.get('behaves', '–')} | {behaves_s} |"
+            f"| {settings or 'equal'} | {hold} | {peak['hold-fixed']} | {drop} | {peak['drop']} | {r.get('behaves', '–')} | {behaves_s} |"
         )
     return "\n".join(lines) + "\n"
 
