@@ -10,20 +10,29 @@ For every robot (the bundled examples, then corpus robots from ``robodesc.valida
    the compile (``folder.importer_physics_layer``);
 2. Isaac Sim 6.2's importer (``isaac_import.py``, the ``isaacsim`` venv) imports the folder's URDF
    with the folder's ``importer_settings.json``;
-3. the layer is made again from that import (``layout_from_usd``: what ``robodesc layer --onto`` does)
-   and must equal the folder's (the naming rules predicted every path) and find every prim;
+3. the layer is made again from that import (``layout_from_usd``: what ``robodesc layer --onto`` does,
+   with the compile's settings), must find every prim, and is the one the layer route runs; the
+   naming rules must predict every path the import has (``rules_match_import``), and
+   ``folder_layer_is_import_layer`` says whether the folder's layer is that same text (not where
+   an instanced mesh collider carries more than the importer wrote: only the import names its shapes);
 4. PhysX (ovphysx, its own venv; ``isaac6_physx_read.py``) reads three stages: robodesc's own USD,
    the import with ``importer_settings.json`` alone, and the import with the layer sublayered over it
-   (its ``physx`` variant selected, as the importer leaves it unselected). Each link's mass,
-   inertia and shapes' friction (the distinct values) and each joint's stiffness, damping, limits, effort and velocity bounds, armature and
-   friction must equal robodesc's own USD (relative 1e-5, absolute 1e-9: float32 USD values).
+   (``emit/isaac/composed.py``: its ``physx`` variant selected, as the importer leaves it
+   unselected). Each link's mass, inertia and shapes' friction (the distinct values) and each
+   joint's stiffness, damping, limits, effort and velocity bounds, armature and friction must equal
+   robodesc's own USD (relative 1e-5, absolute 1e-9: float32 USD values);
+5. unless ``--no-behaviour``: hold, drop and slide in PhysX on the three stages
+   (``check_dynamics.stage_dynamics``), each route against robodesc's USD
+   (``validation/dynamics/routes.py``).
 
-Results: one JSON object per robot; ``--out`` keeps them all.
+Results: one JSON object per robot; ``--out`` keeps them all, ``--log`` appends each as it ends;
+``isaac6_report.py`` turns them into benchmarks/results/isaac6_layer.json and .md.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import math
 import os
@@ -98,9 +107,11 @@ def run_robot(
     isaac = os.path.join(here, "isaac")
     os.makedirs(here, exist_ok=True)
     timed: list[float] = []
+    called: list[tuple[Any, ...]] = []  # the compile's own arguments, to make the layer again from the import
     original = folder.importer_physics_layer
 
     def timing(*args: Any, **kwargs: Any) -> str:
+        called.append(args)
         start = time.perf_counter()
         try:
             return original(*args, **kwargs)
@@ -133,9 +144,16 @@ def run_robot(
     # What `robodesc layer --onto` finds: the paths read from the import itself (the settings do
     # not change which prims are addressed).
     layout = layout_from_usd(usd, result.robot)
-    settings = robodesc.emit.isaac.IsaacSettings(physics_scene=True)
-    read = physics_layer(result.robot, folder.usd_options(settings), layout, Findings())
+    robot_ir, settings, _, *initial = called[0]
+    read = physics_layer(result.robot, folder.usd_options(settings, *initial), layout, Findings())
     out["prims_missing"] = read.missing
+    # The layer the route runs: made from the import as `robodesc layer --onto` makes it (it can
+    # reach inside instanced colliders, which the naming rules cannot name), with the compile's
+    # own settings and pose.
+    from_import = os.path.join(here, "physics_from_import.usda")
+    text = original(robot_ir, dataclasses.replace(settings, importer_usd=usd), Findings(), *initial)
+    Path(from_import).write_text(text, encoding="utf-8")
+    out["folder_layer_is_import_layer"] = Path(files["physics_layer"]).read_text(encoding="utf-8") == text
     # The naming rules are right when they predict every path the import has.
     rules = layout_from_rules(result.robot)
     out["rules_match_import"] = (rules.links, rules.joints, rules.colliders, rules.articulation_root) == (
@@ -148,7 +166,7 @@ def run_robot(
     with_settings = os.path.join(here, "importer_settings_route.usda")
     with_layer = os.path.join(here, "layer_route.usda")
     write_composed_stage(with_settings, robot, [usd], scene=True)
-    write_composed_stage(with_layer, robot, [files["physics_layer"], usd])
+    write_composed_stage(with_layer, robot, [from_import, usd])
     stages = os.path.join(here, "stages.json")
     with open(stages, "w", encoding="utf-8") as fh:
         json.dump([files["usd"], with_settings, with_layer], fh)
