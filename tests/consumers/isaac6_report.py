@@ -115,6 +115,13 @@ def markdown(rows: list[dict[str, Any]]) -> str:
         lines.append(f"- {cause}: {count} prims ({', '.join(robots_by[cause])})")
     if not missing:
         lines.append("- none")
+    lines += ["", "The folder's own layer (the naming rules, no import read) leaves out:", ""]
+    folder = [(r["robot"], w) for r in imported for w in r.get("layer_warnings", [])]
+    lines += [
+        f"- {robot}: {w.split(' the physics layer')[0]} ({cause_of_missing(w.split('left out: ', 1)[-1])})"
+        for robot, w in folder
+    ]
+    lines += [] if folder else ["- nothing"]
     lines += ["", "PhysX differences on the layer route, by quantity:", ""]
     diffs = Counter(cause_of_diff(d) for r in imported for d in r.get("layer_diffs", []))
     lines += [f"- {k}: {v}" for k, v in diffs.most_common()] or ["- none"]
