@@ -265,3 +265,19 @@ def test_instanced_collider_read_from_the_import_is_made_editable(quadruped: rob
             spec = layer.GetPrimAtPath(shape)
             assert spec.attributes["physxCollision:restOffset"].default == pytest.approx(0.0005)
             assert "PhysxCollisionAPI" in spec.GetInfo("apiSchemas").prependedItems
+
+
+def test_a_name_the_importer_transcodes_is_named_not_guessed(tmp_path: Path) -> None:
+    # iCub's mesh stems ("sim_sea_2-5_lap_belt_1_prt-binary") are no USD identifiers: Isaac Sim 6.2
+    # transcodes them (tn__...), and the rules predicted a path that does not exist, silently.
+    (tmp_path / "part-1.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n")
+    (tmp_path / "arm.urdf").write_text(
+        '<robot name="arm"><link name="base"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" '
+        'izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial><collision><geometry><mesh filename="part-1.obj"/>'
+        "</geometry></collision></link></robot>"
+    )
+    result = robodesc.compile_for_isaac_sim(str(tmp_path / "arm.urdf"), tmp_path / "isaac", validate=False)
+    assert layout_from_rules(result.robot).colliders["base"] == [""]
+    missing = [f.message for f in result.findings if f.code == "isaac-layer-missing"]
+    assert len(missing) == 1 and "collision 0 of link 'base' (the importer transcodes its name" in missing[0]
+    assert "part-1" not in Path(result.files["physics_layer"]).read_text()

@@ -24,6 +24,7 @@ prims only through it.
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass, field
 
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Mesh, Sphere
@@ -35,7 +36,8 @@ class ImporterLayout:
     robot: str  # the default prim's path
     links: dict[str, str] = field(default_factory=dict)  # IR link name -> prim path
     joints: dict[str, str] = field(default_factory=dict)  # IR joint name -> prim path
-    colliders: dict[str, list[str]] = field(default_factory=dict)  # link -> collider paths, IR order
+    # link -> collider paths, IR order; "" where the rules cannot name the importer's prim
+    colliders: dict[str, list[str]] = field(default_factory=dict)
     articulation_root: str | None = None
     # Colliders whose shapes the importer puts inside an instance (mesh files): a layer cannot edit
     # instance proxies, so only what the importer itself authors there (CollisionAPI, convexHull) holds.
@@ -57,6 +59,12 @@ def _unique(name: str, used: set[str]) -> str:
         index += 1
     used.add(f"{name}_{index}")
     return f"{name}_{index}"
+
+
+# A name the importer keeps as it is; any other it transcodes (usdex's getValidPrimName: iCub's mesh
+# stem "sim_sea_2-5_lap_belt_1_prt-binary" became "tn__sim_sea_25_lap_belt_1_prtbinary_1_pm0Q"),
+# which these rules do not reproduce.
+_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 
 def _geometry_name(item: Visual | Collision) -> str:
@@ -86,9 +94,13 @@ def layout_from_rules(robot: Robot) -> ImporterLayout:
         own: set[str] = set()
         for visual in link.visuals:
             _unique(_geometry_name(visual), own)
-        layout.colliders[name] = [f"{path}/{_unique(_geometry_name(c), own)}" for c in link.collisions]
+        # "" where the importer transcodes the name: no path is predicted rather than a wrong one.
+        named = [_unique(_geometry_name(c), own) for c in link.collisions]
+        layout.colliders[name] = [f"{path}/{n}" if _IDENTIFIER.fullmatch(n) else "" for n in named]
         layout.instanced.update(
-            p for p, c in zip(layout.colliders[name], link.collisions, strict=True) if isinstance(c.geometry, Mesh)
+            p
+            for p, c in zip(layout.colliders[name], link.collisions, strict=True)
+            if p and isinstance(c.geometry, Mesh)
         )
         # Reversed onto the stack so the children are named in URDF order.
         stack.extend((child, path, own) for child in reversed(children.get(name, [])))

@@ -109,8 +109,13 @@ def _path_map(robot: Robot, source: PhysicsOpinions, layout: ImporterLayout, res
         colliders = layout.colliders.get(link.name, [])
         for index in range(len(link.collisions)):
             # robodesc names its collider prims in IR order; the importer's list is in the same order.
-            if index < len(colliders):
+            if index < len(colliders) and colliders[index]:
                 mapping[f"{ours}/collisions/#{index}"] = colliders[index]
+            elif index < len(colliders):
+                missing.append(
+                    f"collision {index} of link {link.name!r} (the importer transcodes its name, which the "
+                    "naming rules do not reproduce: robodesc layer --onto the import reads it)"
+                )
             else:
                 missing.append(f"collision {index} of link {link.name!r}")
     for joint in robot.joints:
