@@ -281,3 +281,28 @@ def test_a_name_the_importer_transcodes_is_named_not_guessed(tmp_path: Path) -> 
     missing = [f.message for f in result.findings if f.code == "isaac-layer-missing"]
     assert len(missing) == 1 and "collision 0 of link 'base' (the importer transcodes its name" in missing[0]
     assert "part-1" not in Path(result.files["physics_layer"]).read_text()
+
+
+def test_a_mesh_file_of_several_meshes_is_found_inside_its_group(tmp_path: Path) -> None:
+    # HyQ's trunk.dae: the importer writes a plain Xform holding one instance per mesh; the layer
+    # must find the shapes there and make those instances (not the group) editable.
+    from robodesc.emit.isaac.importer_layout import layout_from_usd
+
+    (tmp_path / "proto.usda").write_text(
+        '#usda 1.0\n(defaultPrim = "m")\ndef Xform "m" {\n def Mesh "shape" (prepend apiSchemas = ["PhysicsCollisionAPI"]) {}\n}\n'
+    )
+    (tmp_path / "imported.usda").write_text(
+        '#usda 1.0\n(defaultPrim = "bot")\ndef Xform "bot" {\n def Xform "Geometry" {\n'
+        '  def Xform "trunk" (prepend apiSchemas = ["PhysicsRigidBodyAPI"]) {\n   def Xform "trunk_1" {\n'
+        '    def Xform "Frame001" (instanceable = true\n     prepend references = @./proto.usda@) {}\n'
+        '    def Xform "Frame002" (instanceable = true\n     prepend references = @./proto.usda@) {}\n   }\n  }\n }\n}\n'
+    )
+    robot = read_urdf_string(
+        '<robot name="bot"><link name="trunk"><collision><geometry><mesh filename="trunk.dae"/></geometry>'
+        "</collision></link></robot>"
+    )
+    layout = layout_from_usd(str(tmp_path / "imported.usda"), robot)
+    group = "/bot/Geometry/trunk/trunk_1"
+    assert layout.colliders["trunk"] == [group] and group in layout.instanced
+    assert layout.instance_shapes[group] == [f"{group}/Frame001/shape", f"{group}/Frame002/shape"]
+    assert layout.instance_roots[group] == [f"{group}/Frame001", f"{group}/Frame002"]

@@ -26,6 +26,7 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass, field
+from typing import Any
 
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Mesh, Sphere
 from robodesc.ir.model import Collision, Robot, Visual
@@ -46,6 +47,9 @@ class ImporterLayout:
     # collider's shapes, the prims inside it with PhysicsCollisionAPI. A layer that makes the
     # collider not instanceable can then address them.
     instance_shapes: dict[str, list[str]] = field(default_factory=dict)
+    # The instances to make not instanceable so those shapes become editable: the collider itself,
+    # or, for a mesh file of several meshes (HyQ's trunk.dae), the instances inside its plain group.
+    instance_roots: dict[str, list[str]] = field(default_factory=dict)
     source: str = "rules"  # "rules", or the imported USD read
 
 
@@ -111,6 +115,28 @@ def layout_from_rules(robot: Robot) -> ImporterLayout:
     return layout
 
 
+def _within(group: Any) -> list[Any]:
+    """The prims under ``group`` (instance proxies included), not entering another rigid body."""
+    from pxr import Usd, UsdPhysics
+
+    out = []
+    walk = iter(Usd.PrimRange(group, Usd.TraverseInstanceProxies()))
+    for prim in walk:
+        if prim != group and prim.HasAPI(UsdPhysics.RigidBodyAPI):
+            walk.PruneChildren()
+            continue
+        out.append(prim)
+    return out
+
+
+def _up_to(prim: Any, top: Any) -> list[Any]:
+    """``prim`` and its ancestors up to ``top``, both included."""
+    chain = [prim]
+    while chain[-1] != top and chain[-1].GetPath() != top.GetPath():
+        chain.append(chain[-1].GetParent())
+    return chain
+
+
 def layout_from_usd(path: str, robot: Robot) -> ImporterLayout:
     """Read the layout from an imported USD (its ``physx`` variant selected when it has the
     importer's ``Physics`` variant set): links are its rigid bodies, joints its joint prims, both
@@ -140,13 +166,17 @@ def layout_from_usd(path: str, robot: Robot) -> ImporterLayout:
                 for child in prim.GetChildren():
                     if child.HasAPI(UsdPhysics.CollisionAPI):
                         layout.colliders[name].append(str(child.GetPath()))
-                    elif child.IsInstance():
-                        inside = Usd.PrimRange(child, Usd.TraverseInstanceProxies())
-                        shapes = [str(p.GetPath()) for p in inside if p.HasAPI(UsdPhysics.CollisionAPI)]
+                    elif not child.HasAPI(UsdPhysics.RigidBodyAPI):
+                        # An instance holding the shapes (a mesh file), or a plain group of
+                        # instances (a mesh file of several meshes); a child link is a body.
+                        shapes = [p for p in _within(child) if p.HasAPI(UsdPhysics.CollisionAPI)]
                         if shapes:
-                            layout.colliders[name].append(str(child.GetPath()))
-                            layout.instanced.add(str(child.GetPath()))
-                            layout.instance_shapes[str(child.GetPath())] = shapes
+                            where = str(child.GetPath())
+                            layout.colliders[name].append(where)
+                            layout.instanced.add(where)
+                            layout.instance_shapes[where] = [str(p.GetPath()) for p in shapes]
+                            roots = {str(a.GetPath()) for p in shapes for a in _up_to(p, child) if a.IsInstance()}
+                            layout.instance_roots[where] = sorted(roots)
         elif prim.IsA(UsdPhysics.Joint):
             name = next((k for k in keys if k in joint_names), None)
             if name is not None and name not in layout.joints:

@@ -42,6 +42,7 @@ class PhysicsLayer:
     articulation_root: str | None  # where the importer put the articulation root
     instanced: set[str] = field(default_factory=set)  # importer colliders inside instances
     instance_shapes: dict[str, list[str]] = field(default_factory=dict)  # ImporterLayout.instance_shapes
+    instance_roots: dict[str, list[str]] = field(default_factory=dict)  # ImporterLayout.instance_roots
     # robodesc's materials that say only what PhysX assumes unbound (friction 0.5): losing their
     # binding on an instanced collider changes nothing.
     default_materials: set[str] = field(default_factory=set)
@@ -63,6 +64,7 @@ def physics_layer(robot: Robot, options: UsdOptions, layout: ImporterLayout, fin
         layout.articulation_root,
         layout.instanced,
         layout.instance_shapes,
+        layout.instance_roots,
     )
     if layout.articulation_root is None:
         result.missing.append("the articulation root")
@@ -171,7 +173,8 @@ def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result:
             # Read from the import: the collider is made not instanceable, so the shapes inside
             # become prims of the stage, and each takes robodesc's collider opinions (Talos' sole
             # friction 0.9 and rest offset, which PhysX read as 0.5 and 0 on the instance).
-            out.prim(target, specifier="over").instanceable = False
+            for root in result.instance_roots.get(target, [target]):
+                out.prim(root, specifier="over").instanceable = False
             for shape in shapes:
                 _over(prim, out.prim(shape, specifier="over"), mapping, result)
         elif extra:
