@@ -199,13 +199,16 @@ def isaac_physics_layer(
     onto: str | os.PathLike[str],
     out: str | os.PathLike[str],
     *,
+    stage: str | os.PathLike[str] | None = None,
     progress: Progress | None = None,
     **options: Any,
 ) -> CompileResult:
     """``robodesc layer``: the Isaac folder's ``<robot>_physics.usda`` for a robot Isaac Sim 6's URDF
     importer already imported to ``onto``, its prim paths read from that USD (docs/isaac.md), written
     to ``out``. Takes :func:`compile_for_isaac_sim`'s options; prims the layer cannot find are named
-    in the warning ``isaac-layer-missing``."""
+    in the warning ``isaac-layer-missing``. ``stage``: also write the stage to open there, a root
+    layer sublayering ``out`` over ``onto`` with the importer's ``physx`` variant selected
+    (``emit/isaac/composed.py``)."""
     import shutil
     import tempfile
 
@@ -216,6 +219,12 @@ def isaac_physics_layer(
         result = _compile("isaac", source, os.path.join(tmp, "isaac"), progress, options, IsaacSettings)
         shutil.copyfile(result.files["physics_layer"], out)
     result.files = {"physics_layer": os.fspath(out)}
+    if stage is not None:
+        from robodesc.emit.isaac.composed import write_composed_stage
+        from robodesc.emit.isaac.importer_layout import layout_from_usd
+
+        robot = layout_from_usd(os.fspath(onto), result.robot).robot
+        result.files["stage"] = write_composed_stage(os.fspath(stage), robot, [os.fspath(out), os.fspath(onto)])
     return result
 
 

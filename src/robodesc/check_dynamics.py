@@ -28,7 +28,7 @@ from robodesc.ir.diagnostics import Finding, Findings, RobodescError, Severity
 from robodesc.ir.model import Robot
 from robodesc.targets import TARGETS, target_spec
 from robodesc.validation.dynamics import READERS, DynamicsOptions, DynamicsReport, run_dynamics
-from robodesc.validation.dynamics.run import STANDS_ON_WORLD, folder_files, joining
+from robodesc.validation.dynamics.run import STANDS_ON_WORLD, folder_files, joining, kind_of
 from robodesc.validation.dynamics.source import write_source
 from robodesc.validation.report import Status
 
@@ -171,6 +171,43 @@ def _sensor_links(compiled: Any) -> tuple[str, ...]:
     return tuple(s.parent for s in robot.sensors if s.type.value == "contact")
 
 
+def stage_dynamics(
+    source: Any,
+    stages: Mapping[str, str],
+    options: Mapping[str, Any],
+    dynamics: DynamicsOptions | Mapping[str, Any] | None = None,
+) -> dict[str, DynamicsReport]:
+    """Each USD stage in ``stages`` (label -> path) run through the scenarios, in the engines that
+    read USD (PhysX unless ``dynamics`` names others), from the stance ``validate --dynamics``
+    gives ``source`` compiled with ``options``: the same robot, base, pose and gains for every
+    stage, so the stages can be compared with
+    :func:`robodesc.validation.dynamics.routes.behaviour_differences`. A stage need not be robodesc's
+    output: the Isaac Sim 6 route's composed stage (``emit/isaac/composed.py``) is one. Each joint
+    and body is found by ``displayName``, else by name, the source's or the one robodesc's
+    ``sanitize_names`` gives it (what Isaac Sim 6's import of the Isaac URDF names it)."""
+    from robodesc.passes.sanitize_names import unique_names
+
+    robot = _load_robot(source, options)
+    opts = dynamics_options(dynamics if dynamics is not None else True, options)
+    renamed = {
+        new: old
+        for names in ([j.name for j in robot.joints], [link.name for link in robot.links])
+        for old, new in unique_names(names).items()
+    }
+    opts = dataclasses.replace(opts, names={**renamed, **opts.names})
+    if not opts.engines:
+        opts = dataclasses.replace(opts, engines=("physx",))
+    opts = dataclasses.replace(opts, fix_base=choose_base(robot, opts.fix_base).fixed)
+    opts = default_stance(robot, opts)
+    reports = {}
+    for label, path in stages.items():
+        kind = kind_of(path)  # by suffix: a stage is a .usd/.usda/.usdc
+        if kind is None:
+            raise RobodescError(f"{path}: no engine here reads this kind of file", element=f"stage {label!r}")
+        reports[label] = run_dynamics(robot, {kind: path}, opts)
+    return reports
+
+
 def default_stance(robot: Robot, opts: DynamicsOptions) -> DynamicsOptions:
     """``opts`` with the Isaac folder's default pose and derived gains where it has none: the pose
     ``--isaac-sim --no-fix-base`` spawns the robot in when its root is free (``world`` welds it:
@@ -238,16 +275,20 @@ def _source_robot(source: Any, options: Mapping[str, Any]) -> Robot | None:
     """The source's IR, before any target's passes: the checked target's robot may carry renamed
     joints (USD sanitizes ``0`` to ``a0``) that neither the pose table nor the other files know.
     Every file names its joints after the source (USD through ``displayName``)."""
+    try:
+        return _load_robot(source, options)
+    except RobodescError:
+        return None
+
+
+def _load_robot(source: Any, options: Mapping[str, Any]) -> Robot:
     from robodesc.frontends.load import load_source
     from robodesc.frontends.options import LoadOptions
     from robodesc.options import build_options
 
     loading = {f.name for f in dataclasses.fields(LoadOptions)}
-    try:
-        opts = build_options({k: v for k, v in options.items() if k in loading})
-        return load_source(source, opts.load, Findings())
-    except RobodescError:
-        return None
+    opts = build_options({k: v for k, v in options.items() if k in loading})
+    return load_source(source, opts.load, Findings())
 
 
 def _written_gains(target: str, opts: DynamicsOptions) -> DynamicsOptions:

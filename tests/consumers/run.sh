@@ -7,8 +7,8 @@
 #   ROBODESC_CONSUMERS_ISAACLAB=1 tests/consumers/run.sh   # also build Isaac Lab 3.0 (~8 GB, torch)
 #                                   and spawn the corpus in it (isaaclab_tier.py; ROBODESC_ISAACLAB_ARGS
 #                                   passes it more, e.g. "--robots go1,icub --label after")
-#   ROBODESC_ISAAC6_ROBOTS=spirit,go2 tests/consumers/run.sh   # the robots isaac6_layer.py runs (exact
-#                                   corpus names; default the two examples)
+#   ROBODESC_ISAAC6_ROBOTS=spirit,go2 tests/consumers/run.sh   # the robots isaac6_layer.py runs (corpus
+#                                   names or unique stems, or all; default the two examples)
 #
 # Environments live outside the repository, in $ROBODESC_CONSUMERS_DIR (default
 # ~/.cache/robodesc-consumers), one virtualenv per engine:
@@ -52,8 +52,12 @@ fi
 
 "$PYTHON" tests/consumers/run_tier.py --envs "$ENVS" "$@"
 # The Isaac Sim 6 route: the physics layer over the importer's USD, read in PhysX (docs/isaac.md).
+# Each robot's structure in PhysX and its hold, drop and slide on the three routes (~2 min a robot on a
+# loaded two-core machine); ROBODESC_ISAAC6_ROBOTS=all runs the whole corpus.
 "$PYTHON" tests/consumers/isaac6_layer.py --envs "$ENVS" --robots "${ROBODESC_ISAAC6_ROBOTS:-quadruped,arm6_gripper}" \
-  --out benchmarks/results/isaac6_layer.json
+  --out /tmp/robodesc-isaac6.json
+"$PYTHON" tests/consumers/isaac6_report.py /tmp/robodesc-isaac6.json \
+  --json benchmarks/results/isaac6_layer.json --md benchmarks/results/isaac6_layer.md
 if [ "${ROBODESC_CONSUMERS_ISAACLAB:-0}" = "1" ]; then
   # shellcheck disable=SC2086  # the extra arguments are words on purpose
   "$PYTHON" tests/consumers/isaaclab_tier.py --envs "$ENVS" ${ROBODESC_ISAACLAB_ARGS:-}

@@ -108,3 +108,64 @@ def test_without_an_interpreter_physx_is_a_skip_row_saying_how_to_get_it(
     (row,) = [c for c in dyn.checks if c.element == "physx/usd"]
     assert row.status is Status.SKIP and "robodesc[physx]" in row.message and "tests/consumers/run.sh" in row.message
     assert {r.engine for r in dyn.runs} == {"mujoco"}
+
+
+def test_feet_friction_is_read_inside_instances(tmp_path: Path) -> None:
+    # Isaac Sim 6's importer instances a mesh collider; the worker (pxr only, here usd-core) must
+    # look inside the instance for its shapes, or the slide has no friction to test (solo12).
+    from pxr import Usd, UsdPhysics
+
+    from robodesc.validation.dynamics import physx_worker
+
+    (tmp_path / "mesh.usda").write_text(
+        '#usda 1.0\n(defaultPrim = "shape")\ndef Xform "shape" {\n def Cube "box" (prepend apiSchemas = '
+        '["PhysicsCollisionAPI", "MaterialBindingAPI"]) {\n  rel material:binding:physics = </shape/grip>\n }\n'
+        ' def Material "grip" (prepend apiSchemas = ["PhysicsMaterialAPI"]) {\n'
+        "  float physics:dynamicFriction = 0.9\n }\n}\n"
+    )
+    (tmp_path / "robot.usda").write_text(
+        '#usda 1.0\ndef Xform "robot" {\n def Xform "foot" (prepend apiSchemas = ["PhysicsRigidBodyAPI"]) {\n'
+        '  def Xform "collider" (instanceable = true\n   prepend references = @./mesh.usda@) {}\n }\n}\n'
+    )
+    stage = Usd.Stage.Open(str(tmp_path / "robot.usda"))
+    foot = stage.GetPrimAtPath("/robot/foot")
+    assert foot.HasAPI(UsdPhysics.RigidBodyAPI)
+    assert physx_worker._feet_mu([foot]) == pytest.approx(0.9)
+
+
+def test_joints_are_found_by_the_names_a_file_uses(tmp_path: Path) -> None:
+    # Isaac Sim 6's import names Spirit's joint "0" as the Isaac URDF does, "a0", with no displayName.
+    from robodesc.validation.dynamics import physx_worker
+
+    (tmp_path / "robot.usda").write_text(
+        '#usda 1.0\ndef Xform "robot" {\n def Xform "body" (prepend apiSchemas = ["PhysicsRigidBodyAPI"]) {}\n'
+        ' def Xform "leg" (prepend apiSchemas = ["PhysicsRigidBodyAPI"]) {}\n'
+        ' def PhysicsRevoluteJoint "a0" {\n  rel physics:body0 = </robot/body>\n  rel physics:body1 = </robot/leg>\n }\n'
+        ' def PhysicsRevoluteJoint "knee" (displayName = "knee joint") {\n'
+        "  rel physics:body0 = </robot/body>\n  rel physics:body1 = </robot/leg>\n }\n}\n"
+    )
+    info = physx_worker._inspect(str(tmp_path / "robot.usda"), "body", (), {"a0": "0", "knee": "other"})
+    # displayName first (robodesc's USD), then the file's name mapped, then the name itself.
+    assert info["joints"] == {"/robot/a0": ("0", "angular"), "/robot/knee": ("knee joint", "angular")}
+    assert info["root"] == "/robot/body"
+
+
+def test_feet_friction_skips_nested_bodies_without_stopping(tmp_path: Path) -> None:
+    # Isaac Sim 6's importer nests a child link before its parent's collider: the parent's collider
+    # still counts, the child's belongs to the child.
+    from pxr import Usd
+
+    from robodesc.validation.dynamics import physx_worker
+
+    grip = ' def Material "grip" (prepend apiSchemas = ["PhysicsMaterialAPI"]) {\n  float physics:dynamicFriction = 0.9\n }\n'
+    (tmp_path / "robot.usda").write_text(
+        '#usda 1.0\ndef Xform "robot" {\n'
+        + grip
+        + ' def Xform "thigh" (prepend apiSchemas = ["PhysicsRigidBodyAPI"]) {\n'
+        '  def Xform "shin" (prepend apiSchemas = ["PhysicsRigidBodyAPI"]) {\n   def Cube "c" (prepend apiSchemas = '
+        '["PhysicsCollisionAPI"]) {}\n  }\n  def Cube "collider" (prepend apiSchemas = ["PhysicsCollisionAPI", '
+        '"MaterialBindingAPI"]) {\n   rel material:binding:physics = </robot/grip>\n  }\n }\n}\n'
+    )
+    stage = Usd.Stage.Open(str(tmp_path / "robot.usda"))
+    assert physx_worker._feet_mu([stage.GetPrimAtPath("/robot/thigh")]) == pytest.approx(0.9)
+    assert physx_worker._feet_mu([stage.GetPrimAtPath("/robot/thigh/shin")]) == pytest.approx(0.5)

@@ -181,10 +181,12 @@ def cmd_layer(args: argparse.Namespace) -> int:
         "preset": args.preset,
         "validate": args.validate,
     }
-    result = api.isaac_physics_layer(args.input, args.onto, args.output, **options)
+    result = api.isaac_physics_layer(args.input, args.onto, args.output, stage=args.stage, **options)
     render.print_findings(result.findings, args.quiet, args.verbose)
     if not args.quiet:
         print(f"robodesc: physics layer {args.output} over {args.onto}", file=sys.stderr)
+        if args.stage:
+            print(f"robodesc: stage {args.stage} (open this one)", file=sys.stderr)
     return 0
 
 

@@ -158,6 +158,11 @@ def _layer_parser(sub: Any) -> argparse.ArgumentParser:
         "layer cannot find are named in a warning.",
     )
     lay.add_argument("--onto", required=True, metavar="IMPORTED.usd", help="the USD the importer wrote")
+    lay.add_argument(
+        "--stage",
+        metavar="STAGE.usda",
+        help="also write the stage to open: the layer sublayered over --onto, the importer's physx variant selected",
+    )
     return lay
 
 

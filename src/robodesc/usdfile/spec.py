@@ -113,6 +113,12 @@ class Prim:
     # Written as a deleted list op (.usda only): a layer over another asset removes an API schema
     # that asset applied (the Isaac physics layer moves the articulation root).
     deleted_api_schemas: list[str] = field(default_factory=list)
+    # Variant set name -> the selected variant (.usda only): a root layer over an imported asset
+    # selects the importer's ``Physics = "physx"``, which the importer leaves unselected.
+    variant_selections: dict[str, str] = field(default_factory=dict)
+    # ``instanceable`` metadata (.usda only); None writes none. A layer over an imported asset sets
+    # it false to edit what the asset put inside an instance (Isaac Sim 6's mesh colliders).
+    instanceable: bool | None = None
 
     def child(self, name: str, type_name: str = "", specifier: str = "def") -> Prim:
         """The named child, created (with this type and specifier) if it is not there yet."""

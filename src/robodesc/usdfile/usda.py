@@ -100,11 +100,19 @@ def _prim_metadata(prim: Prim, depth: int) -> list[str]:
         lines.append(f"{pad}assetInfo = {{\n{pad}{INDENT}string name = {quote(prim.asset_name)}\n{pad}}}\n")
     if prim.display_name is not None:
         lines.append(f"{pad}displayName = {quote(prim.display_name)}\n")
+    if prim.instanceable is not None:
+        lines.append(f"{pad}instanceable = {'true' if prim.instanceable else 'false'}\n")
     if prim.kind is not None:
         lines.append(f"{pad}kind = {quote(prim.kind)}\n")
     if prim.payloads:
         items = [f"@{p.asset_path}@" + (f"<{p.prim_path}>" if p.prim_path else "") for p in prim.payloads]
         lines.append(f"{pad}prepend payload = {_one_or_list(items)}\n")
+    if prim.variant_selections:
+        inner = "".join(
+            f"{pad}{INDENT}string {name} = {quote(prim.variant_selections[name])}\n"
+            for name in sorted(prim.variant_selections)
+        )
+        lines.append(f"{pad}variants = {{\n{inner}{pad}}}\n")
     return lines
 
 

@@ -165,6 +165,11 @@ def _prim_fields(crate: Crate, prim: Prim) -> list[tuple[str, int]]:
     if prim.deleted_api_schemas:
         # Not needed in a crate file yet (only the Isaac physics layer deletes, and it is .usda).
         raise ValueError(f"{prim.name}: deleted apiSchemas are written to .usda only")
+    if prim.variant_selections:
+        # Likewise: only the composed stage's root layer selects a variant, and it is .usda.
+        raise ValueError(f"{prim.name}: variant selections are written to .usda only")
+    if prim.instanceable is not None:
+        raise ValueError(f"{prim.name}: instanceable is written to .usda only")
     if prim.api_schemas:
         items = [crate.token(s) for s in prim.api_schemas]
         fields.append(("apiSchemas", _list_op(crate, _TOKEN_LIST_OP, _HAS_PREPENDED, items)))

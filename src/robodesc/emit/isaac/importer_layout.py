@@ -24,7 +24,9 @@ prims only through it.
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass, field
+from typing import Any
 
 from robodesc.ir.geometry import Box, Capsule, Cylinder, Mesh, Sphere
 from robodesc.ir.model import Collision, Robot, Visual
@@ -35,11 +37,19 @@ class ImporterLayout:
     robot: str  # the default prim's path
     links: dict[str, str] = field(default_factory=dict)  # IR link name -> prim path
     joints: dict[str, str] = field(default_factory=dict)  # IR joint name -> prim path
-    colliders: dict[str, list[str]] = field(default_factory=dict)  # link -> collider paths, IR order
+    # link -> collider paths, IR order; "" where the rules cannot name the importer's prim
+    colliders: dict[str, list[str]] = field(default_factory=dict)
     articulation_root: str | None = None
     # Colliders whose shapes the importer puts inside an instance (mesh files): a layer cannot edit
     # instance proxies, so only what the importer itself authors there (CollisionAPI, convexHull) holds.
     instanced: set[str] = field(default_factory=set)
+    # Read from an import only (the rules cannot name what a mesh file puts inside): each instanced
+    # collider's shapes, the prims inside it with PhysicsCollisionAPI. A layer that makes the
+    # collider not instanceable can then address them.
+    instance_shapes: dict[str, list[str]] = field(default_factory=dict)
+    # The instances to make not instanceable so those shapes become editable: the collider itself,
+    # or, for a mesh file of several meshes (HyQ's trunk.dae), the instances inside its plain group.
+    instance_roots: dict[str, list[str]] = field(default_factory=dict)
     source: str = "rules"  # "rules", or the imported USD read
 
 
@@ -53,6 +63,12 @@ def _unique(name: str, used: set[str]) -> str:
         index += 1
     used.add(f"{name}_{index}")
     return f"{name}_{index}"
+
+
+# A name the importer keeps as it is; any other it transcodes (usdex's getValidPrimName: iCub's mesh
+# stem "sim_sea_2-5_lap_belt_1_prt-binary" became "tn__sim_sea_25_lap_belt_1_prtbinary_1_pm0Q"),
+# which these rules do not reproduce.
+_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 
 def _geometry_name(item: Visual | Collision) -> str:
@@ -82,9 +98,13 @@ def layout_from_rules(robot: Robot) -> ImporterLayout:
         own: set[str] = set()
         for visual in link.visuals:
             _unique(_geometry_name(visual), own)
-        layout.colliders[name] = [f"{path}/{_unique(_geometry_name(c), own)}" for c in link.collisions]
+        # "" where the importer transcodes the name: no path is predicted rather than a wrong one.
+        named = [_unique(_geometry_name(c), own) for c in link.collisions]
+        layout.colliders[name] = [f"{path}/{n}" if _IDENTIFIER.fullmatch(n) else "" for n in named]
         layout.instanced.update(
-            p for p, c in zip(layout.colliders[name], link.collisions, strict=True) if isinstance(c.geometry, Mesh)
+            p
+            for p, c in zip(layout.colliders[name], link.collisions, strict=True)
+            if p and isinstance(c.geometry, Mesh)
         )
         # Reversed onto the stack so the children are named in URDF order.
         stack.extend((child, path, own) for child in reversed(children.get(name, [])))
@@ -93,6 +113,28 @@ def layout_from_rules(robot: Robot) -> ImporterLayout:
     for joint in robot.joints:
         layout.joints[joint.name] = f"{layout.robot}/Physics/{_unique(joint.name, used_joints)}"
     return layout
+
+
+def _within(group: Any) -> list[Any]:
+    """The prims under ``group`` (instance proxies included), not entering another rigid body."""
+    from pxr import Usd, UsdPhysics
+
+    out = []
+    walk = iter(Usd.PrimRange(group, Usd.TraverseInstanceProxies()))
+    for prim in walk:
+        if prim != group and prim.HasAPI(UsdPhysics.RigidBodyAPI):
+            walk.PruneChildren()
+            continue
+        out.append(prim)
+    return out
+
+
+def _up_to(prim: Any, top: Any) -> list[Any]:
+    """``prim`` and its ancestors up to ``top``, both included."""
+    chain = [prim]
+    while chain[-1] != top and chain[-1].GetPath() != top.GetPath():
+        chain.append(chain[-1].GetParent())
+    return chain
 
 
 def layout_from_usd(path: str, robot: Robot) -> ImporterLayout:
@@ -124,11 +166,17 @@ def layout_from_usd(path: str, robot: Robot) -> ImporterLayout:
                 for child in prim.GetChildren():
                     if child.HasAPI(UsdPhysics.CollisionAPI):
                         layout.colliders[name].append(str(child.GetPath()))
-                    elif child.IsInstance() and any(
-                        p.HasAPI(UsdPhysics.CollisionAPI) for p in Usd.PrimRange(child, Usd.TraverseInstanceProxies())
-                    ):
-                        layout.colliders[name].append(str(child.GetPath()))
-                        layout.instanced.add(str(child.GetPath()))
+                    elif not child.HasAPI(UsdPhysics.RigidBodyAPI):
+                        # An instance holding the shapes (a mesh file), or a plain group of
+                        # instances (a mesh file of several meshes); a child link is a body.
+                        shapes = [p for p in _within(child) if p.HasAPI(UsdPhysics.CollisionAPI)]
+                        if shapes:
+                            where = str(child.GetPath())
+                            layout.colliders[name].append(where)
+                            layout.instanced.add(where)
+                            layout.instance_shapes[where] = [str(p.GetPath()) for p in shapes]
+                            roots = {str(a.GetPath()) for p in shapes for a in _up_to(p, child) if a.IsInstance()}
+                            layout.instance_roots[where] = sorted(roots)
         elif prim.IsA(UsdPhysics.Joint):
             name = next((k for k in keys if k in joint_names), None)
             if name is not None and name not in layout.joints:

@@ -41,10 +41,14 @@ class PhysicsLayer:
     materials_source: str  # robodesc's scope of them
     articulation_root: str | None  # where the importer put the articulation root
     instanced: set[str] = field(default_factory=set)  # importer colliders inside instances
+    instance_shapes: dict[str, list[str]] = field(default_factory=dict)  # ImporterLayout.instance_shapes
+    instance_roots: dict[str, list[str]] = field(default_factory=dict)  # ImporterLayout.instance_roots
     # robodesc's materials that say only what PhysX assumes unbound (friction 0.5): losing their
     # binding on an instanced collider changes nothing.
     default_materials: set[str] = field(default_factory=set)
     missing: list[str] = field(default_factory=list)  # "link 'x'", "joint 'y'", ... the layout lacks
+    # Importer paths the layer defines rather than overs: prims the import lacks (loop closures).
+    defined: set[str] = field(default_factory=set)
     prims: int = 0  # prims of robodesc's physics that found their place
 
 
@@ -59,10 +63,12 @@ def physics_layer(robot: Robot, options: UsdOptions, layout: ImporterLayout, fin
         f"{robot_path}/{ours.materials_scope}",
         layout.articulation_root,
         layout.instanced,
+        layout.instance_shapes,
+        layout.instance_roots,
     )
     if layout.articulation_root is None:
         result.missing.append("the articulation root")
-    mapping = _path_map(robot, ours, layout, result.missing)
+    mapping = _path_map(robot, ours, layout, result)
     mapping[f"{robot_path}/{ours.materials_scope}"] = result.materials
     scope = source.find(f"{robot_path}/{ours.materials_scope}")
     for name, material in scope.children.items() if scope is not None else ():
@@ -72,14 +78,28 @@ def physics_layer(robot: Robot, options: UsdOptions, layout: ImporterLayout, fin
     top = source.find(robot_path)
     if top is not None:
         _move(top, robot_path, mapping, out, result)
+    _display_names(robot, layout, out)
     if ours.scene is not None:
         out.root.children["PhysicsScene"] = ours.scene
     return result
 
 
-def _path_map(robot: Robot, source: PhysicsOpinions, layout: ImporterLayout, missing: list[str]) -> dict[str, str]:
+def _display_names(robot: Robot, layout: ImporterLayout, out: Layer) -> None:
+    """The source's names, as robodesc's USD keeps them (``displayName``): the Isaac URDF carries
+    the sanitized ones (Spirit's joints ``0``..``11`` are ``a0``..``a11``), so the importer's prims
+    lack them, and whatever finds a joint by the source's name (``validate --dynamics``' pose table,
+    Isaac Sim's stage tree) missed every one of Spirit's and Go2's joints on the composed stage."""
+    for elements, paths in ((robot.links, layout.links), (robot.joints, layout.joints)):
+        for element in elements:
+            where = paths.get(element.name)
+            if where is not None and element.display_name and element.display_name != where.rsplit("/", 1)[-1]:
+                out.prim(where, specifier="over").display_name = element.display_name
+
+
+def _path_map(robot: Robot, source: PhysicsOpinions, layout: ImporterLayout, result: PhysicsLayer) -> dict[str, str]:
     """robodesc's prim path -> the importer's, for every prim that carries physics."""
     robot_path = source.robot_path
+    missing = result.missing
     mapping: dict[str, str] = {}
     for link in robot.links:
         ours = f"{robot_path}/{link.name}"
@@ -91,8 +111,13 @@ def _path_map(robot: Robot, source: PhysicsOpinions, layout: ImporterLayout, mis
         colliders = layout.colliders.get(link.name, [])
         for index in range(len(link.collisions)):
             # robodesc names its collider prims in IR order; the importer's list is in the same order.
-            if index < len(colliders):
+            if index < len(colliders) and colliders[index]:
                 mapping[f"{ours}/collisions/#{index}"] = colliders[index]
+            elif index < len(colliders):
+                missing.append(
+                    f"collision {index} of link {link.name!r} (the importer transcodes its name, which the "
+                    "naming rules do not reproduce: robodesc layer --onto the import reads it)"
+                )
             else:
                 missing.append(f"collision {index} of link {link.name!r}")
     for joint in robot.joints:
@@ -101,9 +126,30 @@ def _path_map(robot: Robot, source: PhysicsOpinions, layout: ImporterLayout, mis
             missing.append(f"joint {joint.name!r}")
         else:
             mapping[f"{robot_path}/{source.joints_scope}/{joint.name}"] = theirs
-    # Where the importer puts a <loop_joint> was not measured: not addressed, and said so.
-    missing.extend(f"loop joint {loop.name!r}" for loop in robot.loop_joints)
+    # Isaac Sim 6.2's importer drops <loop_joint> (urdf-usd-converter reads no such tag: its import of
+    # the four-bar has no closure), so the chain arrives open and its drives carry the load the
+    # closure would (the four-bar's crank at 42 % of its effort instead of 3.5 %, in PhysX). The
+    # layer defines the closure beside the importer's joints, between the importer's bodies, as
+    # robodesc's USD has it (outside the articulation); link frames are the URDF's in both layouts.
+    scope = _joints_scope(layout)
+    taken = {path.rsplit("/", 1)[-1] for path in layout.joints.values()} | {"root_joint"}
+    for loop in robot.loop_joints:
+        ends = [layout.links.get(side.link) for side in (loop.link1, loop.link2)]
+        if None in ends or loop.name in taken:
+            why = "a link it joins is not in the import" if None in ends else "the import has a joint of that name"
+            missing.append(f"loop joint {loop.name!r} ({why})")
+            continue
+        target = f"{scope}/{loop.name}"
+        mapping[f"{robot_path}/{source.loops_scope}/{loop.name}"] = target
+        result.defined.add(target)
     return mapping
+
+
+def _joints_scope(layout: ImporterLayout) -> str:
+    """Where the importer puts joints: beside the ones it wrote, else its ``/<robot>/Physics``."""
+    for path in layout.joints.values():
+        return path.rsplit("/", 1)[0]
+    return f"{layout.robot}/Physics"
 
 
 def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result: PhysicsLayer) -> None:
@@ -122,18 +168,29 @@ def _move(prim: Prim, path: str, mapping: Mapping[str, str], out: Layer, result:
             _over(prim, out.prim(root, specifier="over"), mapping, result)
     elif (target := mapping.get(path) or _remap(path, {result.materials_source: result.materials})) in result.instanced:
         extra = _beyond_importer(prim, result.default_materials)
-        if extra:
+        shapes = result.instance_shapes.get(target or "")
+        if extra and shapes and target is not None:
+            # Read from the import: the collider is made not instanceable, so the shapes inside
+            # become prims of the stage, and each takes robodesc's collider opinions (Talos' sole
+            # friction 0.9 and rest offset, which PhysX read as 0.5 and 0 on the instance).
+            for root in result.instance_roots.get(target, [target]):
+                out.prim(root, specifier="over").instanceable = False
+            for shape in shapes:
+                _over(prim, out.prim(shape, specifier="over"), mapping, result)
+        elif extra:
             result.missing.append(
                 f"{path.rsplit('/collisions/', 1)[0].rsplit('/', 1)[-1]}'s mesh collider {target} "
-                f"({', '.join(extra)}: inside an instance the importer made, which a layer cannot edit)"
+                f"({', '.join(extra)}: inside an instance the importer made; the naming rules cannot name "
+                "its shapes, robodesc layer --onto the import reads them)"
             )
         else:
             result.prims += 1  # the importer already authors exactly this
     elif target is not None:
-        # Prims robodesc adds (its contact materials) are defined; everything else is an over.
-        new = prim.specifier == "def" and target.startswith(result.materials)
+        # Prims robodesc adds (its contact materials, loop closures) are defined; everything else
+        # is an over.
+        new = prim.specifier == "def" and (target.startswith(result.materials) or target in result.defined)
         made = out.prim(target, prim.type_name if new else "", "def" if new else "over")
-        _over(prim, made, mapping, result)
+        _over(prim, made, mapping, result, keep_bodies=new)
     for index, (name, child) in enumerate(prim.children.items()):
         # Colliders by their place in the link (the importer's names are its own).
         _move(child, f"{path}/#{index}" if path.endswith("/collisions") else f"{path}/{name}", mapping, out, result)
@@ -156,13 +213,17 @@ def _beyond_importer(collider: Prim, default_materials: set[str]) -> list[str]:
     return extra
 
 
-def _over(source: Prim, target: Prim, mapping: Mapping[str, str], result: PhysicsLayer) -> None:
+def _over(
+    source: Prim, target: Prim, mapping: Mapping[str, str], result: PhysicsLayer, *, keep_bodies: bool = False
+) -> None:
+    """``source``'s opinions on ``target``; a joint the layer defines (``keep_bodies``) keeps its
+    bodies, moved to the importer's paths, where the importer's own joints name theirs."""
     result.prims += 1
     for schema in source.api_schemas:
         if schema not in _DROPPED_SCHEMAS:
             target.apply(schema)
     for name, prop in source.properties.items():
-        if name in _DROPPED_PROPERTIES:
+        if name in _DROPPED_PROPERTIES and not (keep_bodies and name.startswith("physics:body")):
             continue
         if isinstance(prop, Relationship):
             targets = [_remap(t, mapping) for t in prop.targets]

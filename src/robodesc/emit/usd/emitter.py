@@ -79,6 +79,7 @@ class PhysicsOpinions:
     robot_path: str  # the robot prim, e.g. "/quadruped"
     joints_scope: str = JOINTS_SCOPE  # <robot_path>/<joints_scope>/<joint>
     materials_scope: str = CONTACT_SCOPE  # <robot_path>/<materials_scope>/<contact material>
+    loops_scope: str = LOOPS_SCOPE  # <robot_path>/<loops_scope>/<loop joint>
 
 
 def physics_opinions(robot: Robot, options: UsdOptions, findings: Findings) -> PhysicsOpinions:

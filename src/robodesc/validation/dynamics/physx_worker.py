@@ -36,10 +36,17 @@ def _short(path):
 # --- reading the file (pxr) -------------------------------------------------------------------
 
 
-def _inspect(usd, root_name, feet):
+def _inspect(usd, root_name, feet, names=None):
     """What the scene layer needs from the file: units, the root body, joints by name, the joints
-    that tie a body to the world, and the friction of the colliders the robot stands on."""
+    that tie a body to the world, and the friction of the colliders the robot stands on. A prim's
+    name is its displayName (the source's, in robodesc's USD), else ``names``' entry for it (a
+    file's name -> the source's), else its own."""
     from pxr import Usd, UsdGeom, UsdPhysics
+
+    names = names or {}
+
+    def name_of(prim):
+        return prim.GetMetadata("displayName") or names.get(prim.GetName()) or prim.GetName()
 
     stage = Usd.Stage.Open(usd)
     mpu = UsdGeom.GetStageMetersPerUnit(stage) or 1.0
@@ -65,12 +72,12 @@ def _inspect(usd, root_name, feet):
         )
         if kind is None:
             continue
-        joints[str(prim.GetPath())] = (prim.GetMetadata("displayName") or prim.GetName(), kind)
+        joints[str(prim.GetPath())] = (name_of(prim), kind)
     if not bodies:
         raise RuntimeError("PhysX reads no rigid body from the USD")
-    root = _root_body(bodies, root_name)
+    root = _root_body(bodies, root_name, name_of)
     xf = UsdGeom.Xformable(root).ComputeLocalToWorldTransform(Usd.TimeCode.Default())
-    by_name = {(p.GetMetadata("displayName") or p.GetName()): p for p in bodies}
+    by_name = {name_of(p): p for p in bodies}
     return {
         "mpu": mpu,
         "default_prim": stage.GetDefaultPrim().GetName() if stage.GetDefaultPrim() else "",
@@ -85,11 +92,11 @@ def _inspect(usd, root_name, feet):
     }
 
 
-def _root_body(bodies, root_name):
+def _root_body(bodies, root_name, name_of):
     from pxr import UsdPhysics
 
     for prim in bodies:
-        if root_name and root_name in (prim.GetName(), prim.GetMetadata("displayName")):
+        if root_name and root_name in (prim.GetName(), name_of(prim)):
             return prim
     rooted = [p for p in bodies if p.HasAPI(UsdPhysics.ArticulationRootAPI)]
     return rooted[0] if rooted else bodies[0]
@@ -107,9 +114,16 @@ def _feet_mu(bodies):
 
     values = []
     for body in bodies:
-        for prim in Usd.PrimRange(body):
+        # Into instances too: Isaac Sim 6's importer puts a mesh collider's shapes inside an
+        # instance, and without this the composed stage's feet had no friction to read (solo12).
+        walk = iter(Usd.PrimRange(body, Usd.TraverseInstanceProxies()))
+        for prim in walk:
             if prim != body and prim.HasAPI(UsdPhysics.RigidBodyAPI):
-                break
+                # Another body's colliders are its own. Skipped, not the end of the walk: the
+                # importer nests child links among a link's colliders (Talos: 10 of 60 bodies had
+                # their colliders read before this).
+                walk.PruneChildren()
+                continue
             if not prim.HasAPI(UsdPhysics.CollisionAPI):
                 continue
             material, _ = UsdShade.MaterialBindingAPI(prim).ComputeBoundMaterial("physics")
@@ -283,7 +297,7 @@ def _attr_index(group, attributes, dictionary):
 def _robot_run(req, scenario, folder):
     setup = req["setup"]
     floor = scenario == "drop"
-    info = _inspect(req["usd"], req["root"], setup.get("feet") or ())
+    info = _inspect(req["usd"], req["root"], setup.get("feet") or (), setup.get("names"))
     mu = info["mu"]
     _, path = _scene_layer(
         folder,
@@ -533,7 +547,7 @@ def _slide(req, mu, folder):
 
     setup = req["setup"]
     if mu is None:
-        mu = _inspect(req["usd"], req["root"], setup.get("feet") or ())["mu"]
+        mu = _inspect(req["usd"], req["root"], setup.get("feet") or (), setup.get("names"))["mu"]
     return slide_run("PhysX", mu, lambda angle: _block_travel(mu, angle, setup, _sub(folder, f"{angle:.6f}")))
 
 

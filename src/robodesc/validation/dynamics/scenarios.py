@@ -85,6 +85,10 @@ class DynamicsOptions:
     progress: Callable[[str], None] | None = None
     # A world to stand the robot in (``validate --dynamics --world``): the "stand" scenario.
     world: WorldStand | None = None
+    # A file's own name -> the source's, for a file that names links and joints otherwise and keeps
+    # no displayName: Isaac Sim 6's import of robodesc's Isaac URDF names them as that URDF does,
+    # sanitized (Spirit's joint "0" is "a0"). PhysX's worker reads it.
+    names: Mapping[str, str] = field(default_factory=dict)
 
 
 @dataclass(slots=True)
@@ -141,6 +145,7 @@ class Setup:
     drop_clearance: float = 0.05
     record: bool = False  # DynamicsOptions.record
     world: WorldStand | None = None
+    names: dict[str, str] = field(default_factory=dict)  # DynamicsOptions.names
 
     def as_dict(self) -> dict[str, Any]:
         return {
@@ -154,8 +159,9 @@ class Setup:
             "duration": self.duration,
             "timestep": self.timestep,
             "drop_clearance": self.drop_clearance,
-            # Only when asked: the report's setup (info["setup"]) stays as it was without it.
+            # Only when asked: the report's setup (info["setup"]) stays as it was without them.
             **({"record": True} if self.record else {}),
+            **({"names": self.names} if self.names else {}),
         }
 
 
@@ -318,4 +324,5 @@ def make_setup(robot: Robot, options: DynamicsOptions) -> Setup:
         drop_clearance=options.drop_clearance,
         record=options.record,
         world=options.world,
+        names=dict(options.names),
     )
