@@ -16,7 +16,7 @@ import pytest
 import robodesc
 from robodesc.validation.dynamics import DynamicsOptions, Run, home_pose, run_dynamics
 from robodesc.validation.dynamics.result import DynamicsReport
-from robodesc.validation.dynamics.scenarios import Setup, Thresholds, stand_height
+from robodesc.validation.dynamics.scenarios import Setup, Thresholds, make_setup, stand_height
 from robodesc.validation.dynamics.verdict import judge
 from robodesc.validation.report import Status
 
@@ -279,3 +279,43 @@ def test_a_file_with_constant_drives_is_simulated_with_them() -> None:
     assert {tuple(g) for g in usd.info["setup"]["gains"].values()} == {(100.0, 1.0)}
     mjcf = robodesc.check(ARM, "mjcf", dynamics=MUJOCO).dynamics
     assert mjcf is not None and {tuple(g) for g in mjcf.info["setup"]["gains"].values()} != {(100.0, 1.0)}
+
+
+@pytest.mark.parametrize("blown", [4.85e27, math.nan])
+def test_a_run_that_blows_up_is_a_run_failure_not_a_disagreement(blown: float) -> None:
+    """tiago_pro's hold in PhysX ended 4.85e27 rad off: a failure of that engine's run (a ``run``
+    row, FAIL for an output), never a WARN that two engines "settle apart"."""
+    physx = Run("physx", "usd", "hold-fixed", drift=abs(blown), worst_joint="a", final_q={"a": blown})
+    physx.trajectory = [(0.01, {"a": 0.02}), (0.02, {"a": blown})]
+    report = DynamicsReport("r", runs=[physx, _hold("mujoco", 0.01)])
+    judge(report, _setup(), Thresholds())
+    assert not physx.ok and "blew up" in physx.error and "0.02 s" in physx.error
+    assert _rows(report, "run") == [Status.FAIL] and not report.ok
+    assert _rows(report, "agree:hold-fixed") == []
+    # The source blowing up in the same engine too: the engine's trouble with the robot, a warning.
+    source = Run("physx", "source", "hold-fixed", final_q={"a": blown})
+    report = DynamicsReport("r", runs=[Run("physx", "usd", "hold-fixed", final_q={"a": blown}), source])
+    judge(report, _setup(), Thresholds())
+    assert _rows(report, "run") == [Status.WARN, Status.WARN] and report.ok
+
+
+def test_a_run_within_bounds_is_judged_as_before() -> None:
+    # A continuous joint may turn many times in a run: 300 rad is motion, not a blow-up.
+    report = DynamicsReport("r", runs=[_hold("physx", 300.0), _hold("mujoco", 300.0)])
+    judge(report, _setup(), Thresholds())
+    assert _rows(report, "run") == [] and _rows(report, "agree:hold-fixed") == [Status.PASS]
+
+
+def test_mimic_followers_start_where_their_leader_puts_them() -> None:
+    """Every engine starts a follower at multiplier x its leader + offset (Setup.start); a follower
+    left at 0 starts its mimic constraint violated (PhysX ran tiago_pro away from 0.15 rad)."""
+    robot = robodesc.load(str(ROOT / "tests/usd/data/gripper.urdf"))
+    setup = make_setup(robot, DynamicsOptions(pose={"finger": 0.3}))
+    assert setup.pose == {"finger": 0.3}
+    assert setup.followers == pytest.approx({"finger_mimic": -0.3 + 0.05, "pad_slide": 0.02 * 0.3 + 0.001})
+    assert setup.as_dict()["start"] == {**setup.followers, "finger": 0.3}
+    # MuJoCo starts the follower there: its equality constraint then holds a still robot.
+    dyn = robodesc.check(
+        str(ROOT / "tests/usd/data/gripper.urdf"), "urdf", dynamics={**MUJOCO, "pose": {"finger": 0.3}}
+    )
+    assert dyn.dynamics is not None and dyn.dynamics.ok, dyn.dynamics.to_text()

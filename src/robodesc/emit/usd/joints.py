@@ -88,6 +88,12 @@ def _one_dof(ctx: UsdContext, joint: Joint, prim: Prim, frame: AxisFrame) -> Non
     # Start at the given position (0 by default) when the range allows it, else at the nearer bound.
     initial = ctx.options.initial_positions
     start = initial.get(joint.name, 0.0) if initial else 0.0
+    mimic = joint.mimic
+    if initial and mimic is not None and joint.name not in initial and mimic.joint in initial:
+        # A follower starts where its leader's start puts it: PhysX's mimic constraint would
+        # otherwise begin violated and yank both (docs/usd.md).
+        multiplier = 1.0 if mimic.multiplier is None else mimic.multiplier
+        start = multiplier * initial[mimic.joint] + (mimic.offset or 0.0)
     if lower is not None and upper is not None:
         start = min(max(start, lower), upper)
     kind = "angular" if angular else "linear"

@@ -167,10 +167,10 @@ def _robot_run(robot: Robot, path: str, options: Any, setup: Setup, run: Run, *,
     simulator = Simulator(diagram)
     context = plant.GetMyMutableContextFromRoot(simulator.get_mutable_context())
     run.mass = float(plant.CalcTotalMass(context, models))
-    for name in setup.pose:
+    for name, value in setup.start().items():
         joint = table.get(name)
         if joint is not None and joint.num_positions() == 1:
-            _set_position(joint, context, setup.pose[name])
+            _set_position(joint, context, value)
     if floor and _floating(root):
         plant.SetFreeBodyPose(context, root, RigidTransform(_vec(0.0, 0.0, setup.stand_height + setup.drop_clearance)))
     height = (lambda: float(plant.EvalBodyPoseInWorld(context, root).translation()[2])) if floor else None
