@@ -270,15 +270,26 @@ def test_given_pose_and_gains_win_over_the_defaults() -> None:
     assert opts.defaults == "pose: given; gains: derived (docs/isaac.md)"
 
 
-def test_a_file_with_constant_drives_is_simulated_with_them() -> None:
-    """-t usd writes its options' constant gains (100 / 1), and Newton reads them from the file: the
-    other engines get the same, not derived ones (the engine tier's arm had drifted 2.5x more in
-    Newton). A target that derives its gains (MJCF) keeps the derived ones."""
+def test_the_usd_is_simulated_with_the_gains_it_writes(tmp_path: Path) -> None:
+    """-t usd derives its gains per joint (issue 38: its 100 / 1 sagged ur10 by 1.1 rad) and Newton
+    and PhysX read them from the file: every engine is given the same derived ones, the MJCF's."""
+    from pxr import Usd, UsdPhysics
+
     usd = robodesc.check(ARM, "usd", dynamics=MUJOCO).dynamics
-    assert usd is not None and usd.info["setup"]["gains"]
-    assert {tuple(g) for g in usd.info["setup"]["gains"].values()} == {(100.0, 1.0)}
     mjcf = robodesc.check(ARM, "mjcf", dynamics=MUJOCO).dynamics
-    assert mjcf is not None and {tuple(g) for g in mjcf.info["setup"]["gains"].values()} != {(100.0, 1.0)}
+    assert usd is not None and mjcf is not None
+    gains = {k: tuple(v) for k, v in usd.info["setup"]["gains"].items()}
+    assert gains == {k: tuple(v) for k, v in mjcf.info["setup"]["gains"].items()}
+    assert set(gains.values()) != {(100.0, 1.0)}
+    out = tmp_path / "arm.usda"
+    robodesc.compile_to(ARM, "usd", str(out), validate=False)
+    stage = Usd.Stage.Open(str(out))
+    for prim in stage.Traverse():
+        name = prim.GetDisplayName() or prim.GetName()
+        if name in gains and prim.HasAPI(UsdPhysics.DriveAPI, "angular"):
+            drive = UsdPhysics.DriveAPI(prim, "angular")
+            # Per degree in the file; the setup's kp is SI, rounded to 4 figures in the file.
+            assert math.degrees(drive.GetStiffnessAttr().Get()) == pytest.approx(gains[name][0], rel=1e-3), name
 
 
 @pytest.mark.parametrize("blown", [4.85e27, math.nan])
