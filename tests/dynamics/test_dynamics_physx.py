@@ -36,7 +36,11 @@ def _runs(dyn: robodesc.validation.dynamics.DynamicsReport) -> dict[tuple[str, s
 
 @needs_physx
 def test_the_quadruped_holds_and_lands_in_physx_as_in_mujoco() -> None:
-    dyn = robodesc.check(str(EXAMPLES / "quadruped.yaml"), "usd", dynamics={"engines": ("mujoco", "physx")}).dynamics
+    # Soft constant drives (-t usd's default before issue 38), so the gravity load dominates the peak
+    # effort; with the stiffer derived gains the first steps' transient does (7 % apart at a hip).
+    gains = {"stiffness": 100.0, "damping": 1.0}
+    opts = {"engines": ("mujoco", "physx"), **gains}
+    dyn = robodesc.check(str(EXAMPLES / "quadruped.yaml"), "usd", dynamics=opts, **gains).dynamics
     assert dyn is not None and dyn.ok, dyn.to_text()
     runs = _runs(dyn)
     hold_m, hold_p = runs[("mujoco", "hold-fixed")], runs[("physx", "hold-fixed")]
