@@ -16,7 +16,7 @@ import pytest
 import robodesc
 from robodesc.validation.dynamics import DynamicsOptions, Run, home_pose, run_dynamics
 from robodesc.validation.dynamics.result import DynamicsReport
-from robodesc.validation.dynamics.scenarios import Setup, Thresholds, stand_height
+from robodesc.validation.dynamics.scenarios import Setup, Thresholds, make_setup, stand_height
 from robodesc.validation.dynamics.verdict import judge
 from robodesc.validation.report import Status
 
@@ -270,15 +270,26 @@ def test_given_pose_and_gains_win_over_the_defaults() -> None:
     assert opts.defaults == "pose: given; gains: derived (docs/isaac.md)"
 
 
-def test_a_file_with_constant_drives_is_simulated_with_them() -> None:
-    """-t usd writes its options' constant gains (100 / 1), and Newton reads them from the file: the
-    other engines get the same, not derived ones (the engine tier's arm had drifted 2.5x more in
-    Newton). A target that derives its gains (MJCF) keeps the derived ones."""
+def test_the_usd_is_simulated_with_the_gains_it_writes(tmp_path: Path) -> None:
+    """-t usd derives its gains per joint (issue 38: its 100 / 1 sagged ur10 by 1.1 rad) and Newton
+    and PhysX read them from the file: every engine is given the same derived ones, the MJCF's."""
+    from pxr import Usd, UsdPhysics
+
     usd = robodesc.check(ARM, "usd", dynamics=MUJOCO).dynamics
-    assert usd is not None and usd.info["setup"]["gains"]
-    assert {tuple(g) for g in usd.info["setup"]["gains"].values()} == {(100.0, 1.0)}
     mjcf = robodesc.check(ARM, "mjcf", dynamics=MUJOCO).dynamics
-    assert mjcf is not None and {tuple(g) for g in mjcf.info["setup"]["gains"].values()} != {(100.0, 1.0)}
+    assert usd is not None and mjcf is not None
+    gains = {k: tuple(v) for k, v in usd.info["setup"]["gains"].items()}
+    assert gains == {k: tuple(v) for k, v in mjcf.info["setup"]["gains"].items()}
+    assert set(gains.values()) != {(100.0, 1.0)}
+    out = tmp_path / "arm.usda"
+    robodesc.compile_to(ARM, "usd", str(out), validate=False)
+    stage = Usd.Stage.Open(str(out))
+    for prim in stage.Traverse():
+        name = prim.GetDisplayName() or prim.GetName()
+        if name in gains and prim.HasAPI(UsdPhysics.DriveAPI, "angular"):
+            drive = UsdPhysics.DriveAPI(prim, "angular")
+            # Per degree in the file; the setup's kp is SI, rounded to 4 figures in the file.
+            assert math.degrees(drive.GetStiffnessAttr().Get()) == pytest.approx(gains[name][0], rel=1e-3), name
 
 
 def test_every_engine_is_given_the_source_servos_gains() -> None:
@@ -306,3 +317,69 @@ def test_every_engine_is_given_the_source_servos_gains() -> None:
     given = _with_source_gains(robot, DynamicsOptions(stiffness=7.0, damping=1.0), {"stiffness": 7.0})
     assert lookup(given.stiffness, "shoulder", "stiffness") == pytest.approx(7.0)
     assert lookup(given.damping, "shoulder", "damping") == pytest.approx(2.0)
+
+
+@pytest.mark.parametrize("blown", [4.85e27, math.nan])
+def test_a_run_that_blows_up_is_a_run_failure_not_a_disagreement(blown: float) -> None:
+    """tiago_pro's hold in PhysX ended 4.85e27 rad off: a failure of that engine's run (a ``run``
+    row, FAIL for an output), never a WARN that two engines "settle apart"."""
+    physx = Run("physx", "usd", "hold-fixed", drift=abs(blown), worst_joint="a", final_q={"a": blown})
+    physx.trajectory = [(0.01, {"a": 0.02}), (0.02, {"a": blown})]
+    report = DynamicsReport("r", runs=[physx, _hold("mujoco", 0.01)])
+    judge(report, _setup(), Thresholds())
+    assert not physx.ok and "blew up" in physx.error and "0.02 s" in physx.error
+    assert _rows(report, "run") == [Status.FAIL] and not report.ok
+    assert _rows(report, "agree:hold-fixed") == []
+    # The source blowing up in the same engine too: the engine's trouble with the robot, a warning.
+    source = Run("physx", "source", "hold-fixed", final_q={"a": blown})
+    report = DynamicsReport("r", runs=[Run("physx", "usd", "hold-fixed", final_q={"a": blown}), source])
+    judge(report, _setup(), Thresholds())
+    assert _rows(report, "run") == [Status.WARN, Status.WARN] and report.ok
+
+
+def test_a_run_within_bounds_is_judged_as_before() -> None:
+    # A continuous joint may turn many times in a run: 300 rad is motion, not a blow-up.
+    report = DynamicsReport("r", runs=[_hold("physx", 300.0), _hold("mujoco", 300.0)])
+    judge(report, _setup(), Thresholds())
+    assert _rows(report, "run") == [] and _rows(report, "agree:hold-fixed") == [Status.PASS]
+
+
+def test_mimic_followers_start_where_their_leader_puts_them() -> None:
+    """Every engine starts a follower at multiplier x its leader + offset (Setup.start); a follower
+    left at 0 starts its mimic constraint violated (PhysX ran tiago_pro away from 0.15 rad)."""
+    robot = robodesc.load(str(ROOT / "tests/usd/data/gripper.urdf"))
+    setup = make_setup(robot, DynamicsOptions(pose={"finger": 0.3}))
+    assert setup.pose == {"finger": 0.3}
+    assert setup.followers == pytest.approx({"finger_mimic": -0.3 + 0.05, "pad_slide": 0.02 * 0.3 + 0.001})
+    assert setup.as_dict()["start"] == {**setup.followers, "finger": 0.3}
+    # MuJoCo starts the follower there: its equality constraint then holds a still robot.
+    dyn = robodesc.check(
+        str(ROOT / "tests/usd/data/gripper.urdf"), "urdf", dynamics={**MUJOCO, "pose": {"finger": 0.3}}
+    )
+    assert dyn.dynamics is not None and dyn.dynamics.ok, dyn.dynamics.to_text()
+
+
+NAMESAKE = """<robot name="namesake">
+  <link name="base"><inertial><mass value="2"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="elbow"><inertial><origin xyz="0 0 0.25"/><mass value="1"/>
+    <inertia ixx="0.02" iyy="0.02" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="elbow" type="revolute"><parent link="base"/><child link="elbow"/><axis xyz="0 1 0"/>
+    <limit lower="-2" upper="2" effort="100" velocity="5"/></joint>
+</robot>
+"""
+
+
+def test_a_joint_the_sdf_renames_is_driven_to_the_pose_in_drake(tmp_path: Path) -> None:
+    """SDF keeps one namespace per model, so a joint named like a link is written ``elbow_joint``
+    (ANYmal C: all 12). Drake's drive targets were looked up by the file's name and fell to 0: the
+    SDF ran 1.24 rad from the SRDF pose at RF_KFE in 40 ms while the source held (#38)."""
+    urdf = tmp_path / "namesake.urdf"
+    urdf.write_text(NAMESAKE)
+    dyn = robodesc.check(str(urdf), "sdf", dynamics={"engines": ("drake",), "pose": {"elbow": 0.5}}).dynamics
+    assert dyn is not None and dyn.ok, dyn.to_text()
+    assert _rows(dyn, "source:hold-fixed") == [Status.PASS]
+    hold = next(r for r in dyn.runs if r.file == "sdf" and r.scenario == "hold-fixed")
+    source = next(r for r in dyn.runs if r.file == "source" and r.scenario == "hold-fixed")
+    # Held near 0.5 (gravity sags it a little), as the source is: not driven back to 0.
+    assert hold.final_q["elbow"] == pytest.approx(source.final_q["elbow"], abs=1e-6)
+    assert hold.final_q["elbow"] == pytest.approx(0.5, abs=0.05)

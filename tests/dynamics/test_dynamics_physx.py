@@ -6,14 +6,18 @@ with MuJoCo's within the agreement thresholds; nothing here is timed."""
 from __future__ import annotations
 
 import math
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
+from pxr import Sdf
 
 import robodesc
-from robodesc.validation.dynamics import DynamicsOptions, run_dynamics
+from robodesc.validation.dynamics import DynamicsOptions, physx_run, run_dynamics
+from robodesc.validation.dynamics.result import DynamicsReport
 from robodesc.validation.dynamics.run import folder_files, joining
-from robodesc.validation.dynamics.scenarios import Thresholds
+from robodesc.validation.dynamics.scenarios import Thresholds, make_setup
+from robodesc.validation.dynamics.verdict import judge
 from robodesc.validation.physx_python import physx_python
 from robodesc.validation.report import Status
 
@@ -32,7 +36,11 @@ def _runs(dyn: robodesc.validation.dynamics.DynamicsReport) -> dict[tuple[str, s
 
 @needs_physx
 def test_the_quadruped_holds_and_lands_in_physx_as_in_mujoco() -> None:
-    dyn = robodesc.check(str(EXAMPLES / "quadruped.yaml"), "usd", dynamics={"engines": ("mujoco", "physx")}).dynamics
+    # Soft constant drives (-t usd's default before issue 38), so the gravity load dominates the peak
+    # effort; with the stiffer derived gains the first steps' transient does (7 % apart at a hip).
+    gains = {"stiffness": 100.0, "damping": 1.0}
+    opts = {"engines": ("mujoco", "physx"), **gains}
+    dyn = robodesc.check(str(EXAMPLES / "quadruped.yaml"), "usd", dynamics=opts, **gains).dynamics
     assert dyn is not None and dyn.ok, dyn.to_text()
     runs = _runs(dyn)
     hold_m, hold_p = runs[("mujoco", "hold-fixed")], runs[("physx", "hold-fixed")]
@@ -169,3 +177,75 @@ def test_feet_friction_skips_nested_bodies_without_stopping(tmp_path: Path) -> N
     stage = Usd.Stage.Open(str(tmp_path / "robot.usda"))
     assert physx_worker._feet_mu([stage.GetPrimAtPath("/robot/thigh")]) == pytest.approx(0.9)
     assert physx_worker._feet_mu([stage.GetPrimAtPath("/robot/thigh/shin")]) == pytest.approx(0.5)
+
+
+def _tiago_left_arm(folder: Path) -> Path:
+    """example-robot-data's tiago_pro cut to its left arm and gripper (a linkage of five mimic
+    followers, gearings ±1, on 16-34 g links), without meshes."""
+    from robodesc.validation.corpora import example_robot_data_root
+
+    root = example_robot_data_root()
+    source = Path(root or "") / "robots/tiago_pro_description/robots/tiago_pro.urdf"
+    if root is None or not source.is_file():
+        pytest.skip("example-robot-data's tiago_pro is not installed")
+    robot = ET.parse(source).getroot()
+    arm = ET.Element("robot", name="tiago_pro_left_arm")
+    keep = ("arm_left", "gripper_left")
+    for link in robot.findall("link"):
+        if link.get("name", "").startswith(keep):
+            for shape in [*link.findall("visual"), *link.findall("collision")]:
+                link.remove(shape)
+            arm.append(link)
+    for joint in robot.findall("joint"):
+        ends = [joint.find(end) for end in ("parent", "child")]
+        if all(e is not None and e.get("link", "").startswith(keep) for e in ends):
+            arm.append(joint)
+    path = folder / "tiago_pro_left_arm.urdf"
+    ET.ElementTree(arm).write(path)
+    return path
+
+
+def _put_follower_velocity_limits_back(usd: Path, robot: robodesc.Robot) -> None:
+    """The file as robodesc wrote it before: 2 rad/s on every follower, in both vocabularies."""
+    from pxr import Usd
+
+    stage = Usd.Stage.Open(str(usd))
+    for joint in robot.joints:
+        if joint.mimic is None:
+            continue
+        prim = next(p for p in stage.Traverse() if p.GetName() == joint.name)
+        prim.AddAppliedSchema("PhysxJointAxisAPI:angular")
+        prim.AddAppliedSchema("NewtonJointAPI")
+        for name in ("physxJointAxis:angular:maxJointVelocity", "newton:velocityLimit"):
+            prim.CreateAttribute(name, Sdf.ValueTypeNames.Float).Set(math.degrees(2.0))
+    stage.GetRootLayer().Save()
+
+
+@needs_physx
+def test_tiago_pros_gripper_holds_in_physx_and_its_old_file_blows_up_as_a_run_failure(tmp_path: Path) -> None:
+    """tiago_pro ran away in PhysX (#38: final joints 4.85e27 rad apart). Two causes together: its
+    mimic followers carried velocity limits, and the scenario posed the leader (0.15 rad) but left
+    the followers at 0, so the mimic constraints started violated. Now the followers carry no limit
+    and start where their leader puts them: PhysX holds the arm as MuJoCo does. The old file from
+    the old start blows up, and that is a ``run`` failure of PhysX, not a disagreement."""
+    arm = _tiago_left_arm(tmp_path)
+    pose = {"gripper_left_finger_joint": 0.15}
+    opts = {"engines": ("mujoco", "physx"), "pose": pose, "duration": 0.3}
+    dyn = robodesc.check(str(arm), "usd", dynamics=opts).dynamics
+    assert dyn is not None and dyn.ok, dyn.to_text()
+    runs = _runs(dyn)
+    hold_m, hold_p = runs[("mujoco", "hold-fixed")], runs[("physx", "hold-fixed")]
+    for joint, q in hold_m.final_q.items():
+        assert hold_p.final_q[joint] == pytest.approx(q, abs=TH.hold_agree), joint
+    robot = robodesc.load(str(arm))
+    usd = tmp_path / "old.usda"
+    robodesc.compile_to(str(arm), "usd", str(usd), validate=False)
+    _put_follower_velocity_limits_back(usd, robot)
+    setup = make_setup(robot, DynamicsOptions(pose=pose, duration=0.3, fix_base=True))
+    setup.followers = {}  # the old start: followers at the file's 0
+    old = physx_run.run_file(robot, str(usd), "usd", setup, DynamicsOptions(), ("hold-fixed",))
+    assert isinstance(old, list)
+    report = DynamicsReport("tiago_pro_left_arm", runs=old)
+    judge(report, setup, TH)
+    assert not old[0].ok and "blew up" in old[0].error, old[0].error
+    assert [c.status for c in report.checks if c.name == "run"] == [Status.FAIL]

@@ -201,6 +201,11 @@ def test_fixed_arm_import_plus_layer_has_a_fixed_base_in_physx(tmp_path: Path) -
         "(robodesc USD [\"{'dofCount': [8.0], 'linkCount': [10.0], 'isFixedBase': [1.0]}\"])"
     ) in diffs
     others = [d for d in diffs if not d.startswith("articulations:")]
+    # The importer alone keeps the mimic follower's velocity limit (0.1 m/s), which robodesc's USD
+    # leaves out (PhysX runs away with one on a follower) and the layer lifts (layer_diffs above).
+    follower = [d for d in others if d.startswith("joint finger_right jointMaxVelocity: [0.1")]
+    assert len(follower) == 1, others
+    others = [d for d in others if d not in follower]
     assert others and all(" jointArmature: [0.0] (robodesc USD [" in d for d in others), others
 
 

@@ -83,13 +83,15 @@ def test_physx_reads_what_the_ir_says(tmp_path: Path, name: str) -> None:
 @needs_physx
 def test_gripper_arm_joint_numbers_in_physx_units(tmp_path: Path) -> None:
     """Limits in degrees, gains per degree, velocity in deg/s: PhysX's units for an angular DOF."""
-    _robot, usd = _compile(tmp_path, "gripper_arm")
+    source, _ = EXAMPLES["gripper_arm"]
+    usd = str(tmp_path / "gripper_arm.usda")
+    compile_to(str(source), "usd", usd, validate=False, stiffness=100.0, damping=1.0)
     got = read_physx(usd, str(PYTHON))
     assert not isinstance(got, str), got
     yaw = next(axes[0] for path, axes in got.joints.items() if path.endswith("/shoulder_yaw"))
     deg = 180.0 / math.pi
     assert yaw["limit"] == pytest.approx([-2.9 * deg, 2.9 * deg], rel=1e-6)
-    assert yaw["stiffness"] == pytest.approx(100.0 / deg, rel=1e-6)  # 100 N·m/rad, the USD target's default
+    assert yaw["stiffness"] == pytest.approx(100.0 / deg, rel=1e-6)  # 100 N·m/rad given
     assert yaw["damping"] == pytest.approx(1.0 / deg, rel=1e-6)
     assert yaw["max_force"] == pytest.approx(40.0)
     assert yaw["max_velocity"] == pytest.approx(2.5 * deg, rel=1e-6)

@@ -302,6 +302,34 @@ def test_mimic(tmp_path: Path) -> None:
     assert slide.GetAttribute("newton:mimicCoef0").Get() == pytest.approx(0.001)
 
 
+def test_a_mimic_follower_has_no_velocity_limit_and_starts_where_its_leader_does(tmp_path: Path) -> None:
+    """PhysX fights a velocity limit on a mimic follower and can run away (tiago_pro's arms went
+    4.9e27 rad off): the follower carries none, in either vocabulary ovphysx reads; the leader keeps
+    its own. A follower starts at multiplier x its leader's start + offset."""
+    robot = load("gripper")
+    out = tmp_path / "gripper.usda"
+    findings = emit_usd(robot, str(out), UsdOptions(initial_positions={"finger": 0.3}))
+    stage = Usd.Stage.Open(str(out))
+    leader = stage.GetPrimAtPath("/gripper/joints/finger")
+    assert leader.GetAttribute("physxJointAxis:angular:maxJointVelocity").Get() == pytest.approx(math.degrees(1.5))
+    assert leader.GetAttribute("newton:velocityLimit").Get() == pytest.approx(math.degrees(1.5))
+    for name in ("finger_mimic", "pad_slide"):
+        prim = stage.GetPrimAtPath(f"/gripper/joints/{name}")
+        names = {a.GetName() for a in prim.GetAttributes()}
+        assert not {n for n in names if n.endswith(("maxJointVelocity", "velocityLimit"))}, name
+    # finger_mimic = -1 x finger + 0.05; pad_slide = 0.02 x finger + 0.001 (m).
+    start = stage.GetPrimAtPath("/gripper/joints/finger_mimic").GetAttribute("state:angular:physics:position")
+    assert start.Get() == pytest.approx(math.degrees(-0.3 + 0.05), rel=1e-6)
+    slide = stage.GetPrimAtPath("/gripper/joints/pad_slide").GetAttribute("state:linear:physics:position")
+    assert slide.Get() == pytest.approx(0.02 * 0.3 + 0.001, rel=1e-6)
+    # The leader bounds both followers (1.5 rad/s and 0.03 m/s): nothing is lost, nothing to say.
+    assert not [f for f in findings if f.code == "usd-mimic-velocity"]
+    # A follower limit tighter than its leader's allows is lost: the compile says so, naming it.
+    next(j for j in robot.joints if j.name == "finger_mimic").limit.velocity = 0.5  # type: ignore[union-attr]
+    lost = [f for f in emit_usd(robot, str(out), UsdOptions()) if f.code == "usd-mimic-velocity"]
+    assert len(lost) == 1 and "finger_mimic" in lost[0].element and "1.5" in lost[0].message
+
+
 def test_loop_joint_and_fixed_frame(tmp_path: Path) -> None:
     out = tmp_path / "fourbar.usda"
     emit_usd(load("fourbar"), str(out), UsdOptions())

@@ -335,6 +335,11 @@ def _compare_joints(
         Tally(report, "physx-max-velocity", PHYSX_REL_TOL, "relative"),
         Tally(report, "physx-friction", PHYSX_REL_TOL, "relative"),
     )
+    by_name = robot.joint_map()
+    # The USD couples these to their leader and writes them no velocity limit (emit/usd/joints.py's
+    # _follower_velocity: PhysX runs away with one).
+    leaders = {j.name: by_name.get(j.mimic.joint) for j in robot.joints if j.mimic is not None}
+    followers = {name for name, leader in leaders.items() if leader is not None and leader.type.dof == 1}
     for joint in robot.joints:
         label = joint_label(joint.name)
         path = joints.get(joint.name)
@@ -347,12 +352,14 @@ def _compare_joints(
             continue
         t.present.ok()
         if joint.type.dof == 1:
-            _compare_dof(joint, axes[0], authored.get(joint.name), t)
+            _compare_dof(joint, axes[0], authored.get(joint.name), t, follower=joint.name in followers)
     for tally in (t.present, t.limits, t.drive, t.max_force, t.armature, t.velocity, t.friction):
         tally.finish("joints", tally.name)
 
 
-def _compare_dof(joint: Joint, dof: Mapping[str, Any], authored: tuple[float, float] | None, t: _JointTallies) -> None:
+def _compare_dof(
+    joint: Joint, dof: Mapping[str, Any], authored: tuple[float, float] | None, t: _JointTallies, *, follower: bool
+) -> None:
     label = joint_label(joint.name)
     angular = joint.type.is_angular
     unit, unit_name = (DEG, "deg") if angular else (1.0, "m")
@@ -400,6 +407,8 @@ def _compare_dof(joint: Joint, dof: Mapping[str, Any], authored: tuple[float, fl
         max_force = None
     _bound(t.max_force, label, max_force, effort, f"maximum {_effort(angular)}", _effort(angular))
     velocity = lim.velocity * unit if lim is not None and lim.velocity is not None and lim.velocity > 0 else None
+    if follower:
+        velocity = None
     _bound(t.velocity, label, dof.get("max_velocity"), velocity, "maximum velocity", f"{unit_name}/s")
     armature = float(joint.armature or 0.0)
     have = float(dof.get("armature") or 0.0)

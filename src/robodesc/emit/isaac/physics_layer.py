@@ -19,6 +19,7 @@ have is left out and named in the result.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -79,6 +80,7 @@ def physics_layer(robot: Robot, options: UsdOptions, layout: ImporterLayout, fin
     if top is not None:
         _move(top, robot_path, mapping, out, result)
     _display_names(robot, layout, out)
+    _unlimit_followers(robot, mapping, f"{robot_path}/{ours.joints_scope}", out)
     if ours.scene is not None:
         out.root.children["PhysicsScene"] = ours.scene
     return result
@@ -94,6 +96,23 @@ def _display_names(robot: Robot, layout: ImporterLayout, out: Layer) -> None:
             where = paths.get(element.name)
             if where is not None and element.display_name and element.display_name != where.rsplit("/", 1)[-1]:
                 out.prim(where, specifier="over").display_name = element.display_name
+
+
+def _unlimit_followers(robot: Robot, mapping: Mapping[str, str], joints: str, out: Layer) -> None:
+    """The importer gives a mimic follower its URDF velocity limit (``newton:velocityLimit``, which
+    ovphysx reads); robodesc writes none there (emit/usd/joints.py: PhysX runs away with one), so
+    the layer lifts it: inf is NewtonJointAPI's "unlimited" (its range is (0, inf])."""
+    by_name = robot.joint_map()
+    for joint in robot.joints:
+        leader = by_name.get(joint.mimic.joint) if joint.mimic is not None else None
+        theirs = mapping.get(f"{joints}/{joint.name}")
+        if leader is None or leader.type.dof != 1 or joint.type.dof != 1 or theirs is None:
+            continue
+        if joint.limit is None or not (joint.limit.velocity or 0.0) > 0:
+            continue  # the importer writes none either
+        prim = out.prim(theirs, specifier="over")
+        prim.apply("NewtonJointAPI")
+        prim.attr("newton:velocityLimit", "float", math.inf)
 
 
 def _path_map(robot: Robot, source: PhysicsOpinions, layout: ImporterLayout, result: PhysicsLayer) -> dict[str, str]:

@@ -88,19 +88,26 @@ def _one_dof(ctx: UsdContext, joint: Joint, prim: Prim, frame: AxisFrame) -> Non
     # Start at the given position (0 by default) when the range allows it, else at the nearer bound.
     initial = ctx.options.initial_positions
     start = initial.get(joint.name, 0.0) if initial else 0.0
+    mimic = joint.mimic
+    if initial and mimic is not None and joint.name not in initial and mimic.joint in initial:
+        # A follower starts where its leader's start puts it: PhysX's mimic constraint would
+        # otherwise begin violated and yank both (docs/usd.md).
+        multiplier = 1.0 if mimic.multiplier is None else mimic.multiplier
+        start = multiplier * initial[mimic.joint] + (mimic.offset or 0.0)
     if lower is not None and upper is not None:
         start = min(max(start, lower), upper)
     kind = "angular" if angular else "linear"
     prim.apply(f"PhysicsJointStateAPI:{kind}")
     prim.attr(f"state:{kind}:physics:position", "float", start * unit)
     prim.attr(f"state:{kind}:physics:velocity", "float", 0.0)
+    follower = False
     if joint.mimic is None:
         drive_damps = _drive(ctx, joint, prim, kind, start)
     else:
-        _mimic(ctx, joint, prim, frame)
+        follower = _mimic(ctx, joint, prim, frame)
         _follower_effort(joint, prim, kind, ctx.options.drive_type)
         drive_damps = False
-    _extras(ctx, joint, prim, kind, passive_damping=not drive_damps)
+    _extras(ctx, joint, prim, kind, passive_damping=not drive_damps, follower=follower)
 
 
 def _drive(ctx: UsdContext, joint: Joint, prim: Prim, kind: str, start: float) -> bool:
@@ -168,7 +175,8 @@ def _gain(ctx: UsdContext, gain: object, joint: Joint, what: str) -> float:
     return value
 
 
-def _mimic(ctx: UsdContext, joint: Joint, prim: Prim, frame: AxisFrame) -> None:
+def _mimic(ctx: UsdContext, joint: Joint, prim: Prim, frame: AxisFrame) -> bool:
+    """Couple the follower to its leader; False (and a warning) when the leader cannot be one."""
     mimic = joint.mimic
     assert mimic is not None
     label = f"joint {joint.name!r}"
@@ -178,7 +186,7 @@ def _mimic(ctx: UsdContext, joint: Joint, prim: Prim, frame: AxisFrame) -> None:
         ctx.warn(
             "usd-bad-mimic", f"mimic leader {mimic.joint!r} is not a one-DOF joint: mimic left out", label, mimic.src
         )
-        return
+        return False
     multiplier = mimic.multiplier if mimic.multiplier is not None else 1.0
     offset = mimic.offset if mimic.offset is not None else 0.0
     unit = DEG if joint.type.is_angular else 1.0
@@ -202,9 +210,37 @@ def _mimic(ctx: UsdContext, joint: Joint, prim: Prim, frame: AxisFrame) -> None:
             label,
             mimic.src,
         )
+    return True
 
 
-def _extras(ctx: UsdContext, joint: Joint, prim: Prim, kind: str, *, passive_damping: bool) -> None:
+def _follower_velocity(ctx: UsdContext, joint: Joint, velocity: float | None) -> None:
+    """A mimic follower is written without a velocity limit. PhysX (ovphysx 0.7) reads one from
+    ``physxJointAxis:*:maxJointVelocity`` or ``newton:velocityLimit`` and, on a follower of a hard
+    mimic constraint, the two fight: example-robot-data's tiago_pro, whose gripper fingers follow
+    at 2 rad/s, ran its whole arm away (joints 4.9e27 rad off in 1 s); without them it holds within
+    0.22 rad, as MuJoCo does. ovphysx's gripper guide says the same ("do not set max joint velocity
+    on the mimic joints"). The leader's limit bounds the follower already (|multiplier| times it);
+    only a follower limit tighter than that is lost, and then the compile says so."""
+    mimic = joint.mimic
+    assert mimic is not None
+    leader = ctx.robot.joint_map().get(mimic.joint)
+    lead = leader.limit.velocity if leader is not None and leader.limit is not None else None
+    multiplier = abs(mimic.multiplier if mimic.multiplier is not None else 1.0)
+    if velocity is None or (lead is not None and lead > 0 and lead * multiplier <= velocity * (1 + 1e-9)):
+        return
+    bound = "no velocity limit" if lead is None or not lead > 0 else f"a velocity limit of {lead * multiplier:g}"
+    ctx.warn(
+        "usd-mimic-velocity",
+        f"velocity limit {velocity:g} left out: PhysX fights a velocity limit on a mimic follower and can "
+        f"run away (docs/usd.md); the leader {mimic.joint!r} gives it {bound}",
+        f"joint {joint.name!r}",
+        joint.limit.src if joint.limit is not None else joint.src,
+    )
+
+
+def _extras(
+    ctx: UsdContext, joint: Joint, prim: Prim, kind: str, *, passive_damping: bool, follower: bool = False
+) -> None:
     """Armature, velocity limit, friction and passive damping in PhysX's and Newton's vocabularies.
 
     PhysX reads them from the multiple-apply ``PhysxJointAxisAPI:<kind>`` (``physx-usd-schemas``
@@ -224,6 +260,9 @@ def _extras(ctx: UsdContext, joint: Joint, prim: Prim, kind: str, *, passive_dam
     if velocity is not None and not velocity > 0:
         # URDF's placeholder 0 (as effort 0, which writes no maxForce): NewtonJointAPI's range is
         # (0, inf], and 0 would freeze the joint in Newton.
+        velocity = None
+    if follower:
+        _follower_velocity(ctx, joint, velocity)
         velocity = None
     dyn = joint.dynamics
     friction = dyn.friction if dyn is not None else None

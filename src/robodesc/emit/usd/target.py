@@ -13,11 +13,14 @@ from robodesc.emit.usd.world import world_file_name, write_world_alone
 from robodesc.ir.diagnostics import Findings
 from robodesc.ir.model import Robot
 
+STAGE = "emit:usd"
+
 
 def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitted:
     out = request.output("USD is written to a file: give one with -o robot.usda|.usdc|.usd")
     if request.options.target_type != "none":
-        # The source's own servos (an MJCF's) over the constant gains, where the user gave none.
+        _default_gains(robot, request, findings)
+        # The source's own servos (an MJCF's) over the derived gains, where the user gave none.
         apply_source_gains(robot, request.options, request.given)
     from robodesc.emit.usd.emitter import emit_usd  # the writer loads when it writes
 
@@ -27,6 +30,25 @@ def emit_target(robot: Robot, request: EmitRequest, findings: Findings) -> Emitt
     if request.world is not None:
         files["world"], extra["world_expect"] = _write_world(robot, request, out, findings)
     return Emitted(files=files, extra=extra)
+
+
+def _default_gains(robot: Robot, request: EmitRequest, findings: Findings) -> None:
+    """Gains the user did not give are derived per joint, as the Isaac folder's and the MJCF's are
+    (emit/common/gains.py): the old constants (100 N·m/rad, 1 N·m·s/rad) let ur10's shoulder sag
+    1.1 rad and simple_humanoid's waist 1.3 rad in every engine (docs/dynamics.md). A floating
+    robot's gains are those of the stance it stands in (the Isaac folder's default pose); the
+    file itself still starts at the zero pose, or at ``initial_positions``."""
+    from robodesc.emit.common.default_pose import default_pose
+    from robodesc.emit.common.gains import fill_default_gains
+
+    options: UsdOptions = request.options
+    if {"stiffness", "damping"} <= request.given:
+        return
+    floating = not options.fix_base and robot.root.name != "world"
+    wanted = dict(options.initial_positions or {})
+    # The stance's own findings belong to the Isaac folder, which writes it; here it only sizes gains.
+    stance = default_pose(robot, wanted, floating, Findings(), STAGE)
+    fill_default_gains(robot, options, request.given, stance, floating, findings, STAGE)
 
 
 def _write_world(robot: Robot, request: EmitRequest, out: str, findings: Findings) -> tuple[str, dict[str, Any]]:
@@ -59,6 +81,7 @@ TARGET = Target(
     suffix_required=True,
     passes={"sanitize_names": True, "unique_materials": True, "mass_from_colliders": True, "placeholder_masses": True},
     check=check_usd,
+    derives_gains=True,
     # A layered asset owns its payload folder beside the file.
     owned=lambda options, out: (PAYLOAD_DIR,) if options.layered else (),
     worlds=True,

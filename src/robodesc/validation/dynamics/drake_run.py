@@ -161,16 +161,16 @@ def _robot_run(robot: Robot, path: str, options: Any, setup: Setup, run: Run, *,
     scene_graph.collision_filter_manager().Apply(CollisionFilterDeclaration().ExcludeWithin(GeometrySet(robot_geoms)))
     for model in models:
         if plant.num_actuated_dofs(model):
-            src = builder.AddSystem(ConstantVectorSource(_desired_for(plant, model, setup)))
+            src = builder.AddSystem(ConstantVectorSource(_desired_for(plant, model, setup, table)))
             builder.Connect(src.get_output_port(), plant.get_desired_state_input_port(model))
     diagram = builder.Build()
     simulator = Simulator(diagram)
     context = plant.GetMyMutableContextFromRoot(simulator.get_mutable_context())
     run.mass = float(plant.CalcTotalMass(context, models))
-    for name in setup.pose:
+    for name, value in setup.start().items():
         joint = table.get(name)
         if joint is not None and joint.num_positions() == 1:
-            _set_position(joint, context, setup.pose[name])
+            _set_position(joint, context, value)
     if floor and _floating(root):
         plant.SetFreeBodyPose(context, root, RigidTransform(_vec(0.0, 0.0, setup.stand_height + setup.drop_clearance)))
     where = (lambda: plant.EvalBodyPoseInWorld(context, root)) if floor else None
@@ -224,10 +224,13 @@ def _effort(robot: Robot, name: str) -> float:
     return float(effort) if effort is not None and effort > 0 else math.inf
 
 
-def _desired_for(plant: Any, model: Any, setup: Setup) -> Any:
-    """[q_d, v_d] over ``model``'s actuated joints, in the plant's actuator order."""
-    names = [plant.get_joint_actuator(i).joint().name() for i in plant.GetJointActuatorIndices(model)]
-    q = [setup.pose.get(n, 0.0) for n in names]
+def _desired_for(plant: Any, model: Any, setup: Setup, table: dict[str, Any]) -> Any:
+    """[q_d, v_d] over ``model``'s actuated joints, in the plant's actuator order. Each joint by its
+    IR name (``table``): the file may name it otherwise (the SDF's ``LF_HAA_joint`` for ANYmal C's
+    ``LF_HAA``, a link's name too), and a Drake name looked up in the pose would target 0."""
+    ir_name = {joint.index(): name for name, joint in table.items()}
+    joints = [plant.get_joint_actuator(i).joint() for i in plant.GetJointActuatorIndices(model)]
+    q = [setup.pose.get(ir_name.get(j.index(), j.name()), 0.0) for j in joints]
     return np.array(q + [0.0] * len(q))
 
 

@@ -94,8 +94,10 @@ def _joint_addresses(model: Any, setup: Setup) -> dict[str, int]:
 
 def _start(model: Any, data: Any, setup: Setup) -> dict[str, int]:
     addr = _joint_addresses(model, setup)
-    for name, a in addr.items():
-        data.qpos[a] = setup.pose[name]
+    for name, value in setup.start().items():
+        jid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
+        if jid >= 0:
+            data.qpos[int(model.jnt_qposadr[jid])] = value
     for i in range(model.nu):
         jid = int(model.actuator_trnid[i, 0])
         name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, jid)

@@ -87,8 +87,10 @@ def _run_robot(req, scenario):
     pose = {n: v for n, v in setup["pose"].items() if n in names and names[n][1] == 1}
     state0, state1, control = model.state(), model.state(), model.control()
     q = model.joint_q.numpy().copy()
-    for n, v in pose.items():
-        q[names[n][0]] = v
+    # The followers of mimic joints start where their leader puts them (Setup.start).
+    for n, v in setup.get("start", pose).items():
+        if n in names and names[n][1] == 1:
+            q[names[n][0]] = v
     root_body = 0
     if floor:
         # The free root's coordinates come first: px py pz qx qy qz qw.

@@ -333,10 +333,14 @@ def _home(sim, info, setup):
     if setup["pose"] and not driven:
         return "none of the robot's driven joints is in the file"
     every_joint = props["jointPosition"]
-    target = {
-        p: np.array([setup["pose"][driven[p][0]] * driven[p][1]]) if p in driven else np.array(v, copy=True)
-        for p, v in every_joint.items()
-    }
+    # Driven joints at the home pose, and mimic followers where their leader puts them
+    # (Setup.start): a follower left at the file's 0 starts its mimic constraint violated.
+    start = setup.get("start", setup["pose"])
+    target = {}
+    for p, v in every_joint.items():
+        name, kind = info["joints"].get(p, ("", ""))
+        scale = math.degrees(1.0) if kind == "angular" else 1.0 / mpu
+        target[p] = np.array([start[name] * scale]) if v.size == 1 and name in start else np.array(v, copy=True)
     zeros = {p: np.zeros_like(v) for p, v in every_joint.items()}
     sim.write(T.ARTICULATION_JOINT, {"jointPosition": target, "jointVelocity": zeros, "jointPositionTarget": target})
     return props, driven, target

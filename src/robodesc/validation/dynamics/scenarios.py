@@ -135,6 +135,11 @@ class Setup:
     # Mimic joints: follower -> leader. An output that cannot carry a mimic (SDF before 1.11) has
     # already warned at compile time; a trajectory that differs there is that warning, not a new fault.
     mimics: dict[str, str] = field(default_factory=dict)
+    # Each mimic follower's position at the home pose (multiplier x leader + offset): every engine
+    # starts it there, as the mimic constraint will hold it. Left at 0 with its leader posed, the
+    # constraint starts violated and each engine corrects it its own way: PhysX ran tiago_pro's arms
+    # away from a 0.15 rad gripper mismatch (docs/dynamics.md).
+    followers: dict[str, float] = field(default_factory=dict)
     # Each driven joint's effort limit (N·m or N) where the source gives one > 0: the saturation
     # columns divide the peak drive effort by it.
     effort: dict[str, float] = field(default_factory=dict)
@@ -147,10 +152,15 @@ class Setup:
     world: WorldStand | None = None
     names: dict[str, str] = field(default_factory=dict)  # DynamicsOptions.names
 
+    def start(self) -> dict[str, float]:
+        """Every joint a scenario positions at its start: the home pose and the followers of it."""
+        return {**self.followers, **self.pose}
+
     def as_dict(self) -> dict[str, Any]:
         return {
             "world": self.world.as_dict() if self.world is not None else None,
             "pose": self.pose,
+            "start": self.start(),
             "gains": {k: list(v) for k, v in self.gains.items()},
             "stand_height": self.stand_height,
             "friction": self.friction,
@@ -294,6 +304,19 @@ def _mesh_points(mesh: Mesh) -> NDArray[np.float64] | None:
     return np.frombuffer(data.points, dtype=np.float32).reshape(-1, 3).astype(np.float64)
 
 
+def follower_pose(robot: Robot, pose: Mapping[str, float]) -> dict[str, float]:
+    """Mimic follower -> multiplier x its leader's home position + offset, for the followers of a
+    posed 1-DOF leader (chains of followers followed to their end)."""
+    out: dict[str, float] = {}
+    mimics = {j.name: j.mimic for j in robot.joints if j.mimic is not None and j.type.dof == 1}
+    for _ in range(len(mimics)):  # a follower of a follower resolves once its leader has
+        for name, m in mimics.items():
+            lead = pose.get(m.joint, out.get(m.joint))
+            if name not in out and lead is not None:
+                out[name] = (1.0 if m.multiplier is None else m.multiplier) * lead + (m.offset or 0.0)
+    return out
+
+
 def effort_limits(robot: Robot) -> dict[str, float]:
     """Driven joint -> its effort limit, for the joints whose source gives one above zero."""
     joints = robot.joint_map()
@@ -317,6 +340,7 @@ def make_setup(robot: Robot, options: DynamicsOptions) -> Setup:
         friction=source_friction(robot, standing_on),
         feet=standing_on,
         mimics={j.name: j.mimic.joint for j in robot.joints if j.mimic is not None},
+        followers=follower_pose(robot, pose),
         effort=effort_limits(robot),
         mass=sum(link.inertial.mass or 0.0 for link in robot.links if link.inertial is not None),
         duration=options.duration,

@@ -25,9 +25,18 @@ from robodesc.validation.dynamics.scenarios import Setup, Thresholds
 from robodesc.validation.report import Status
 
 SOURCE = "source"
+# A joint position (rad or m) or root height (m) beyond this is no motion a scenario can produce: the
+# engine's state has blown up. A free wheel spinning at 100 rad/s for the 4 s drop turns 400 rad.
+ABSURD = 1e4
 
 
 def judge(report: DynamicsReport, setup: Setup, th: Thresholds) -> None:
+    for r in report.runs:
+        blown = blown_up(r)
+        if r.ok and blown:
+            # A run whose state is non-finite or absurd failed in its engine: its numbers say nothing
+            # about the file's behaviour, so it is a ``run`` row, never a disagreement between engines.
+            r.ok, r.error = False, blown
     outputs = [r for r in report.runs if r.file != SOURCE and r.ok]
     # An engine that refuses the source too (a non-physical inertia Drake will not factor): the
     # output carries the source's defect, as the structural checks report it, a warning.
@@ -53,6 +62,20 @@ def judge(report: DynamicsReport, setup: Setup, th: Thresholds) -> None:
     for scenario in ("hold-fixed", "drop"):
         _saturation(report, [r for r in outputs if r.scenario == scenario], th)
     _stand(report, [r for r in outputs if r.scenario == "stand"], th)
+
+
+def blown_up(r: Run) -> str:
+    """Why the run's state is non-finite or absurd (the first sample that is), or "" when it is not."""
+    samples: list[tuple[float | None, dict[str, float]]] = [*r.trajectory, (None, r.final_q)]
+    for t, q in samples:
+        for name, value in q.items():
+            if not math.isfinite(value) or abs(value) > ABSURD:
+                when = "at the end" if t is None else f"at {t:.3g} s"
+                return f"the state blew up: joint {name!r} reached {value:.3g} {when} (the engine's run failed)"
+    for what, measured in (("drift", r.drift), ("root height", r.height)):
+        if measured is not None and (not math.isfinite(measured) or abs(measured) > ABSURD):
+            return f"the state blew up: {what} {measured:.3g} (the engine's run failed)"
+    return ""
 
 
 def _label(r: Run) -> str:
