@@ -163,16 +163,24 @@ def test_explicit_gains_and_pose_win(tmp_path: Path) -> None:
     assert set(data["init_state"]["joint_pos"].values()) <= {0.1}
 
 
-def test_usd_target_keeps_todays_defaults(tmp_path: Path) -> None:
-    out = tmp_path / "arm.usda"
-    robodesc.compile_to_usd(str(EXAMPLES / "urdf" / "gripper_arm.urdf"), out)
-    stage = Usd.Stage.Open(str(out))
-    ks = [
-        p.GetAttribute("drive:angular:physics:stiffness").Get()
-        for p in stage.Traverse()
-        if p.IsA(UsdPhysics.RevoluteJoint)
-    ]
-    assert ks and all(k == pytest.approx(100 * math.pi / 180) for k in ks)
+def test_usd_target_derives_gains_and_the_old_constants_stay_an_option(tmp_path: Path) -> None:
+    """-t usd derives its gains per joint since issue 38 (100 / 1 sagged ur10 by 1.1 rad);
+    ``--stiffness 100 --damping 1`` still writes the old constants (per degree in the file)."""
+
+    def gains(**options: float) -> list[float]:
+        out = tmp_path / f"arm{len(options)}.usda"
+        robodesc.compile_to_usd(str(EXAMPLES / "urdf" / "gripper_arm.urdf"), out, **options)
+        stage = Usd.Stage.Open(str(out))
+        return [
+            p.GetAttribute("drive:angular:physics:stiffness").Get()
+            for p in stage.Traverse()
+            if p.IsA(UsdPhysics.RevoluteJoint)
+        ]
+
+    derived = gains()
+    assert derived and len(set(derived)) > 1  # per joint, from each joint's load
+    constant = gains(stiffness=100.0, damping=1.0)
+    assert constant and all(k == pytest.approx(100 * math.pi / 180) for k in constant)
 
 
 def test_tensor_below_newtons_floor_is_reported_and_repaired() -> None:

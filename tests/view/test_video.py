@@ -289,3 +289,14 @@ def test_help_explains_the_video_options(capsys: pytest.CaptureFixture[str]) -> 
             main([command, "--help"])
         text = " ".join(capsys.readouterr().out.split())
         assert all(s in text for s in says), (command, text)
+
+
+def test_a_clip_into_a_new_folder_makes_it(tmp_path: Path) -> None:
+    """The README's ``render --video out/quadruped.mp4`` on a fresh checkout: ``out/`` is made, as
+    every output's folder is (the clip's hidden file once had nowhere to go: exit 2)."""
+    from robodesc.view.video import encode
+
+    frames = [np.zeros((16, 16, 3), dtype=np.uint8), np.full((16, 16, 3), 255, dtype=np.uint8)]
+    out = tmp_path / "new" / "deeper" / "clip.gif"
+    encode(frames, str(out), "gif")
+    assert out.is_file() and [p.name for p in out.parent.iterdir()] == ["clip.gif"]

@@ -293,6 +293,14 @@ def encode(frames: list[Image], out: str, fmt: str, fps: int = FPS) -> None:
     """Write ``frames`` to ``out`` as MP4 or GIF, through a hidden file beside it renamed into
     place: a failure leaves whatever ``out`` was untouched, and nothing is written elsewhere."""
     folder = os.path.dirname(os.path.abspath(out))
+    # A new folder (``render --video out/robot.mp4`` on a fresh checkout) is made, as every output's
+    # is, and taken back if the clip fails.
+    made = []
+    missing = folder
+    while not os.path.isdir(missing):
+        made.append(missing)
+        missing = os.path.dirname(missing)
+    os.makedirs(folder, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=".robodesc-", suffix=f".{fmt}", dir=folder)
     os.close(fd)
     try:
@@ -305,6 +313,8 @@ def encode(frames: list[Image], out: str, fmt: str, fps: int = FPS) -> None:
     except BaseException:
         if os.path.exists(tmp):
             os.unlink(tmp)
+        for new in made:  # the folders this call made, deepest first, now empty
+            os.rmdir(new)
         raise
 
 

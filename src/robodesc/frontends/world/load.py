@@ -6,7 +6,6 @@ import os
 
 from robodesc.frontends.contract import head_of, xml_root
 from robodesc.frontends.world.options import WorldOptions
-from robodesc.frontends.world.sdf_world import read_sdf_world
 from robodesc.ir.diagnostics import ConfigError, Findings, ParseError, SourceLoc
 from robodesc.ir.geometry import Mesh
 from robodesc.ir.world import HeightImage, StaticBody, World, WorldCollider
@@ -47,6 +46,8 @@ def _ground(options: WorldOptions, findings: Findings) -> World | None:
                 "is not an SDF world (an <sdf> file with a <world>); a bare terrain mesh goes with --terrain",
                 loc=SourceLoc(path),
             )
+        from robodesc.frontends.world.sdf_world import read_sdf_world  # numpy: only for a world
+
         return read_sdf_world(path, findings, options.model_path)
     if options.terrain is not None:
         return terrain_world(_existing(options.terrain, "--terrain"), options)
