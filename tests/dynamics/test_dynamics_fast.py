@@ -383,3 +383,31 @@ def test_a_joint_the_sdf_renames_is_driven_to_the_pose_in_drake(tmp_path: Path) 
     # Held near 0.5 (gravity sags it a little), as the source is: not driven back to 0.
     assert hold.final_q["elbow"] == pytest.approx(source.final_q["elbow"], abs=1e-6)
     assert hold.final_q["elbow"] == pytest.approx(0.5, abs=0.05)
+
+
+HEAVY_BASE = """<robot name="heavy_base">
+  <link name="world"/>
+  <joint name="weld" type="fixed"><parent link="world"/><child link="base"/></joint>
+  <link name="base"><inertial><mass value="4"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="plate"><inertial><mass value="0.5"/><inertia ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="plate_fix" type="fixed"><parent link="base"/><child link="plate"/><origin xyz="0 0 0.05"/></joint>
+  <link name="arm"><inertial><origin xyz="0 0 0.2"/><mass value="1"/>
+    <inertia ixx="0.02" iyy="0.02" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="shoulder" type="revolute"><parent link="plate"/><child link="arm"/><axis xyz="0 1 0"/>
+    <limit lower="-2" upper="2" effort="100" velocity="5"/></joint>
+</robot>
+"""
+
+
+def test_a_welded_base_fused_into_the_world_body_is_weighed(tmp_path: Path) -> None:
+    """A root link named ``world`` (ur5's URDF) welds the base; the MJCF writes it and the links fixed to
+    it into <worldbody>, where MuJoCo weighs nothing: the dynamics check counted ur5's MJCF 4 kg light and failed it (exit 1) though the file
+    carries every gram (the structural check already leaves those links out)."""
+    urdf = tmp_path / "heavy_base.urdf"
+    urdf.write_text(HEAVY_BASE)
+    dyn = robodesc.check(str(urdf), "mjcf", dynamics=MUJOCO).dynamics
+    assert dyn is not None
+    masses = {c.element: c for c in dyn.checks if c.name == "mass"}
+    assert masses["mujoco/mjcf"].status is Status.PASS, masses["mujoco/mjcf"].message
+    assert "5.5 kg" in masses["mujoco/mjcf"].message

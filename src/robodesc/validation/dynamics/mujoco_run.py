@@ -182,10 +182,43 @@ def _hold(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
         s.option.integrator = _INTEGRATOR
     s.option.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
     model = s.compile()
-    run.mass = float(model.body_mass.sum())
+    run.mass = _weighed(robot, model)
     data = mujoco.MjData(model)
     addr = _start(model, data, setup)
     _simulate(model, data, setup, run, addr)
+
+
+def _weighed(robot: Robot, model: Any) -> float:
+    """The robot's mass as MuJoCo holds it: every body's, plus the links fused into the world body.
+    An MJCF welds a fixed base by writing it (and the links fixed to it: merge_fixed) into
+    ``<worldbody>``, where MuJoCo weighs nothing, since it never moves; the structural check leaves
+    those links out the same way (validation/compare.py). Without this, ur5's held MJCF read 4 kg
+    light and `validate --dynamics` failed a file that carries every gram."""
+    total = float(model.body_mass.sum())
+    try:
+        root = robot.root
+    except ValueError:
+        return total
+    if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, root.name) > 0:
+        return total  # the root is a body of its own: nothing was fused into the world
+    fused: list[str] = []
+    stack = [root.name]
+    while stack:
+        name = stack.pop()
+        fused.append(name)
+        for joint in robot.joints:
+            if (
+                joint.parent == name
+                and joint.type.dof == 0
+                and mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, joint.child) <= 0
+            ):
+                stack.append(joint.child)
+    links = robot.link_map()
+    for name in fused:
+        inertial = links[name].inertial if name in links else None
+        if inertial is not None and inertial.mass is not None:
+            total += float(inertial.mass)
+    return total
 
 
 def _robot_mu(spec: Any, feet: tuple[str, ...] = ()) -> float:
@@ -223,7 +256,7 @@ def _drop(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
     if kind != "mjcf":
         s.option.integrator = _INTEGRATOR
     model = s.compile()
-    run.mass = float(model.body_mass.sum())
+    run.mass = _weighed(robot, model)
     data = mujoco.MjData(model)
     addr = _start(model, data, setup)
     root = _free_root(model)
