@@ -19,6 +19,7 @@ import numpy as np
 from robodesc.ir.model import Robot
 from robodesc.validation.dynamics.result import Run, settle_time
 from robodesc.validation.dynamics.scenarios import Setup, slide_angles
+from robodesc.validation.dynamics.verdict import SOURCE
 from robodesc.validation.mujoco_load import add_floating_base, captured_warnings, load_urdf_in_mujoco
 from robodesc.validation.options import ValidateOptions
 from robodesc.validation.report import ValidationReport
@@ -177,12 +178,18 @@ def _hold(robot: Robot, spec: Any, kind: str, setup: Setup, run: Run) -> None:
     for key in list(s.keys):  # a keyframe's qpos counts the free joint just removed
         s.delete(key)
     _actuate(s, kind, setup)
+    for name, armature in setup.source_armature.items() if kind == SOURCE else ():
+        joint = s.joint(name)
+        if joint is not None and not joint.armature:
+            joint.armature = armature
     s.option.timestep = setup.timestep
     if kind != "mjcf":
         s.option.integrator = _INTEGRATOR
     s.option.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
     model = s.compile()
     run.mass = _weighed(robot, model)
+    if kind == "mjcf":
+        run.armature = {j.name: float(j.armature) for j in s.joints if j.name and j.armature}
     data = mujoco.MjData(model)
     addr = _start(model, data, setup)
     _simulate(model, data, setup, run, addr)

@@ -70,6 +70,9 @@ class Run:
     slip: float | None = None  # the largest horizontal travel of a sole, m
     contact_sum: float | None = None  # the feet's contact sensors, summed (N, the normal force)
     weight: float | None = None  # the robot's weight as the engine read its mass, N
+    # Each joint's armature as the engine read it from the file (MuJoCo on an MJCF), kg·m²: the source
+    # run in the same engine is given the armature the file adds (run.py, _source_setup).
+    armature: dict[str, float] = field(default_factory=dict)
 
     def as_dict(self) -> dict[str, Any]:
         keys = ("engine", "file", "scenario", "ok", "error", "drift", "worst_joint", "height", "tilt", "mu")

@@ -151,6 +151,10 @@ class Setup:
     record: bool = False  # DynamicsOptions.record
     world: WorldStand | None = None
     names: dict[str, str] = field(default_factory=dict)  # DynamicsOptions.names
+    # Armature the source run is given (joint -> kg·m²): what the compared file adds to a source
+    # that has none (the mjcf preset's default armature, docs/passes.md), so the source comparison
+    # measures the writing, not that documented default.
+    source_armature: dict[str, float] = field(default_factory=dict)
 
     def start(self) -> dict[str, float]:
         """Every joint a scenario positions at its start: the home pose and the followers of it."""
@@ -172,6 +176,7 @@ class Setup:
             # Only when asked: the report's setup (info["setup"]) stays as it was without them.
             **({"record": True} if self.record else {}),
             **({"names": self.names} if self.names else {}),
+            **({"source_armature": self.source_armature} if self.source_armature else {}),
         }
 
 
