@@ -208,18 +208,17 @@ def _weighed(robot: Robot, model: Any) -> float:
         return total
     if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, root.name) > 0:
         return total  # the root is a body of its own: nothing was fused into the world
+    children = robot.child_joints()
     fused: list[str] = []
     stack = [root.name]
     while stack:
         name = stack.pop()
         fused.append(name)
-        for joint in robot.joints:
-            if (
-                joint.parent == name
-                and joint.type.dof == 0
-                and mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, joint.child) <= 0
-            ):
-                stack.append(joint.child)
+        stack.extend(
+            j.child
+            for j in children.get(name, [])
+            if j.type.dof == 0 and mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, j.child) <= 0
+        )
     links = robot.link_map()
     for name in fused:
         inertial = links[name].inertial if name in links else None
