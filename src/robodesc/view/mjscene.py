@@ -268,29 +268,23 @@ def _world(builder: _Builder, world: ViewWorld) -> None:
 
 
 def _heightfield(builder: _Builder, body: Any, grid: TerrainGrid, base: dict[str, Any]) -> None:
-    g = grid.grid
-    width, depth = g.size
-    low, high = float(g.z.min()), float(g.z.max())
-    centre = Frame(translation=(g.x0 + width / 2, g.y0 + depth / 2, low))
-    if high - low < 1e-9:  # flat: a slab whose top is the surface (an hfield needs a height range)
-        frame = grid.frame @ Frame(translation=(centre.translation[0], centre.translation[1], low - 0.05))
-        body.add_geom(
-            type=builder.mj.mjtGeom.mjGEOM_BOX, size=[width / 2, depth / 2, 0.05], pos=list(frame.translation),
-            quat=list(frame.quat()), **base,
-        )  # fmt: skip
+    """The heightfield as scene.xml writes it (emit/common/world.py, ``TerrainGrid.mujoco``)."""
+    from robodesc.emit.common.world import HFIELD_BASE
+
+    g = builder.mj.mjtGeom
+    field = grid.mujoco()
+    width, depth = field.half
+    at = {"pos": list(field.frame.translation), "quat": list(field.frame.quat()), **base}
+    if field.heights is None:
+        body.add_geom(type=g.mjGEOM_BOX, size=[width, depth, HFIELD_BASE / 2], **at)
         return
-    rows, cols = g.shape
+    rows, cols = field.heights.shape
     name = f"hfield{len(builder.spec.hfields)}"
-    # MuJoCo's first row is the +y edge (the grid's is -y); it scales the data to [0, size[2]].
     builder.spec.add_hfield(
-        name=name, nrow=rows, ncol=cols, size=[width / 2, depth / 2, high - low, 0.1],
-        userdata=np.flipud(g.z - low).ravel().astype(np.float32),
+        name=name, nrow=rows, ncol=cols, size=[width, depth, field.span, HFIELD_BASE],
+        userdata=field.heights.ravel().astype(np.float32),
     )  # fmt: skip
-    frame = grid.frame @ centre
-    body.add_geom(
-        type=builder.mj.mjtGeom.mjGEOM_HFIELD, hfieldname=name, pos=list(frame.translation), quat=list(frame.quat()),
-        **base,
-    )  # fmt: skip
+    body.add_geom(type=g.mjGEOM_HFIELD, hfieldname=name, **at)
 
 
 def _compile(builder: _Builder) -> Any:

@@ -33,6 +33,25 @@ Array = NDArray[np.float64]
 _LEVEL = 1e-9
 
 
+# MuJoCo's heightfield: the solid below the lowest point (its size[3]), m, and the height span below
+# which a grid is flat and drawn as a box (an hfield needs a height range).
+HFIELD_BASE = 0.1
+HFIELD_FLAT = 1e-9
+
+
+@dataclass(frozen=True, slots=True)
+class MujocoHeightfield:
+    """A terrain grid as MuJoCo holds it (:meth:`TerrainGrid.mujoco`), for scene.xml and the
+    pictures alike. ``frame``: where the geom goes in the world; ``half``: half its width and depth.
+    ``heights`` None: a flat grid, a box ``HFIELD_BASE`` thick whose top is the surface; else each
+    height over the lowest, in MuJoCo's row order (the +y edge first), spanning ``span``."""
+
+    frame: Frame
+    half: tuple[float, float]
+    span: float
+    heights: Array | None
+
+
 @dataclass(slots=True)
 class TerrainGrid:
     """A terrain collider as a heightfield: ``grid`` in the collider's own frame, ``frame`` that
@@ -46,6 +65,18 @@ class TerrainGrid:
     @property
     def label(self) -> str:
         return f"{self.body.name}/{self.collider.name}"
+
+    def mujoco(self) -> MujocoHeightfield:
+        g = self.grid
+        width, depth = g.size
+        low, high = float(g.z.min()), float(g.z.max())
+        half = (width / 2, depth / 2)
+        centre = Frame(translation=(g.x0 + width / 2, g.y0 + depth / 2, low))
+        if high - low < HFIELD_FLAT:
+            slab = Frame(translation=(centre.translation[0], centre.translation[1], low - HFIELD_BASE / 2))
+            return MujocoHeightfield(self.frame @ slab, half, 0.0, None)
+        # MuJoCo's first row is the +y edge (the grid's is -y); it scales the data to [0, span].
+        return MujocoHeightfield(self.frame @ centre, half, high - low, np.flipud(g.z - low))
 
 
 @dataclass(slots=True)

@@ -19,7 +19,7 @@ import numpy as np
 
 from robodesc.emit.common.numbers import fmt, fmt_vec
 from robodesc.emit.common.target import WorldAlone
-from robodesc.emit.common.world import PlacedWorld, TerrainGrid
+from robodesc.emit.common.world import HFIELD_BASE, PlacedWorld, TerrainGrid
 from robodesc.emit.mjcf.contact_params import ROLL, TORSION
 from robodesc.emit.mjcf.scene import SCENE
 from robodesc.ir.diagnostics import Findings
@@ -28,8 +28,6 @@ from robodesc.ir.rigid import Frame, pose_frame
 from robodesc.ir.world import CordField, HeightImage, Plane, StaticBody, WorldCollider
 
 STAGE = "emit:mjcf"
-BASE = 0.1  # m: the solid below a heightfield's lowest point (MuJoCo's size[3])
-FLAT = 1e-9  # m: a grid whose heights span less than this is a box
 
 
 @dataclass(slots=True, frozen=True)
@@ -285,30 +283,26 @@ def _range(robot: RobotSurface) -> str:
 
 
 def _heightfield(grid: TerrainGrid, name: str, attrs: dict[str, str], assets: ET.Element, world: ET.Element) -> None:
-    g = grid.grid
-    width, depth = g.size
-    low, high = float(g.z.min()), float(g.z.max())
-    centre = Frame(translation=(g.x0 + width / 2, g.y0 + depth / 2, low))
-    if high - low < FLAT:
-        # A flat terrain: a box whose top is the surface (MuJoCo needs a height range for an hfield).
-        slab = Frame(translation=(centre.translation[0], centre.translation[1], low - BASE / 2))
-        attrs.update(type="box", size=fmt_vec((width / 2, depth / 2, BASE / 2)))
-        ET.SubElement(world, "geom", _placed(attrs, grid.frame @ slab))
+    field = grid.mujoco()
+    width, depth = field.half
+    if field.heights is None:
+        attrs.update(type="box", size=fmt_vec((width, depth, HFIELD_BASE / 2)))
+        ET.SubElement(world, "geom", _placed(attrs, field.frame))
         return
-    rows, cols = g.shape
-    # MuJoCo's first inline row is the +y edge. Heights to 0.1 µm: float noise (2.8e-17) is no height.
-    rel = np.round(np.flipud(g.z - low), 7) + 0.0
+    rows, cols = field.heights.shape
+    # Heights to 0.1 µm: float noise (2.8e-17) is no height.
+    rel = np.round(field.heights, 7) + 0.0
     ET.SubElement(
         assets,
         "hfield",
         name=name,
         nrow=str(rows),
         ncol=str(cols),
-        size=fmt_vec((width / 2, depth / 2, high - low, BASE)),
+        size=fmt_vec((width, depth, field.span, HFIELD_BASE)),
         elevation=" ".join(f"{v:.7g}" for v in rel.ravel()),
     )
     attrs.update(type="hfield", hfield=name)
-    ET.SubElement(world, "geom", _placed(attrs, grid.frame @ centre))
+    ET.SubElement(world, "geom", _placed(attrs, field.frame))
 
 
 def _placed(attrs: dict[str, str], frame: Frame) -> dict[str, str]:
